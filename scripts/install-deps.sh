@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs the Debian packages rhabel needs, and only those that are missing.
+# Idempotent: a second run does nothing and touches no package index.
+set -euo pipefail
+
+packages=(
+  g++ cmake make            # toolchain
+  libboost-dev              # Boost.Math, Boost.Multiprecision (header-only)
+  libeigen3-dev             # Golub-Welsch eigenproblems, dense linear algebra
+  libgsl-dev                # comparison baselines in studies and benchmarks
+  doctest-dev               # unit tests
+  nlohmann-json3-dev        # scene and result JSON in the command line
+  libcli11-dev              # command-line parsing
+  libbenchmark-dev          # Google Benchmark for bench/
+  python3 python3-matplotlib  # the main job's plot
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "rhabel: installing missing Debian packages: ${missing[*]}" >&2
+sudo_cmd=()
+[ "$(id -u)" -ne 0 ] && sudo_cmd=(sudo)
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
