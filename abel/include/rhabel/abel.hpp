@@ -1,4 +1,36 @@
 // rhabel/abel.hpp: umbrella header of the abel module (rhabel::abel).
+//
+// The generalized Abel operator of the paper (eq. 8), its forward application and its solvers
+// for every index class, on one interval or on a union of disjoint intervals. All templates on
+// Real (tested in double and cpp_bin_float_50). Overview of the public API:
+//
+//   abel_parameters<Real>(alpha, beta) / ::from_kappa(alpha, kappa)       alpha in [0,1), beta in (-1,1)
+//       .kappa(), .one_minus_kappa_over_alpha(), .exponents(edge leading, edge trailing) -> {gam, del, nu}
+//   abel_operator<Real>(alpha, beta, lo, hi)   (or (parameters, lo, hi))
+//       .apply(jacobi_density, s)            A g(s), any s (outside [lo,hi]: surface slope, paper 27-28)
+//       .apply_by_quadrature(S, gam, del, s) independent direct quadrature of the one-sided integrals
+//       .eigenvalue(n, exponents)            lambda_n of the spectral relation
+//       ::quadrature_evaluator               cached version of apply_by_quadrature
+//   jacobi_density<Real>{lo, hi, gam, del, coefficients}: g(t), integral(), integral_to(t), moment(k),
+//       integrate(f, breakpoints), intensity_leading(), intensity_trailing(), series(x)
+//   solve(op, leading, trailing, F, solve_options)            smooth F (adaptive Chebyshev)
+//   solve_polynomial(op, leading, trailing, monomial coefficients)
+//   solve_image_series(op, leading, trailing, image coefficients)
+//   solve_piecewise(op, leading, trailing, F, breakpoints)    exact piecewise projection
+//     -> abel_solution{density, exponents, solvability_defect, homogeneous, residual,
+//                      coefficient_tail, degree, status, with_load(P)}
+//   solve_step(op, leading, trailing, F, t0)                  jump at t0 with singular enrichment
+//     -> enriched_solution{density: enriched_density (g(t), integral(), integral_to(t), integrate(f, bps)),
+//                          exponents, solvability_defect, residual, degree, status};  apply(op, g, s)
+//   solve_union(parameters, intervals, F per interval, multi_solve_options)   paper 41
+//     -> multi_solution{densities, exponents, solvability_defects, homogeneous, homogeneous_defects,
+//                       residual, condition, degree, status};  apply_union(parameters, densities, s)
+//   solve_elementary_abel(alpha, side, lo, hi, F), elementary_abel_primitive(alpha, side, lo, hi, F, x)
 #pragma once
 
 #include "rhabel/quadrature.hpp"
+#include "rhabel/abel/abel_operator.hpp"
+#include "rhabel/abel/abel_solver.hpp"
+#include "rhabel/abel/multi_interval.hpp"
+#include "rhabel/abel/elementary.hpp"
+#include "rhabel/abel/step_enrichment.hpp"

@@ -5,3 +5,6 @@
 
 #include "rhabel/quadrature/jacobi_polynomial.hpp"
 #include "rhabel/quadrature/gauss_jacobi.hpp"
+#include "rhabel/quadrature/detail/jacobi_projection.hpp"  // jacobi_coefficients (public)
+#include "rhabel/quadrature/cauchy_transform.hpp"
+#include "rhabel/quadrature/abel_integral.hpp"

@@ -10,21 +10,50 @@
 // What is computed, and how accurately:
 //  * jacobi_p, jacobi_p_all: the three-term recurrence (DLMF 18.9.1-2) run forward. It is
 //    forward stable for x in [-1, 1]; the relative error of P_n(x) is O(n eps) away from the
-//    zeros of P_n (absolute error O(n eps) max|P_n| near them).
+//    zeros of P_n (absolute error O(n eps) max|P_n| near them). In the boundary layers
+//    n^2 (1 -+ x) <= 2, where the recurrence loses up to n^2 eps when p or q is near -1,
+//    jacobi_p sums the endpoint hypergeometric series instead (relative error a few eps;
+//    measured, tests/quadrature/test_jacobi_polynomial.cpp), and for |x| >= 1/2 it runs the
+//    recurrence in Reinsch's difference form (see jacobi_p_visit_near_one). Measured
+//    against a 100-digit table: <= 0.3 (n + 10) eps relative to the local scale for n <= 10^6,
+//    except in the transition zone 1 < n^2 (1 -+ x) < n with the exponent at that end near -1
+//    (<= 640 n eps there; e.g. n = 10^6, p = -0.999, 1 - x = 2^-30).
 //  * jacobi_p_derivative: d/dx P_n^(p,q) = (n + p + q + 1)/2 P_{n-1}^(p+1,q+1)  (DLMF 18.9.15).
 //  * jacobi_norm_squared: h_n = int w P_n^2, through lgamma, so nothing overflows; relative
 //    error a few eps for any n.
-//  * jacobi_clenshaw: sum_k c_k P_k(x) by Clenshaw's algorithm, O(K) and backward stable.
+//  * jacobi_clenshaw: sum_k c_k P_k(x) by Clenshaw's algorithm for |x| < 1/2, by the forward
+//    difference-form recurrence near the ends; O(K).
+//  * jacobi_weight(p, q, 1 - x, 1 + x): the weight from the complements, full relative accuracy
+//    at 1e-300 from an end when the complements are exact.
+//  * connection coefficients (DLMF 18.9.5-6): P_n^(p,q) in the families (p+1, q) and (p, q+1)
+//    (two terms each), and the lowering identities (1 - x) P_n^(p+1,q), (1 + x) P_n^(p,q+1) in
+//    the family (p, q); jacobi_series_raise_p/q and jacobi_series_times_one_minus_x/one_plus_x
+//    apply them to coefficient vectors (exact up to rounding; O(K)).
+//  * jacobi_coefficients(f, p, q, n): c_k = (1/h_k) sum_i w_i f(x_i) P_k(x_i) with the n-point
+//    Gauss-Jacobi rule: exact for polynomials of degree < n, spectrally accurate for analytic f
+//    (declared in detail/jacobi_projection.hpp because it needs gauss_jacobi.hpp; the umbrella
+//    rhabel/quadrature.hpp includes it).
+//  * jacobi_integral_below(m, p, q, x0) = int_{-1}^{x0} w P_m by the Rodrigues-type identity
+//        d/dx[(1-x)^(p+1) (1+x)^(q+1) P_{m-1}^(p+1,q+1)] = -2m (1-x)^p (1+x)^q P_m^(p,q)   (m >= 1)
+//    (DLMF 18.9.16 with n = m - 1), so int_{-1}^{x0} w P_m = -(1/(2m)) (1-x0)^(p+1) (1+x0)^(q+1)
+//    P_{m-1}^(p+1,q+1)(x0), and for m = 0 the incomplete beta function
+//        int_{-1}^{x0} w = 2^(p+q+1) B_{(1+x0)/2}(q+1, p+1)         (t = 2u - 1).
+//    jacobi_step_coefficients / jacobi_ramp_coefficients: exact Jacobi coefficients of the
+//    indicator 1_{x < x0} and of the kink (x0 - x)_+ (one more integration of the same identity).
+//    These expansions converge slowly (the functions are not smooth); they are exact term by term.
 // Every function is a template on Real so that tests can run at 50 digits (Boost.Multiprecision).
 #pragma once
 
+#include <boost/math/special_functions/beta.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 
 #include <cmath>
 #include <cstddef>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rhabel::quadrature {
@@ -72,10 +101,33 @@ jacobi_recurrence<Real> jacobi_recurrence_coefficients(std::size_t k, const Real
 
 }  // namespace detail
 
-/// P_n^(p,q)(x) by the forward three-term recurrence. p, q > -1; any finite x.
+namespace detail {
+
+/// P_n^(p,q)(x) near x = +1 from u = (1 - x)/2 by the terminating hypergeometric series
+///   P_n^(p,q)(x) = (p+1)_n / n! * 2F1(-n, n+p+q+1; p+1; u)          (DLMF 18.5.7)
+/// For n^2 u <= 1 the terms behave like those of the Bessel series of J_p(2 n sqrt(u)) and
+/// decrease after k ~ n sqrt(u) <= 1: at most a factor e^2 of cancellation, so the relative
+/// error is a few eps (the recurrence loses up to n^2 eps relative there when p is near -1).
+/// (p+1)_n/n! = Gamma(n+p+1)/(Gamma(p+1) n!) uses tgamma_delta_ratio (a few ulps at any n).
 template <class Real>
-Real jacobi_p(std::size_t n, const Real& p, const Real& q, const Real& x) {
-  detail::check_jacobi_exponents("jacobi_p", p, q);
+Real jacobi_p_endpoint_series(std::size_t n, const Real& p, const Real& q, const Real& u) {
+  using std::abs;
+  const Real eps = std::numeric_limits<Real>::epsilon();
+  const Real N = Real(n);
+  Real term = 1, sum = 1;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Real K = Real(k);
+    term *= (K - N) * (K + N + p + q + 1) / ((K + 1) * (K + p + 1)) * u;
+    sum += term;
+    if (abs(term) <= eps / 8 * abs(sum) && K * K >= N * N * u) break;
+  }
+  const Real end_value = 1 / (boost::math::tgamma_delta_ratio(N + 1, p) * boost::math::tgamma(p + 1));
+  return end_value * sum;
+}
+
+/// Three-term recurrence, forward (see the header).
+template <class Real>
+Real jacobi_p_recurrence(std::size_t n, const Real& p, const Real& q, const Real& x) {
   Real previous = 1;  // P_0
   if (n == 0) return previous;
   Real current = (p + q + 2) / 2 * x + (p - q) / 2;  // P_1
@@ -88,11 +140,93 @@ Real jacobi_p(std::size_t n, const Real& p, const Real& q, const Real& x) {
   return current;
 }
 
-/// Values P_0(x), ..., P_n_max(x) in one pass (n_max + 1 entries).
+/// Calls visit(k, P_k(x)) for k = 0..n_max, x = 1 - u near +1, by the recurrence for the
+/// normalised R_k = P_k(x) / P_k(1) (P_k(1) = pi_k = (p+1)_k / k!, R_k(1) = 1) in Reinsch's
+/// difference form. With P_{k+1} = (A_k x + B_k) P_k - C_k P_{k-1} one gets
+///   R_{k+1} = a_k R_k - b_k R_{k-1},  a_k = (A_k x + B_k)(k+1)/(k+1+p),  b_k = C_k (k+1) k / ((k+1+p)(k+p)),
+/// and a_k - b_k = 1 at x = 1, so D_{k+1} = R_{k+1} - R_k satisfies
+///   D_{k+1} = b_k D_k - A_k u (k+1)/(k+1+p) R_k,   D_1 = -(p+q+2) u / (2 (p+1)).
+/// Near x = 1 the characteristic roots of the recurrence coalesce and rounding errors of the
+/// plain form grow linearly, O(n^2 eps) in all; here each step commits errors relative to the
+/// small D_k (the analogue of the Goertzel-Reinsch modification of Chebyshev sums). The
+/// normalisation by pi_k removes the cancellation of the unnormalised form when p is near -1
+/// (P_k(1) = (p+1)_k/k! is then 1e-3 of the intermediate terms).
+template <class Real, class Visit>
+void jacobi_p_visit_near_one(std::size_t n_max, const Real& p, const Real& q, const Real& u, Visit&& visit) {
+  Real R = 1, pi_k = 1;
+  visit(std::size_t(0), Real(1));
+  if (n_max == 0) return;
+  Real D = -(p + q + 2) * u / (2 * (p + 1));
+  R += D;
+  pi_k = p + 1;
+  visit(std::size_t(1), Real(pi_k * R));
+  for (std::size_t k = 1; k < n_max; ++k) {
+    const auto r = detail::jacobi_recurrence_coefficients(k, p, q);
+    const Real K = Real(k);
+    const Real b = r.C * (K + 1) * K / ((K + 1 + p) * (K + p));
+    D = b * D - r.A * u * (K + 1) / (K + 1 + p) * R;
+    R += D;
+    pi_k *= (K + 1 + p) / (K + 1);
+    visit(k + 1, Real(pi_k * R));
+  }
+}
+
+/// P_n^(p,q)(1 - u) by jacobi_p_visit_near_one.
+template <class Real>
+Real jacobi_p_recurrence_near_one(std::size_t n, const Real& p, const Real& q, const Real& u) {
+  Real value = 1;
+  jacobi_p_visit_near_one(n, p, q, u, [&](std::size_t k, const Real& v) {
+    if (k == n) value = v;
+  });
+  return value;
+}
+
+}  // namespace detail
+
+/// P_n^(p,q)(x), p, q > -1, any finite x. For x in [-1, 1] with n^2 (1 -+ x)/2 <= 1 (the
+/// boundary layer of width O(1/n^2) at an end) the endpoint hypergeometric series is used, at
+/// the end -1 through P_n^(p,q)(x) = (-1)^n P_n^(q,p)(-x); elsewhere the forward recurrence.
+template <class Real>
+Real jacobi_p(std::size_t n, const Real& p, const Real& q, const Real& x) {
+  using std::isfinite;
+  detail::check_jacobi_exponents("jacobi_p", p, q);
+  if (!isfinite(x)) detail::throw_bad_parameter("jacobi_p", "x", x, "finite");
+  if (n >= 2 && x >= 0 && x <= 1) {
+    const Real u = (1 - x) / 2;  // exact for x >= 1/2 (Sterbenz)
+    if (Real(n) * Real(n) * u <= 1) return detail::jacobi_p_endpoint_series(n, p, q, u);
+  }
+  if (n >= 2 && x < 0 && x >= -1) {
+    const Real u = (1 + x) / 2;
+    if (Real(n) * Real(n) * u <= 1) {
+      const Real value = detail::jacobi_p_endpoint_series(n, q, p, u);
+      return n % 2 == 0 ? value : Real(-value);
+    }
+  }
+  // |x| >= 1/2: the difference form near the nearer end (angle <= 60 degrees from it).
+  if (x >= Real(0.5) && x <= 1) return detail::jacobi_p_recurrence_near_one(n, p, q, Real(1 - x));
+  if (x <= Real(-0.5) && x >= -1) {
+    const Real value = detail::jacobi_p_recurrence_near_one(n, q, p, Real(1 + x));
+    return n % 2 == 0 ? value : Real(-value);
+  }
+  return detail::jacobi_p_recurrence(n, p, q, x);
+}
+
+/// Values P_0(x), ..., P_n_max(x) in one pass (n_max + 1 entries): the forward recurrence,
+/// in the difference form near the nearer end for |x| >= 1/2 (as jacobi_p, without the
+/// endpoint series).
 template <class Real>
 std::vector<Real> jacobi_p_all(std::size_t n_max, const Real& p, const Real& q, const Real& x) {
   detail::check_jacobi_exponents("jacobi_p_all", p, q);
   std::vector<Real> values(n_max + 1);
+  if (x >= Real(0.5) && x <= 1) {
+    detail::jacobi_p_visit_near_one(n_max, p, q, Real(1 - x), [&](std::size_t k, const Real& v) { values[k] = v; });
+    return values;
+  }
+  if (x <= Real(-0.5) && x >= -1) {
+    detail::jacobi_p_visit_near_one(n_max, q, p, Real(1 + x),
+                                    [&](std::size_t k, const Real& v) { values[k] = k % 2 == 0 ? v : Real(-v); });
+    return values;
+  }
   values[0] = 1;
   if (n_max >= 1) values[1] = (p + q + 2) / 2 * x + (p - q) / 2;
   for (std::size_t k = 1; k < n_max; ++k) {
@@ -132,10 +266,23 @@ Real jacobi_norm_squared(std::size_t n, const Real& p, const Real& q) {
   return exp(log_jacobi_norm_squared(n, p, q));
 }
 
-/// sum_{k=0}^{K-1} c[k] P_k^(p,q)(x) by Clenshaw's backward recurrence.
+/// sum_{k=0}^{K-1} c[k] P_k^(p,q)(x): Clenshaw's backward recurrence for |x| < 1/2; for
+/// |x| >= 1/2 the forward difference-form recurrence summed term by term (Clenshaw inherits the
+/// plain recurrence's cancellation near the ends: 2.5e-11 relative error at x = -0.9999 for
+/// p = q = -0.999, K = 7, which the difference form avoids).
 template <class Real>
 Real jacobi_clenshaw(const std::vector<Real>& c, const Real& p, const Real& q, const Real& x) {
   detail::check_jacobi_exponents("jacobi_clenshaw", p, q);
+  if (c.empty()) return Real(0);
+  if ((x >= Real(0.5) && x <= 1) || (x <= Real(-0.5) && x >= -1)) {
+    const bool upper = x > 0;
+    Real sum = 0;
+    detail::jacobi_p_visit_near_one(c.size() - 1, upper ? p : q, upper ? q : p, Real(upper ? 1 - x : 1 + x),
+                                    [&](std::size_t k, const Real& v) {
+                                      sum += (upper || k % 2 == 0) ? Real(c[k] * v) : Real(-c[k] * v);
+                                    });
+    return sum;
+  }
   Real b1 = 0, b2 = 0;  // b_{k+1}, b_{k+2}
   for (std::size_t k = c.size(); k-- > 0;) {
     const auto r = detail::jacobi_recurrence_coefficients(k, p, q);
@@ -145,6 +292,188 @@ Real jacobi_clenshaw(const std::vector<Real>& c, const Real& p, const Real& q, c
     b1 = b0;
   }
   return b1;
+}
+
+/// (1 - x)^p (1 + x)^q from the complements one_minus_x = 1 - x, one_plus_x = 1 + x (both >= 0).
+template <class Real>
+Real jacobi_weight(const Real& p, const Real& q, const Real& one_minus_x, const Real& one_plus_x) {
+  using std::pow;
+  detail::check_jacobi_exponents("jacobi_weight", p, q);
+  if (!(one_minus_x >= 0)) detail::throw_bad_parameter("jacobi_weight", "one_minus_x", one_minus_x, "[0, 2]");
+  if (!(one_plus_x >= 0)) detail::throw_bad_parameter("jacobi_weight", "one_plus_x", one_plus_x, "[0, 2]");
+  Real value = 1;
+  if (p != 0) value *= pow(one_minus_x, p);
+  if (q != 0) value *= pow(one_plus_x, q);
+  return value;
+}
+
+/// Two-term connection P_n^(p,q) = first * P_n^(p+1,q) + second * P_{n-1}^(p+1,q)
+/// (DLMF 18.9.5): first = (n+p+q+1)/(2n+p+q+1), second = -(n+q)/(2n+p+q+1); n = 0: (1, 0).
+template <class Real>
+std::pair<Real, Real> jacobi_connection_raise_p(std::size_t n, const Real& p, const Real& q) {
+  detail::check_jacobi_exponents("jacobi_connection_raise_p", p, q);
+  if (n == 0) return {Real(1), Real(0)};
+  const Real m = Real(n), s = 2 * m + p + q + 1;
+  return {(m + p + q + 1) / s, -(m + q) / s};
+}
+
+/// P_n^(p,q) = first * P_n^(p,q+1) + second * P_{n-1}^(p,q+1)  (DLMF 18.9.5 reflected):
+/// first = (n+p+q+1)/(2n+p+q+1), second = +(n+p)/(2n+p+q+1); n = 0: (1, 0).
+template <class Real>
+std::pair<Real, Real> jacobi_connection_raise_q(std::size_t n, const Real& p, const Real& q) {
+  detail::check_jacobi_exponents("jacobi_connection_raise_q", p, q);
+  if (n == 0) return {Real(1), Real(0)};
+  const Real m = Real(n), s = 2 * m + p + q + 1;
+  return {(m + p + q + 1) / s, (m + p) / s};
+}
+
+/// Lowering: (1 - x) P_n^(p+1,q) = first * P_n^(p,q) + second * P_{n+1}^(p,q)  (DLMF 18.9.6):
+/// first = 2(n+p+1)/(2n+p+q+2), second = -2(n+1)/(2n+p+q+2).
+template <class Real>
+std::pair<Real, Real> jacobi_lowering_one_minus_x(std::size_t n, const Real& p, const Real& q) {
+  detail::check_jacobi_exponents("jacobi_lowering_one_minus_x", p, q);
+  const Real m = Real(n), s = 2 * m + p + q + 2;
+  return {2 * (m + p + 1) / s, -2 * (m + 1) / s};
+}
+
+/// Lowering: (1 + x) P_n^(p,q+1) = first * P_n^(p,q) + second * P_{n+1}^(p,q):
+/// first = 2(n+q+1)/(2n+p+q+2), second = +2(n+1)/(2n+p+q+2).
+template <class Real>
+std::pair<Real, Real> jacobi_lowering_one_plus_x(std::size_t n, const Real& p, const Real& q) {
+  detail::check_jacobi_exponents("jacobi_lowering_one_plus_x", p, q);
+  const Real m = Real(n), s = 2 * m + p + q + 2;
+  return {2 * (m + q + 1) / s, 2 * (m + 1) / s};
+}
+
+/// Coefficients in P_k^(p+1,q) of sum_n c[n] P_n^(p,q) (same length).
+template <class Real>
+std::vector<Real> jacobi_series_raise_p(const std::vector<Real>& c, const Real& p, const Real& q) {
+  std::vector<Real> d(c.size(), Real(0));
+  for (std::size_t n = 0; n < c.size(); ++n) {
+    const auto [first, second] = jacobi_connection_raise_p(n, p, q);
+    d[n] += first * c[n];
+    if (n > 0) d[n - 1] += second * c[n];
+  }
+  return d;
+}
+
+/// Coefficients in P_k^(p,q+1) of sum_n c[n] P_n^(p,q) (same length).
+template <class Real>
+std::vector<Real> jacobi_series_raise_q(const std::vector<Real>& c, const Real& p, const Real& q) {
+  std::vector<Real> d(c.size(), Real(0));
+  for (std::size_t n = 0; n < c.size(); ++n) {
+    const auto [first, second] = jacobi_connection_raise_q(n, p, q);
+    d[n] += first * c[n];
+    if (n > 0) d[n - 1] += second * c[n];
+  }
+  return d;
+}
+
+/// Coefficients in P_k^(p,q) of (1 - x) sum_n c[n] P_n^(p+1,q) (length + 1).
+template <class Real>
+std::vector<Real> jacobi_series_times_one_minus_x(const std::vector<Real>& c, const Real& p, const Real& q) {
+  std::vector<Real> d(c.size() + 1, Real(0));
+  for (std::size_t n = 0; n < c.size(); ++n) {
+    const auto [first, second] = jacobi_lowering_one_minus_x(n, p, q);
+    d[n] += first * c[n];
+    d[n + 1] += second * c[n];
+  }
+  return d;
+}
+
+/// Coefficients in P_k^(p,q) of (1 + x) sum_n c[n] P_n^(p,q+1) (length + 1).
+template <class Real>
+std::vector<Real> jacobi_series_times_one_plus_x(const std::vector<Real>& c, const Real& p, const Real& q) {
+  std::vector<Real> d(c.size() + 1, Real(0));
+  for (std::size_t n = 0; n < c.size(); ++n) {
+    const auto [first, second] = jacobi_lowering_one_plus_x(n, p, q);
+    d[n] += first * c[n];
+    d[n + 1] += second * c[n];
+  }
+  return d;
+}
+
+/// int_{-1}^{x0} (1-x)^p (1+x)^q P_m^(p,q)(x) dx from the complements 1 - x0, 1 + x0 (see header).
+template <class Real>
+Real jacobi_integral_below(std::size_t m, const Real& p, const Real& q, const Real& one_minus_x0,
+                           const Real& one_plus_x0) {
+  using std::ldexp;
+  using std::pow;
+  constexpr const char* name = "jacobi_integral_below";
+  detail::check_jacobi_exponents(name, p, q);
+  if (!(one_minus_x0 >= 0) || !(one_minus_x0 <= 2)) detail::throw_bad_parameter(name, "one_minus_x0", one_minus_x0, "[0, 2]");
+  if (!(one_plus_x0 >= 0) || !(one_plus_x0 <= 2)) detail::throw_bad_parameter(name, "one_plus_x0", one_plus_x0, "[0, 2]");
+  if (m == 0) {
+    // 2^(p+q+1) B_u(q+1, p+1), u = (1 + x0)/2; for u > 1/2 the complement form
+    // B_u(a, b) = B(a, b) - B_{1-u}(b, a) = betac(b, a, 1 - u) keeps full accuracy near x0 = 1.
+    const Real u = one_plus_x0 / 2, v = one_minus_x0 / 2;
+    const Real incomplete = u <= v ? boost::math::beta(q + 1, p + 1, u) : boost::math::betac(p + 1, q + 1, v);
+    return pow(Real(2), p + q + 1) * incomplete;
+  }
+  const Real x0 = one_plus_x0 <= one_minus_x0 ? one_plus_x0 - 1 : 1 - one_minus_x0;
+  return -jacobi_weight(p + 1, q + 1, one_minus_x0, one_plus_x0) * jacobi_p(m - 1, p + 1, q + 1, x0) /
+         (2 * Real(m));
+}
+
+/// int_{-1}^{x0} (1-x)^p (1+x)^q P_m^(p,q)(x) dx, -1 <= x0 <= 1.
+template <class Real>
+Real jacobi_integral_below(std::size_t m, const Real& p, const Real& q, const Real& x0) {
+  using std::isfinite;
+  if (!isfinite(x0) || x0 < -1 || x0 > 1) detail::throw_bad_parameter("jacobi_integral_below", "x0", x0, "[-1, 1]");
+  return jacobi_integral_below(m, p, q, Real(1 - x0), Real(1 + x0));
+}
+
+/// Jacobi coefficients c_0..c_{n-1} (family (p,q)) of the indicator 1_{x < x0}:
+/// c_m = jacobi_integral_below(m, p, q, x0) / h_m. Overload with complements for x0 near +-1.
+template <class Real>
+std::vector<Real> jacobi_step_coefficients(std::size_t n, const Real& p, const Real& q, const Real& one_minus_x0,
+                                           const Real& one_plus_x0) {
+  std::vector<Real> c(n);
+  for (std::size_t m = 0; m < n; ++m)
+    c[m] = jacobi_integral_below(m, p, q, one_minus_x0, one_plus_x0) / jacobi_norm_squared(m, p, q);
+  return c;
+}
+
+template <class Real>
+std::vector<Real> jacobi_step_coefficients(std::size_t n, const Real& p, const Real& q, const Real& x0) {
+  using std::isfinite;
+  if (!isfinite(x0) || x0 < -1 || x0 > 1) detail::throw_bad_parameter("jacobi_step_coefficients", "x0", x0, "[-1, 1]");
+  return jacobi_step_coefficients(n, p, q, Real(1 - x0), Real(1 + x0));
+}
+
+/// int_{-1}^{x0} (x0 - x) (1-x)^p (1+x)^q P_m^(p,q)(x) dx (the moments of the kink (x0 - x)_+):
+///   m >= 2: w_(p+2,q+2)(x0) P_{m-2}^(p+2,q+2)(x0) / (4 m (m-1))
+///   m = 1 : -(1/2) int_{-1}^{x0} w_(p+1,q+1)
+///   m = 0 : (1 + x0) int_{-1}^{x0} w_(p,q) - int_{-1}^{x0} w_(p,q+1)
+/// (integrate int_{-1}^{y} w P_m = -(1/(2m)) w_(p+1,q+1)(y) P_{m-1}^(p+1,q+1)(y) once more in y).
+template <class Real>
+Real jacobi_ramp_moment(std::size_t m, const Real& p, const Real& q, const Real& one_minus_x0, const Real& one_plus_x0) {
+  detail::check_jacobi_exponents("jacobi_ramp_moment", p, q);
+  if (m == 0)
+    return one_plus_x0 * jacobi_integral_below(0, p, q, one_minus_x0, one_plus_x0) -
+           jacobi_integral_below(0, p, q + 1, one_minus_x0, one_plus_x0);
+  if (m == 1) return -jacobi_integral_below(0, p + 1, q + 1, one_minus_x0, one_plus_x0) / 2;
+  const Real x0 = one_plus_x0 <= one_minus_x0 ? one_plus_x0 - 1 : 1 - one_minus_x0;
+  return jacobi_weight(p + 2, q + 2, one_minus_x0, one_plus_x0) * jacobi_p(m - 2, p + 2, q + 2, x0) /
+         (4 * Real(m) * Real(m - 1));
+}
+
+/// Jacobi coefficients c_0..c_{n-1} of the kink (x0 - x)_+ = max(x0 - x, 0).
+/// |x - x0| = (x - x0) + 2 (x0 - x)_+ gives the absolute-value kink.
+template <class Real>
+std::vector<Real> jacobi_ramp_coefficients(std::size_t n, const Real& p, const Real& q, const Real& one_minus_x0,
+                                           const Real& one_plus_x0) {
+  std::vector<Real> c(n);
+  for (std::size_t m = 0; m < n; ++m)
+    c[m] = jacobi_ramp_moment(m, p, q, one_minus_x0, one_plus_x0) / jacobi_norm_squared(m, p, q);
+  return c;
+}
+
+template <class Real>
+std::vector<Real> jacobi_ramp_coefficients(std::size_t n, const Real& p, const Real& q, const Real& x0) {
+  using std::isfinite;
+  if (!isfinite(x0) || x0 < -1 || x0 > 1) detail::throw_bad_parameter("jacobi_ramp_coefficients", "x0", x0, "[-1, 1]");
+  return jacobi_ramp_coefficients(n, p, q, Real(1 - x0), Real(1 + x0));
 }
 
 }  // namespace rhabel::quadrature

@@ -1,0 +1,262 @@
+// rhabel/abel/detail/numerics.hpp: private numerical kernels of the abel module.
+//
+// Gauss-Jacobi rules, Jacobi polynomial values and sums, recurrence coefficients and the
+// bad-parameter exception come from the quadrature module (quadrature::gauss_jacobi,
+// jacobi_p_all, jacobi_clenshaw, detail::jacobi_recurrence_coefficients). What is here is what
+// that module does not provide:
+//  * jacobi_sum_any, jacobi_values_any: sum_k c_k P_k^(p,q)(x) and P_0..P_n(x) for ANY real
+//    p, q with p + q != -2, -3, ... They forward to quadrature::jacobi_clenshaw / jacobi_p_all
+//    for p, q > -1 and run their own plain recurrence only for p <= -1 or q <= -1, which
+//    quadrature rejects (the image family of the class nu = -1 has p < -1 when
+//    2 alpha + beta > 1; the polynomials exist, only the weight is not integrable).
+//  * chebyshev_to_jacobi: coefficients of a Chebyshev series in the basis P_m^(p,q) by the
+//    exact connection matrix (built from x T_k = (T_{k+1} + T_|k-1|)/2) and back substitution.
+//    Uniform in p, q (works through p = -1), O(M^2).
+//  * panel_integrator: int_0^len (len - u)^p u^q f(u, len - u) du for f with singularities at
+//    known distances outside [0, len]: geometric panels (ratio 2) toward each near singularity,
+//    quadrature::gauss_jacobi on the panels that touch an end, Gauss-Legendre elsewhere. A
+//    singularity at distance d from an end sits 3 panel half-widths from the centre of every
+//    panel, so each panel converges like (3 + sqrt 8)^(-2 n_panel): 16 nodes give ~ 1e-24.
+//  * chebyshev_grid / chebyshev_coefficients, exprel, lgamma_difference_over_alpha.
+#pragma once
+
+#include "rhabel/quadrature/gauss_jacobi.hpp"
+#include "rhabel/quadrature/jacobi_polynomial.hpp"
+
+#include <boost/math/constants/constants.hpp>
+#include <boost/math/special_functions/digamma.hpp>
+#include <boost/math/special_functions/expm1.hpp>
+#include <boost/math/special_functions/gamma.hpp>
+
+#include <cmath>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace rhabel::abel::detail {
+
+// The quadrature module's checked-input helper and recurrence coefficients
+// (P_{k+1} = (A_k x + B_k) P_k - C_k P_{k-1}, DLMF 18.9.1-2; the formula itself has no range
+// restriction on p, q).
+using rhabel::quadrature::detail::jacobi_recurrence_coefficients;
+using rhabel::quadrature::detail::throw_bad_parameter;
+
+/// P_0(x), ..., P_n(x) of P^(p,q) for ANY real p, q with p + q != -2, -3, ... For p, q > -1
+/// this is quadrature::jacobi_p_all; the plain forward recurrence below runs only for p <= -1
+/// or q <= -1 (rejected by quadrature). The abel headers themselves call jacobi_p_all directly;
+/// this entry point remains because studies/abel_convergence.cpp uses it.
+template <class Real>
+std::vector<Real> jacobi_values_any(std::size_t n, const Real& p, const Real& q, const Real& x) {
+  if (p > -1 && q > -1) return rhabel::quadrature::jacobi_p_all(n, p, q, x);
+  std::vector<Real> v(n + 1);
+  v[0] = 1;
+  if (n >= 1) v[1] = (p + q + 2) / 2 * x + (p - q) / 2;
+  for (std::size_t k = 1; k < n; ++k) {
+    const auto r = jacobi_recurrence_coefficients(k, p, q);
+    v[k + 1] = (r.A * x + r.B) * v[k] - r.C * v[k - 1];
+  }
+  return v;
+}
+
+/// Clenshaw sum_k c_k P_k^(p,q)(x) for ANY real p, q with p + q != -2, -3, ... For p, q > -1
+/// this is quadrature::jacobi_clenshaw (difference-form recurrence near the ends). The plain
+/// Clenshaw recurrence below is kept only for p <= -1 or q <= -1, which the quadrature module
+/// rejects (its weight is not integrable there): the image family (gam - 1, del - 1) of the
+/// class nu = -1 has p = gam - 1 < -1 when 2 alpha + beta > 1; the polynomials still exist.
+template <class Real>
+Real jacobi_sum_any(const std::vector<Real>& c, const Real& p, const Real& q, const Real& x) {
+  if (p > -1 && q > -1) return rhabel::quadrature::jacobi_clenshaw(c, p, q, x);
+  Real b1 = 0, b2 = 0;
+  for (std::size_t k = c.size(); k-- > 0;) {
+    const auto r = jacobi_recurrence_coefficients(k, p, q);
+    const Real C_next =
+        c.size() > k + 1 ? jacobi_recurrence_coefficients(k + 1, p, q).C : Real(0);
+    const Real b0 = c[k] + (r.A * x + r.B) * b1 - C_next * b2;
+    b2 = b1;
+    b1 = b0;
+  }
+  return b1;
+}
+
+/// Chebyshev points of the first kind x_j = cos(pi (j + 1/2)/m), j = 0..m-1, with 1 -+ x_j
+/// computed as 2 sin^2 / 2 cos^2 of the half angle (no cancellation near the ends).
+template <class Real>
+struct chebyshev_grid {
+  std::vector<Real> x, one_minus_x, one_plus_x;
+  explicit chebyshev_grid(std::size_t m) : x(m), one_minus_x(m), one_plus_x(m) {
+    using std::cos;
+    using std::sin;
+    const Real pi = boost::math::constants::pi<Real>();
+    for (std::size_t j = 0; j < m; ++j) {
+      const Real theta = pi * (Real(j) + Real(0.5)) / Real(m);
+      x[j] = cos(theta);
+      const Real s = sin(theta / 2), c = cos(theta / 2);
+      one_minus_x[j] = 2 * s * s;
+      one_plus_x[j] = 2 * c * c;
+    }
+  }
+};
+
+/// Chebyshev coefficients a_0..a_{m-1} of the interpolant of values f_j at chebyshev_grid(m).
+/// T_k(x_j) = cos(pi k (2j+1)/(2m)) is taken from a table of cos(pi r/(2m)) by reducing
+/// k (2j+1) modulo 4m: every entry is a correctly rounded cosine (no recurrence drift).
+template <class Real>
+std::vector<Real> chebyshev_coefficients(const std::vector<Real>& f) {
+  using std::cos;
+  const std::size_t m = f.size();
+  const Real pi = boost::math::constants::pi<Real>();
+  std::vector<Real> table(4 * m);
+  for (std::size_t r = 0; r < 4 * m; ++r) table[r] = cos(pi * Real(r) / Real(2 * m));
+  std::vector<Real> a(m, Real(0));
+  for (std::size_t k = 0; k < m; ++k) {
+    Real sum = 0;
+    for (std::size_t j = 0; j < m; ++j) sum += f[j] * table[(k * (2 * j + 1)) % (4 * m)];
+    a[k] = sum * (k == 0 ? Real(1) : Real(2)) / Real(m);
+  }
+  return a;
+}
+
+/// Coefficients d_m of sum_k a_k T_k in the basis P_m^(p,q), m = 0..size-1 (exact re-expansion
+/// of the same polynomial). Any real p, q with p + q + 1 + m != 0 for the degrees used.
+template <class Real>
+std::vector<Real> chebyshev_to_jacobi(const std::vector<Real>& a, const Real& p, const Real& q) {
+  const std::size_t m = a.size();
+  if (m == 0) return {};
+  // columns[j] = Chebyshev coefficients of P_j^(p,q), length j + 1.
+  std::vector<std::vector<Real>> col(m);
+  col[0] = {Real(1)};
+  auto times_x = [](const std::vector<Real>& c) {
+    std::vector<Real> r(c.size() + 1, Real(0));
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      if (k == 0) {
+        r[1] += c[0];
+      } else {
+        r[k + 1] += c[k] / 2;
+        r[k - 1] += c[k] / 2;
+      }
+    }
+    return r;
+  };
+  for (std::size_t j = 0; j + 1 < m; ++j) {
+    const auto r = jacobi_recurrence_coefficients(j, p, q);
+    std::vector<Real> next = times_x(col[j]);
+    for (auto& v : next) v *= r.A;
+    for (std::size_t k = 0; k <= j; ++k) next[k] += r.B * col[j][k];
+    if (j >= 1)
+      for (std::size_t k = 0; k < j; ++k) next[k] -= r.C * col[j - 1][k];
+    col[j + 1] = std::move(next);
+  }
+  std::vector<Real> d(m);
+  for (std::size_t i = m; i-- > 0;) {
+    Real s = a[i];
+    for (std::size_t j = i + 1; j < m; ++j) s -= col[j][i] * d[j];
+    d[i] = s / col[i][i];
+  }
+  return d;
+}
+
+/// Composite integrator for int_0^len (len - u)^p u^q f(u, len - u) du where f may be
+/// singular at u = -d_left and u = len + d_right (pass +inf when absent).
+template <class Real>
+class panel_integrator {
+ public:
+  panel_integrator(const Real& p, const Real& q, std::size_t nodes = 16)
+      : p_(p), q_(q),
+        legendre_(rhabel::quadrature::gauss_jacobi<Real>(nodes, Real(0), Real(0))),
+        left_(rhabel::quadrature::gauss_jacobi<Real>(nodes, Real(0), q)),
+        right_(rhabel::quadrature::gauss_jacobi<Real>(nodes, p, Real(0))),
+        both_(rhabel::quadrature::gauss_jacobi<Real>(nodes, p, q)) {}
+
+  template <class F>
+  Real integrate(const Real& len, const Real& d_left, const Real& d_right, F&& f) const {
+    Real sum = 0;
+    for_each_node(len, d_left, d_right, [&](const Real& u, const Real& v, const Real& weight) { sum += weight * f(u, v); });
+    return sum;
+  }
+
+  /// Calls visit(u, len - u, weight) for every node of the composite rule (weight includes
+  /// (len-u)^p u^q and the panel scaling).
+  template <class Visit>
+  void for_each_node(const Real& len, const Real& d_left, const Real& d_right, Visit&& visit) const {
+    using std::pow;
+    // Breakpoints as pairs (distance from 0, distance from len).
+    std::vector<Real> from_left{Real(0)};
+    const Real half = len / 2;
+    if (d_left > 0 && d_left < half) {
+      Real w = d_left;
+      Real pos = d_left;
+      while (pos < half) {
+        from_left.push_back(pos);
+        w *= 2;
+        pos += w;
+      }
+    }
+    std::vector<Real> from_right{Real(0)};
+    if (d_right > 0 && d_right < half) {
+      Real w = d_right;
+      Real pos = d_right;
+      while (pos < half) {
+        from_right.push_back(pos);
+        w *= 2;
+        pos += w;
+      }
+    }
+    // Assemble panels [u_k, u_{k+1}] with both distances.
+    struct point {
+      Real left, right;
+    };
+    std::vector<point> pts;
+    for (const auto& v : from_left) pts.push_back({v, len - v});
+    for (std::size_t k = from_right.size(); k-- > 0;) pts.push_back({len - from_right[k], from_right[k]});
+    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
+      const point a = pts[k], b = pts[k + 1];
+      const Real width = b.left - a.left;
+      if (!(width > 0)) continue;
+      const bool touches_left = k == 0, touches_right = k + 2 == pts.size();
+      const auto& rule = touches_left ? (touches_right ? both_ : left_) : (touches_right ? right_ : legendre_);
+      const Real h = width / 2;
+      const Real scale = pow(h, (touches_left ? q_ : Real(0)) + (touches_right ? p_ : Real(0)) + 1);
+      for (std::size_t i = 0; i < rule.size(); ++i) {
+        const Real from_a = rule.x_minus_lo[i] * h, to_b = rule.hi_minus_x[i] * h;
+        const Real u = a.left + from_a;              // distance from 0
+        const Real v = b.right + to_b;               // distance from len
+        Real weight = rule.weight[i];
+        if (!touches_left) weight *= pow(u, q_);
+        if (!touches_right) weight *= pow(v, p_);
+        visit(u, v, scale * weight);
+      }
+    }
+  }
+
+ private:
+  Real p_, q_;
+  rhabel::quadrature::quadrature_rule<Real> legendre_, left_, right_, both_;
+};
+
+/// expm1(x)/x, = 1 at x = 0.
+template <class Real>
+Real exprel(const Real& x) {
+  if (x == 0) return Real(1);
+  return boost::math::expm1(x) / x;
+}
+
+/// E(c) = [lgamma(c + 1 + alpha) - lgamma(c + 1)] / alpha, uniform as alpha -> 0 (= psi(c + 1)).
+/// For alpha <= c + 1: (1/2) int_{-1}^{1} psi(c + 1 + alpha (1 + u)/2) du by 24-point
+/// Gauss-Legendre (the poles of psi are >= 3 half-lengths away: error < 1e-30).
+template <class Real>
+Real lgamma_difference_over_alpha(const Real& c, const Real& alpha) {
+  using boost::math::digamma;
+  using boost::math::lgamma;
+  if (alpha > c + 1) return (lgamma(c + 1 + alpha) - lgamma(c + 1)) / alpha;
+  static thread_local std::vector<Real> nodes, weights;
+  if (nodes.empty()) {
+    const auto rule = rhabel::quadrature::gauss_jacobi<Real>(24, Real(0), Real(0));
+    nodes = rule.x;
+    weights = rule.weight;
+  }
+  Real sum = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) sum += weights[i] * digamma(c + 1 + alpha * (1 + nodes[i]) / 2);
+  return sum / 2;
+}
+
+}  // namespace rhabel::abel::detail

@@ -1,0 +1,272 @@
+// cli/scene_json.cpp: parsing and validation of the scene file (see scene_json.hpp).
+#include "scene_json.hpp"
+
+#include "commands.hpp"
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <cstddef>
+#include <initializer_list>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace rhabel::cli {
+
+const char* shape_name(shape_kind shape) noexcept {
+  switch (shape) {
+    case shape_kind::parabolic: return "parabolic";
+    case shape_kind::wedge: return "wedge";
+    case shape_kind::flat: return "flat";
+  }
+  return "unknown";
+}
+
+namespace {
+
+using json = nlohmann::json;
+
+// A message must stay on one line whatever the input contained.
+std::string one_line(std::string text) {
+  for (char& c : text) {
+    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
+  }
+  return text;
+}
+
+[[noreturn]] void fail(const std::string& message) { throw input_error("solve: " + one_line(message)); }
+
+// The scene's syntax is checked by nlohmann-json; this callback adds what it does not check:
+// duplicate keys. It tracks the path of the value being parsed so that the message can name it.
+class duplicate_key_guard {
+ public:
+  bool operator()(int /*depth*/, json::parse_event_t event, json& parsed) {
+    switch (event) {
+      case json::parse_event_t::object_start: frames_.push_back(frame{true, {}, 0, {}}); break;
+      case json::parse_event_t::array_start: frames_.push_back(frame{false, {}, 0, {}}); break;
+      case json::parse_event_t::key: {
+        auto& top = frames_.back();
+        const auto key = parsed.get<std::string>();
+        if (!top.keys.insert(key).second) {
+          top.key = key;
+          fail(path() + " appears twice in the same object (duplicate keys are rejected: which one was meant?)");
+        }
+        top.key = key;
+        break;
+      }
+      case json::parse_event_t::value: element_done(); break;
+      case json::parse_event_t::object_end:
+      case json::parse_event_t::array_end:
+        frames_.pop_back();
+        element_done();
+        break;
+    }
+    return true;  // keep everything
+  }
+
+  // Path of the value being parsed now (valid also after the lexer threw).
+  std::string path() const {
+    std::string out;
+    for (const auto& f : frames_) {
+      if (f.object) {
+        if (!out.empty()) out += '.';
+        out += f.key;
+      } else {
+        out += '[' + std::to_string(f.index) + ']';
+      }
+    }
+    return out.empty() ? "(top level)" : out;
+  }
+ private:
+  struct frame {
+    bool object;
+    std::string key;          // current key (object)
+    std::size_t index;        // elements completed so far (array)
+    std::set<std::string> keys;
+  };
+  void element_done() {
+    if (!frames_.empty() && !frames_.back().object) ++frames_.back().index;
+  }
+  std::vector<frame> frames_;
+};
+
+std::string type_of(const json& value) {
+  if (value.is_null()) return "null";
+  if (value.is_boolean()) return "a boolean";
+  if (value.is_string()) return "a string";
+  if (value.is_array()) return "an array";
+  if (value.is_object()) return "an object";
+  return "a number";
+}
+
+std::string show(const json& value) {
+  if (value.is_number_float() && !std::isfinite(value.get<double>())) {
+    return value.get<double>() > 0 ? "+inf" : "-inf";
+  }
+  std::string text = value.dump();
+  if (text.size() > 40) text = text.substr(0, 37) + "...";
+  return text;
+}
+
+std::string child(const std::string& parent, const std::string& key) {
+  return parent.empty() ? key : parent + "." + key;
+}
+
+// Valid ranges of the numeric fields, with their printed form.
+struct range {
+  double lo, hi;
+  bool lo_open, hi_open;
+  const char* text;
+  bool contains(double x) const {
+    return (lo_open ? x > lo : x >= lo) && (hi_open ? x < hi : x <= hi);
+  }
+};
+constexpr double inf = HUGE_VAL;
+constexpr range positive{0, inf, true, true, "(0, inf)"};
+constexpr range non_negative{0, inf, false, true, "[0, inf)"};
+constexpr range any_finite{-inf, inf, true, true, "(-inf, inf)"};
+constexpr range alpha_range{0, 1, false, true, "[0, 1)"};
+constexpr range poisson_range{0, 0.5, false, false, "[0, 0.5]"};
+
+// Checks that `object` (at `path`) has only the listed keys.
+void only_keys(const json& object, const std::string& path, std::initializer_list<const char*> allowed,
+               const std::string& context = {}) {
+  for (const auto& item : object.items()) {
+    bool known = false;
+    std::string list;
+    for (const char* name : allowed) {
+      known = known || item.key() == name;
+      list += list.empty() ? name : std::string(", ") + name;
+    }
+    if (!known) {
+      fail(child(path, item.key()) + " is not a known field" + context + " (known: " + list + ")");
+    }
+  }
+}
+
+const json& require(const json& object, const std::string& path, const char* key, const std::string& what) {
+  const auto it = object.find(key);
+  if (it == object.end()) fail(child(path, key) + " is missing: " + what);
+  return *it;
+}
+
+double number(const json& value, const std::string& path, const range& valid, const std::string& what) {
+  if (!value.is_number()) {
+    fail(path + " must be a number in " + valid.text + " (" + what + "), got " + type_of(value) + " " + show(value));
+  }
+  const double x = value.get<double>();
+  if (!std::isfinite(x)) {
+    fail(path + " = " + show(value) + " overflows a double; valid range " + valid.text + " (" + what + ")");
+  }
+  if (!valid.contains(x)) {
+    fail(path + " = " + show(value) + " is outside the valid range " + valid.text + " (" + what + ")");
+  }
+  return x;
+}
+
+double required_number(const json& object, const std::string& path, const char* key, const range& valid,
+                       const std::string& what) {
+  const auto& value =
+      require(object, path, key, std::string("a number in ") + valid.text + " is required (" + what + ")");
+  return number(value, child(path, key), valid, what);
+}
+
+std::string optional_string(const json& object, const std::string& path, const char* key) {
+  const auto it = object.find(key);
+  if (it == object.end()) return {};
+  if (!it->is_string()) fail(child(path, key) + " must be a string, got " + type_of(*it) + " " + show(*it));
+  return it->get<std::string>();
+}
+
+void require_object(const json& value, const std::string& path) {
+  if (!value.is_object()) fail(path + " must be a JSON object {...}, got " + type_of(value) + " " + show(value));
+}
+
+material_spec parse_material(const json& value) {
+  const std::string path = "material";
+  require_object(value, path);
+  only_keys(value, path, {"alpha", "E1", "nu", "coulomb", "name"});
+  material_spec m;
+  m.alpha = required_number(value, path, "alpha", alpha_range, "power-law exponent of E(t) = E1 t^-alpha");
+  m.E1 = required_number(value, path, "E1", positive, "modulus coefficient of E(t) = E1 t^-alpha");
+  m.nu = required_number(value, path, "nu", poisson_range, "Poisson ratio");
+  m.coulomb = required_number(value, path, "coulomb", non_negative, "Coulomb friction coefficient");
+  m.name = optional_string(value, path, "name");
+  return m;
+}
+
+indentor_spec parse_indentor(const json& value, const std::string& path) {
+  require_object(value, path);
+  indentor_spec d;
+  const auto& shape = require(value, path, "shape", "one of \"parabolic\", \"wedge\", \"flat\" is required");
+  if (!shape.is_string()) {
+    fail(child(path, "shape") + " must be one of \"parabolic\", \"wedge\", \"flat\", got " + type_of(shape) + " " +
+         show(shape));
+  }
+  const auto name = shape.get<std::string>();
+  const std::string context = " for shape \"" + name + "\"";
+  if (name == "parabolic") {
+    d.shape = shape_kind::parabolic;
+    only_keys(value, path, {"shape", "load", "apex", "name", "radius"}, context);
+    d.radius = required_number(value, path, "radius", positive, "radius of curvature of the parabola");
+  } else if (name == "wedge") {
+    d.shape = shape_kind::wedge;
+    only_keys(value, path, {"shape", "load", "apex", "name", "slope_leading", "slope_trailing"}, context);
+    d.slope_leading = required_number(value, path, "slope_leading", positive, "slope of the face at x < apex");
+    d.slope_trailing = required_number(value, path, "slope_trailing", positive, "slope of the face at x > apex");
+  } else if (name == "flat") {
+    d.shape = shape_kind::flat;
+    only_keys(value, path, {"shape", "load", "apex", "name", "width"}, context);
+    d.width = required_number(value, path, "width", positive, "width of the flat face");
+  } else {
+    fail(child(path, "shape") + " = " + show(shape) + " is not a known shape (valid: \"parabolic\", \"wedge\", \"flat\")");
+  }
+  d.load = required_number(value, path, "load", positive, "normal force per unit length");
+  if (const auto it = value.find("apex"); it != value.end()) {
+    d.apex = number(*it, child(path, "apex"), any_finite, "apex position");
+  }
+  d.name = optional_string(value, path, "name");
+  return d;
+}
+
+}  // namespace
+
+scene_spec parse_scene(std::string_view text, const std::string& source) {
+  json root;
+  duplicate_key_guard guard;
+  try {
+    root = json::parse(text.begin(), text.end(),
+                       [&guard](int depth, json::parse_event_t event, json& parsed) {
+                         return guard(depth, event, parsed);
+                       });
+  } catch (const json::parse_error& e) {
+    // nlohmann's message: "[json.exception.parse_error.101] parse error at line 1, column 3: ..."
+    std::string what = e.what();
+    if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
+    fail("scene " + source + " is not valid JSON: " + what);
+  } catch (const json::out_of_range& e) {
+    // nlohmann-json 3.11 refuses a number beyond the double range ("number overflow parsing
+    // '1e400'"); the guard still knows which value was being read.
+    std::string what = e.what();
+    if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
+    fail(guard.path() + " is out of range: " + what + " (numbers must be finite doubles)");
+  }
+  if (!root.is_object()) fail("scene " + source + ": the top level must be a JSON object {...}, got " + type_of(root));
+  only_keys(root, "", {"description", "material", "speed", "indentors"});
+
+  scene_spec scene;
+  scene.description = optional_string(root, "", "description");
+  scene.material = parse_material(require(root, "", "material", "an object {alpha, E1, nu, coulomb} is required"));
+  scene.speed = required_number(root, "", "speed", positive, "sliding speed");
+  const auto& list = require(root, "", "indentors", "a non-empty array of indentors is required");
+  if (!list.is_array()) fail("indentors must be a non-empty array [...], got " + type_of(list) + " " + show(list));
+  if (list.empty()) fail("indentors is empty: at least one indentor is required");
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    scene.indentors.push_back(parse_indentor(list[i], "indentors[" + std::to_string(i) + "]"));
+  }
+  return scene;
+}
+
+}  // namespace rhabel::cli

@@ -1,0 +1,87 @@
+// cli/scene_json.hpp: the scene file of `rhabel solve`, parsed and validated.
+//
+// A scene is one JSON object (SI or any consistent units; the schema is documented in
+// examples/README.md and in `rhabel solve --help`):
+//
+//   {"description": "optional free text",
+//    "material": {"alpha": 0.3, "E1": 1.0e6, "nu": 0.5, "coulomb": 0.0, "name": "optional"},
+//    "speed": 0.01,
+//    "indentors": [{"shape": "parabolic", "radius": 0.02, "load": 100.0, "apex": 0.0},
+//                  {"shape": "wedge", "slope_leading": 0.1, "slope_trailing": 0.1, "load": 50.0},
+//                  {"shape": "flat", "width": 0.004, "load": 20.0, "apex": 0.05}]}
+//
+// Field            valid range        meaning
+// material.alpha   [0, 1)             power-law exponent, E(t) = E1 t^-alpha (0: elastic)
+// material.E1      (0, inf)           modulus coefficient, unit stress * time^alpha
+// material.nu      [0, 0.5]           Poisson ratio, as rhabel::punch (0.5: incompressible: beta = 0)
+// material.coulomb [0, inf)           Coulomb friction coefficient k at the interface
+// speed            (0, inf)           sliding speed U; the indentors move towards -x
+// indentors        non-empty array    rigid indentors sliding together on one half-space
+//   shape          "parabolic" | "wedge" | "flat"
+//   load           (0, inf)           normal force per unit length (plane strain)
+//   apex           finite, default 0  position of the apex (wedge tip, parabola vertex,
+//                                     centre of the flat face)
+//   radius         (0, inf)           parabolic only: radius of curvature, f = -(x-apex)^2/(2R)
+//   slope_leading  (0, inf)           wedge only: slope of the face ahead of the tip (x < apex)
+//   slope_trailing (0, inf)           wedge only: slope of the face behind the tip (x > apex)
+//   width          (0, inf)           flat only: width of the face, centred at apex
+//   name           string, optional   label used in tables and plots
+//
+// Policy (decided deliberately, each one is tested in tests/cli/test_solve_errors.sh):
+// - Every field listed is required except `apex`, `name`, `description` (and `material.name`).
+//   Unknown fields are errors, including a field of another shape (a `radius` on a wedge):
+//   a misspelt optional field must not be silently ignored.
+// - Duplicate keys are errors (nlohmann-json would keep the last one silently).
+// - Numbers that overflow a double (1e400) are errors: nlohmann-json reads them as +-inf.
+//   Numbers that underflow (1e-400) read as 0 or a subnormal and are then judged by their range.
+//   Integers (100) are accepted wherever a number is expected. Booleans and strings are not numbers.
+// - The message of every error is one line that names the field as a path
+//   (`indentors[0].radius`), the offending value and the valid range.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace rhabel::cli {
+
+/// Power-law viscoelastic half-space, E(t) = E1 t^-alpha, and its interface friction.
+struct material_spec {
+  double alpha = 0;    ///< material exponent, [0, 1)
+  double E1 = 0;       ///< modulus coefficient, > 0
+  double nu = 0;       ///< Poisson ratio, [0, 0.5]
+  double coulomb = 0;  ///< Coulomb coefficient k >= 0
+  std::string name;    ///< optional label
+};
+
+enum class shape_kind { parabolic, wedge, flat };
+
+/// Name of a shape as written in the scene ("parabolic", "wedge", "flat").
+const char* shape_name(shape_kind shape) noexcept;
+
+/// One rigid indentor. Only the geometry fields of its own shape are meaningful (others are 0).
+struct indentor_spec {
+  shape_kind shape = shape_kind::parabolic;
+  double load = 0;            ///< force per unit length, > 0
+  double apex = 0;            ///< apex position
+  double radius = 0;          ///< parabolic
+  double slope_leading = 0;   ///< wedge, face at x < apex
+  double slope_trailing = 0;  ///< wedge, face at x > apex
+  double width = 0;           ///< flat
+  std::string name;           ///< optional label ("" if absent)
+};
+
+/// A validated scene: every number finite and inside its documented range.
+struct scene_spec {
+  std::string description;
+  material_spec material;
+  double speed = 0;
+  std::vector<indentor_spec> indentors;
+};
+
+/// Parses and validates a scene. `source` names the input in messages (a file name or "stdin").
+/// Throws rhabel::cli::input_error (one line, naming the field and its valid range) on any
+/// syntax, type, range, missing-field, unknown-field or duplicate-key error. Never partial.
+scene_spec parse_scene(std::string_view text, const std::string& source);
+
+}  // namespace rhabel::cli

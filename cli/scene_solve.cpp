@@ -1,0 +1,174 @@
+// cli/scene_solve.cpp: a validated scene -> rhabel::punch::solve -> the result document.
+//
+// The result document (schema in examples/README.md) keeps the names of the issue: beta, regime,
+// indentors[i].{contact, contact_length, epsilon (wedges only), load, hysteretic_friction,
+// total_friction, peak_pressure, peak_pressure_at, edges}, diagnostics.{residual, seconds}, and adds
+// the evidence of the solver (kappa, effective modulus, per-indentor residual, error estimate,
+// degree, status) and an echo of the validated scene.
+//
+// No NaN or Inf ever reaches the output: the punch layer reports an infinite peak pressure when an
+// edge is singular; that is written as "peak_pressure": null with "peak_pressure_singular": true
+// (the edge itself carries its exponent and intensity factor). Every other number is checked and a
+// non-finite one is a solver failure (std::runtime_error, exit code 1, nothing printed).
+#include "scene_solve.hpp"
+
+#include "commands.hpp"
+
+#include <rhabel/punch/contact.hpp>
+
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+namespace rhabel::cli {
+namespace {
+
+using ordered_json = nlohmann::ordered_json;
+
+punch::scene to_punch(const scene_spec& spec) {
+  punch::scene s;
+  s.material.alpha = spec.material.alpha;
+  s.material.E1 = spec.material.E1;
+  s.material.poisson = spec.material.nu;
+  s.material.coulomb = spec.material.coulomb;
+  s.speed = spec.speed;
+  for (const auto& d : spec.indentors) {
+    punch::indentor ind;
+    ind.load = d.load;
+    ind.apex = d.apex;
+    switch (d.shape) {
+      case shape_kind::parabolic: ind.shape = punch::parabolic{d.radius}; break;
+      case shape_kind::wedge: ind.shape = punch::wedge{d.slope_leading, d.slope_trailing}; break;
+      case shape_kind::flat: ind.shape = punch::flat{d.width}; break;
+    }
+    s.indentors.push_back(std::move(ind));
+  }
+  return s;
+}
+
+ordered_json echo_scene(const scene_spec& spec) {
+  ordered_json material = {{"alpha", spec.material.alpha},
+                           {"E1", spec.material.E1},
+                           {"nu", spec.material.nu},
+                           {"coulomb", spec.material.coulomb}};
+  if (!spec.material.name.empty()) material["name"] = spec.material.name;
+  ordered_json indentors = ordered_json::array();
+  for (const auto& d : spec.indentors) {
+    ordered_json item = {{"shape", shape_name(d.shape)}};
+    if (!d.name.empty()) item["name"] = d.name;
+    switch (d.shape) {
+      case shape_kind::parabolic: item["radius"] = d.radius; break;
+      case shape_kind::wedge:
+        item["slope_leading"] = d.slope_leading;
+        item["slope_trailing"] = d.slope_trailing;
+        break;
+      case shape_kind::flat: item["width"] = d.width; break;
+    }
+    item["load"] = d.load;
+    item["apex"] = d.apex;
+    indentors.push_back(std::move(item));
+  }
+  ordered_json out;
+  if (!spec.description.empty()) out["description"] = spec.description;
+  out["material"] = std::move(material);
+  out["speed"] = spec.speed;
+  out["indentors"] = std::move(indentors);
+  return out;
+}
+
+// Every number of the document must be finite: nlohmann-json would print NaN and Inf as null,
+// silently. The path of the first offender goes into the message.
+void require_finite(const ordered_json& value, const std::string& path) {
+  if (value.is_number_float() && !std::isfinite(value.get<double>())) {
+    throw std::runtime_error("solve: the solver produced a non-finite value at " + path);
+  }
+  if (value.is_object()) {
+    for (const auto& item : value.items()) require_finite(item.value(), path + "." + item.key());
+  } else if (value.is_array()) {
+    for (std::size_t i = 0; i < value.size(); ++i) require_finite(value[i], path + "[" + std::to_string(i) + "]");
+  }
+}
+
+ordered_json edge_json(const punch::edge_report& e) {
+  return {{"side", e.side == punch::edge_side::leading ? "leading" : "trailing"},
+          {"at", e.position},
+          {"singular", e.singular},
+          {"exponent", e.exponent},
+          {"intensity_factor", e.intensity_factor}};
+}
+
+}  // namespace
+
+run_outcome run_scene(const scene_spec& spec, const run_request& request) {
+  punch::solve_options options;
+  options.grid_points = request.grid;
+  punch::scene_result r;
+  try {
+    r = punch::solve(to_punch(spec), options);
+  } catch (const std::invalid_argument& e) {  // the solver rejected the scene as posed
+    throw input_error(std::string("solve: the scene was rejected: ") + e.what());
+  } catch (const std::domain_error& e) {  // e.g. overlapping contacts, no contact interval
+    throw input_error(std::string("solve: the scene has no solution: ") + e.what());
+  }
+
+  run_outcome out;
+  auto& doc = out.result;
+  doc["beta"] = r.beta;
+  doc["kappa"] = r.kappa;
+  doc["regime"] = r.regime;
+  doc["effective_modulus"] = to_punch(spec).material.effective_modulus(spec.speed);
+  ordered_json indentors = ordered_json::array();
+  out.pressure.columns = {"indentor", "x", "pressure"};
+  out.displacement.columns = {"indentor", "x", "displacement"};
+  for (std::size_t i = 0; i < r.indentors.size(); ++i) {
+    const auto& ir = r.indentors[i];
+    const auto& spec_i = spec.indentors.at(i);
+    ordered_json item;
+    item["shape"] = shape_name(spec_i.shape);
+    if (!spec_i.name.empty()) item["name"] = spec_i.name;
+    item["contact"] = {ir.a, ir.b};
+    item["contact_length"] = ir.contact_length;
+    if (spec_i.shape == shape_kind::wedge && ir.epsilon) item["epsilon"] = *ir.epsilon;
+    item["load"] = ir.load;
+    item["hysteretic_friction"] = ir.hysteretic_friction;
+    item["total_friction"] = ir.total_friction;
+    const bool singular_peak = !std::isfinite(ir.peak_pressure);
+    if (singular_peak && !(ir.peak_pressure > 0)) {
+      throw std::runtime_error("solve: the solver produced a NaN peak pressure for indentors[" + std::to_string(i) + "]");
+    }
+    item["peak_pressure"] = singular_peak ? ordered_json(nullptr) : ordered_json(ir.peak_pressure);
+    item["peak_pressure_singular"] = singular_peak;
+    item["peak_pressure_at"] = ir.peak_pressure_at;
+    ordered_json edges = ordered_json::array();
+    for (const auto& e : ir.edges) edges.push_back(edge_json(e));
+    item["edges"] = std::move(edges);
+    item["residual"] = ir.residual;
+    item["error_estimate"] = ir.error_estimate;
+    item["degree"] = ir.degree;
+    item["status"] = ir.status;
+    if (request.grid > 0) {
+      if (ir.grid_x.size() != ir.pressure.size() || ir.displacement_x.size() != ir.displacement.size()) {
+        throw std::runtime_error("solve: the solver returned grids of mismatched sizes");
+      }
+      item["pressure"] = {{"x", ir.grid_x}, {"p", ir.pressure}};
+      item["displacement"] = {{"x", ir.displacement_x}, {"w", ir.displacement}};
+      for (std::size_t k = 0; k < ir.grid_x.size(); ++k) {
+        out.pressure.rows.push_back({static_cast<double>(i), ir.grid_x[k], ir.pressure[k]});
+      }
+      for (std::size_t k = 0; k < ir.displacement_x.size(); ++k) {
+        out.displacement.rows.push_back({static_cast<double>(i), ir.displacement_x[k], ir.displacement[k]});
+      }
+    }
+    indentors.push_back(std::move(item));
+  }
+  doc["indentors"] = std::move(indentors);
+  doc["diagnostics"] = {{"residual", r.diagnostics.residual},
+                        {"seconds", r.diagnostics.seconds},
+                        {"status", r.diagnostics.status}};
+  doc["scene"] = echo_scene(spec);
+  require_finite(doc, "result");
+  return out;
+}
+
+}  // namespace rhabel::cli

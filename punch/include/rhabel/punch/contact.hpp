@@ -1,0 +1,231 @@
+// rhabel/punch/contact.hpp: rigid indentors sliding over a power-law viscoelastic half-space.
+//
+// WHAT IS COMPUTED
+//   Plane strain, steady sliding at speed U > 0 of one or several rigid 2-D indentors towards -x over
+//   a half-space with relaxation modulus E(t) = E1 t^-alpha (alpha in [0, 1); alpha = 0 is the
+//   elastic half-plane), Poisson ratio nu and Coulomb friction coefficient k. For every indentor the
+//   solver returns its contact interval [a, b] (a = LEADING edge, b = trailing edge), the contact
+//   pressure p, the hysteretic friction coefficient C_f, edge singularities and, on request, the
+//   pressure and the surface displacement on a grid.
+//
+// THEORY (verified in ../shared/notes/math.md, sections 1, 2, 4, 5)
+//   tan(beta pi/2) = k (1 - 2 nu) / (2 (1 - nu)),   kappa = cos((alpha + beta/2) pi) / cos(beta pi/2).
+//   With F(s) = f'(s)/Gamma(1 - alpha) (f: the indentor profile) the density g solves eq. (8)
+//       F(s) = int_s^b g(t)(t - s)^(alpha-1) dt - kappa int_a^s g(t)(s - t)^(alpha-1) dt,  a < s < b,
+//   (on the union of the contact intervals when there are several indentors: paper system 41), and
+//       p(s) = (pi/2) E_U g(s),   E_U = E1 Gamma(1 - alpha) U^alpha / (1 - nu^2),
+//       load per unit length  lambda = int p,   C_f = (1/lambda) int f'(s) p(s) ds   (paper 23),
+//       total friction coefficient = C_f + k.
+//   g is expanded in Jacobi polynomials times the exact edge weights (t-a)^gam (b-t)^del, which
+//   diagonalises (8) (math.md section 4). The edge exponents are
+//       gam = (1 - 2 alpha - beta)/2 (smooth leading edge) or -(1 + 2 alpha + beta)/2 (corner),
+//       del = (1 + beta)/2 (smooth trailing edge)          or (beta - 1)/2 (corner).
+//   A smooth edge carries zero intensity factor; its position is fixed by the orthogonality
+//   condition of math.md section 4 together with the load.
+//
+// REGIMES (scene_result::regime) with respect to alpha + beta/2 = 1/2:
+//   "below"    alpha + beta/2 < 1/2 (kappa > 0): wedge contact wraps around the apex (a < 0 < b),
+//              flat punch in full contact with singular edges.
+//   "boundary" alpha + beta/2 = 1/2 within 1e-12 (kappa = 0): one-sided (elementary) Abel equation;
+//              an indentor is acted on only by indentors at larger x (behind it: t > s in (8)); wedge
+//              and flat punch behave as "above".
+//   "above"    alpha + beta/2 > 1/2 (kappa < 0): wedge contact ends at the apex, flat punch contact
+//              collapses to a moving line load at its leading corner (paper 24-25).
+//
+// METHOD AND ACCURACY (measured; commands: build-punch/tests/punch_test_contact,
+//   build-punch/bin/study_wedge_table, build-punch/bin/study_wedge_stationarity)
+//   * Parabola, general smooth profile: the forcing is smooth, the Jacobi degree is chosen adaptively
+//     until the image coefficients' tail is below options.tolerance; the edges come from a TOMS 748
+//     root of the orthogonality coefficient d_0 nested in a secant iteration on log L. Against the
+//     closed forms (alpha in {0, 0.2, 0.45, 0.7}, k in {0, 0.5, 2}): L, b, C_f, load and pressure to
+//     a few 1e-15 relative; independent residual of (8) <= 6e-14.
+//   * Wedge, alpha + beta/2 >= 1/2: closed-form structure (nu = 0, b = apex), L and pressure to 1e-14.
+//   * Wedge below the boundary: eps = (apex - a)/L by Boost's ibeta_inv (and 1 - eps from the
+//     complementary inversion, so both are accurate at slope ratios 1e-6 .. 1e6); L exact to rounding
+//     (the load needs only the closed-form coefficient d_1 of the step). The density has a weak
+//     |s - apex|^-alpha (log at alpha = 0) singularity at the apex: it is split off exactly
+//     (detail::apex_part, solve_options::wedge_apex_split) when min(eps, 1 - eps) > 5e-3; the rest is
+//     a spectral expansion with algebraic convergence ~N^-4 (the cut-off function is only C^3). At the
+//     default degree 128 (S2/S1 = 3, against degree 512): C_f error 7e-8 (alpha = 0, eps = 0.85) to
+//     1e-5 (alpha = 0.2, k = 0.5, eps = 0.989); max pressure error 1.5e-4 to 1.3e-2 of the peak
+//     sample (9e-6 to 9e-4 at degree 256); error_estimate = relative defect of the split density's
+//     load (an estimate, not a bound).
+//     Otherwise (apex within 0.5% of an edge) the plain Jacobi series is used: C_f by Richardson
+//     extrapolation (~1e-6), pressure with Gibbs oscillations O(N^(alpha-1)) near the apex (can even
+//     dip below 0): error_estimate then is large and says so.
+//   * Flat punch below the boundary: nu = +1, spectral, 1e-15; above/on the boundary a line load.
+//   * Several indentors: block Gauss-Seidel on system 41 (each interval re-solved with the others'
+//     action, computed by Gauss-Jacobi quadrature, on its right side) until the edges move by less
+//     than 10 tolerance L; residual of (8) on the union checked independently. Far apart the coupling
+//     decays like distance^(alpha - 1); nearly touching contacts make the cross terms nearly singular
+//     (slow, or an error naming the indentor); overlapping contacts throw naming both indentors.
+//   * residual: max over 7 interior points of |A g - F| / max|F| with the two one-sided integrals
+//     computed by Gauss-Jacobi quadrature with the kernel singularity as weight (independent of the
+//     spectral relation); not computed for alpha < 1e-3 (the two integrals cancel like 1/alpha; at
+//     alpha = 0 (8) is a Cauchy integral): residual = 0 there.
+//   * Displacement: outside the contact from the slope integral (paper 27, 28) integrated in closed
+//     form in s, then Gauss-Jacobi in t (regular part), tanh-sinh (apex part, datum); inside the own
+//     contact f(x) - f(a) exactly. Elastic flat punch against -(2P/(pi E*)) arccosh(x/c): < 1e-8 for
+//     |x| >= 1.4 c; accuracy degrades next to the edges (log kernel nearly singular there).
+//   * Cost (Release, warm rule cache): single parabola ~0.2 ms; single wedge with 1000 pressure
+//     samples 0.1-0.8 ms (series, degree 16-128), 1-20 ms with the apex split (degree 16-128), 70 ms
+//     at degree 256; coupled scenes with wedges ~1 s. The first solve at a new degree also builds
+//     Gauss-Jacobi rules (O(n^3) Golub-Welsch, cached per thread).
+//     The 1 ms / 1e-10 target for the wedge is NOT reached (see study_wedge_table).
+//
+// UNITS: any consistent set; the comments use SI: lengths in m, E1 in Pa s^alpha, speed in m/s,
+//   load per unit length in N/m, pressure in Pa. Slopes and friction coefficients are dimensionless.
+//
+// REFERENCES: the source paper (../shared/seeds/001, eqs. 8, 23-41); K. L. Johnson, Contact
+//   Mechanics (1985), ch. 5 and 7 for the elastic limits.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+namespace rhabel::punch {
+
+/// Power-law viscoelastic half-space E(t) = E1 t^-alpha with Coulomb friction at the contact.
+struct material {
+  double alpha = 0;    ///< material exponent, [0, 1); 0 = elastic
+  double E1 = 1;       ///< modulus coefficient E1 > 0 [Pa s^alpha]
+  double poisson = 0;  ///< Poisson ratio nu in [0, 1/2]
+  double coulomb = 0;  ///< Coulomb friction coefficient k >= 0
+
+  /// Friction parameter beta in [0, 1): tan(beta pi/2) = k (1 - 2 nu) / (2 (1 - nu)).
+  double beta() const;
+  /// kappa = cos((alpha + beta/2) pi) / cos(beta pi/2), in (-1, 1].
+  double kappa() const;
+  /// E_U = E1 Gamma(1 - alpha) U^alpha / (1 - nu^2) [Pa], U = sliding speed [m/s] > 0.
+  double effective_modulus(double speed) const;
+};
+
+/// Parabolic indentor f(x) = -(x - apex)^2 / (2 radius).
+struct parabolic {
+  double radius = 1;  ///< tip radius R > 0 [m]
+};
+/// Wedge: f' = slope_leading left of the apex (the leading face, x < apex), -slope_trailing right.
+struct wedge {
+  double slope_leading = 0.1;   ///< S1 > 0 (dimensionless)
+  double slope_trailing = 0.1;  ///< S2 > 0 (dimensionless)
+};
+/// Flat punch with a face of the given width centred at the apex, corners at apex -+ width/2.
+struct flat {
+  double width = 1;  ///< face width > 0 [m]
+};
+/// General profile given by its slope f'(x) (x measured from the indentor's apex), smooth on the
+/// contact. The contact interval is assumed to have smooth edges (zero intensity factors) and must
+/// lie inside (search_lo, search_hi). Slope discontinuities inside the contact (corners) are
+/// allowed and must be listed so that the quadratures split there.
+struct general_profile {
+  std::function<double(double)> slope;  ///< f'(x), x relative to the apex; must decrease overall
+  std::vector<double> corners;          ///< abscissae (relative to the apex) of slope jumps
+  double search_lo = -1;                ///< the leading edge is sought in (search_lo, search_hi) [m]
+  double search_hi = 1;                 ///< idem for the trailing edge [m]
+};
+
+struct indentor {
+  std::variant<parabolic, wedge, flat, general_profile> shape;
+  double load = 1;  ///< load per unit length lambda > 0 [N/m]
+  double apex = 0;  ///< position of the apex (face centre for the flat punch) [m]
+};
+
+struct scene {
+  punch::material material;
+  double speed = 1;  ///< sliding speed U > 0 towards -x [m/s]
+  std::vector<indentor> indentors;
+};
+
+struct solve_options {
+  std::size_t grid_points = 0;  ///< pressure and displacement samples per indentor (0 = none)
+  bool displacement = true;     ///< with grid_points > 0: also the displacement grid (the costlier one)
+  double tolerance = 1e-12;     ///< relative tolerance of the root finders and of the expansions
+  std::size_t max_degree = 128; ///< largest Jacobi degree of a density expansion (cost ~ degree^2)
+  /// Wedge below the boundary with min(eps, 1 - eps) > 5e-3: subtract the apex singularity
+  /// sigma chi(x) psi(x) (detail/interval_density.hpp) before the spectral solve (degree max_degree).
+  /// The pressure then converges like N^-4 instead of N^(alpha-1) pointwise (no Gibbs oscillation at
+  /// the apex). L and eps are exact either way. Costs 1-70 ms. false: plain Jacobi series of degree
+  /// max_degree (C_f Richardson-extrapolated, ~1e-6; pressure poor next to the apex).
+  bool wedge_apex_split = true;
+};
+
+enum class edge_side { leading, trailing };
+
+/// Behaviour of the pressure at one edge of a contact interval: p ~ K (distance)^exponent.
+struct edge_report {
+  edge_side side = edge_side::leading;
+  double position = 0;          ///< abscissa of the edge [m]
+  bool singular = false;        ///< exponent < 0 (infinite pressure at the edge)
+  double exponent = 0;          ///< gam (leading) or del (trailing) of the notes
+  double intensity_factor = 0;  ///< K = lim p / distance^exponent [Pa m^-exponent]
+};
+
+struct indentor_result {
+  double a = 0;                     ///< leading edge [m]
+  double b = 0;                     ///< trailing edge [m]
+  double contact_length = 0;        ///< L = b - a [m] (0 for a line load)
+  std::optional<double> epsilon;    ///< wedge only: eps = (apex - a)/L
+  double load = 0;                  ///< int p over the contact, recomputed from the solution [N/m]
+  double hysteretic_friction = 0;   ///< C_f = (1/lambda) int f' p
+  double total_friction = 0;        ///< C_f + k
+  double peak_pressure = 0;         ///< max p [Pa]; +inf if some point is singular
+  double peak_pressure_at = 0;      ///< where the max is attained (the singular point if infinite) [m]
+  std::vector<edge_report> edges;   ///< leading then trailing
+  std::vector<double> grid_x;       ///< pressure abscissae, inside [a, b] (empty unless asked)
+  std::vector<double> pressure;     ///< p(grid_x) [Pa]
+  std::vector<double> displacement_x;  ///< displacement abscissae, [a - L, b + L] (empty unless asked)
+  std::vector<double> displacement;    ///< surface height relative to its value at the leading
+                                       ///< edge a (upward positive): equals f(x) - f(a) in contact [m]
+  double residual = 0;              ///< max |LHS - RHS of (8)| / max |F| at check points
+  double error_estimate = 0;        ///< estimated relative error of the density (an estimate)
+  std::size_t degree = 0;           ///< Jacobi degree used
+  std::string status;               ///< "ok", or what went wrong / was approximated
+};
+
+struct scene_result {
+  double beta = 0;
+  double kappa = 0;
+  std::string regime;  ///< "below", "boundary" or "above": sign of alpha + beta/2 - 1/2 (see top)
+  std::vector<indentor_result> indentors;
+  struct diagnostics_t {
+    double residual = 0;  ///< max over indentors of indentor_result::residual
+    double seconds = 0;   ///< wall-clock solve time [s]
+    std::string status;   ///< "ok" or a summary of the indentors' statuses
+  } diagnostics;
+};
+
+/// Solves the scene. Validates every field first and throws std::invalid_argument naming it, e.g.
+/// "rhabel::punch::solve: indentors[1].radius = -2 must be > 0". Throws std::domain_error when the
+/// contacts of two indentors would overlap (naming both) or when no contact interval exists.
+scene_result solve(const scene& s, const solve_options& options = {});
+
+/// Single-indentor building block (no other indentor present); the apex of `ind` is honoured.
+indentor_result solve_single(const material& m, double speed, const indentor& ind,
+                             const solve_options& options = {});
+
+/// Trial solution of paper section 4: on a PRESCRIBED interval [a, b] (absolute abscissae, a < b),
+/// the unique solution of (8) for the indentor's own profile that is bounded at a and unbounded at b
+/// (index nu = 0, exponents gam = (1-2alpha-beta)/2, del = (beta-1)/2), scaled by nothing (the load
+/// is whatever (8) gives). Returns the load int p [N/m] and C_f = int f' p / int p of that field.
+/// Used to test the conjecture that C_f, at fixed load, is stationary at the true contact interval.
+/// Parabolic, wedge (apex split as in solve) and general profiles; throws std::invalid_argument for
+/// a flat punch or a < b violated.
+struct trial_result {
+  double load = 0;
+  double hysteretic_friction = 0;
+  double error_estimate = 0;  ///< estimate of the relative error of the density
+};
+trial_result trial_interval(const material& m, double speed, const indentor& ind, double a, double b,
+                            const solve_options& options = {});
+
+/// Regime string of a material: "below", "boundary" or "above" (see the top of this header).
+std::string regime(const material& m);
+
+/// Library version "major.minor.patch".
+const char* version();
+
+}  // namespace rhabel::punch

@@ -1,0 +1,1154 @@
+// The punch layer: contact intervals, pressures and friction of indentors on a power-law
+// viscoelastic half-space. Mathematics: ../include/rhabel/punch/contact.hpp and
+// ../../../shared/notes/math.md. Everything here is double precision.
+#include "rhabel/punch/contact.hpp"
+#include "rhabel/punch/detail/interval_density.hpp"
+
+#include "rhabel/quadrature/gauss_jacobi.hpp"
+#include "rhabel/quadrature/jacobi_polynomial.hpp"
+
+#include <Eigen/Dense>
+#include <boost/math/constants/constants.hpp>
+#include <boost/math/special_functions/beta.hpp>
+#include <boost/math/special_functions/gamma.hpp>
+#include <boost/math/tools/roots.hpp>
+#include <boost/math/tools/minima.hpp>
+#include <boost/math/quadrature/tanh_sinh.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <tuple>
+
+namespace rhabel::punch {
+
+namespace {
+
+constexpr double pi = boost::math::constants::pi<double>();
+constexpr double boundary_width = 1e-12;  // |alpha + beta/2 - 1/2| below this is "boundary"
+
+using detail::edge_exponents;
+using detail::forcing;
+using detail::interval_density;
+
+// ---------------------------------------------------------------------------------------------
+// Material helpers.
+
+double material_beta(const material& m) {
+  return 2 / pi * std::atan(m.coulomb * (1 - 2 * m.poisson) / (2 * (1 - m.poisson)));
+}
+
+// alpha + beta/2 - 1/2: the regime parameter.
+double regime_offset(const material& m) { return m.alpha + material_beta(m) / 2 - 0.5; }
+
+// kappa = cos((alpha + beta/2) pi)/cos(beta pi/2) = -sin(pi (alpha + beta/2 - 1/2))/cos(beta pi/2):
+// the second form keeps full relative accuracy next to the boundary kappa = 0.
+double material_kappa(const material& m) {
+  const double off = regime_offset(m);
+  if (std::abs(off) <= boundary_width) return 0;
+  return -std::sin(pi * off) / std::cos(material_beta(m) * pi / 2);
+}
+
+// Bounded ("smooth edge") and unbounded ("corner") edge exponents of math.md section 3.
+double gam_smooth(double alpha, double beta) { return (1 - 2 * alpha - beta) / 2; }
+double gam_corner(double alpha, double beta) { return -(1 + 2 * alpha + beta) / 2; }
+double del_smooth(double beta) { return (1 + beta) / 2; }
+double del_corner(double beta) { return (beta - 1) / 2; }
+
+[[noreturn]] void bad_field(const std::string& field, double value, const char* requirement) {
+  std::ostringstream os;
+  os.precision(17);
+  os << "rhabel::punch::solve: " << field << " = " << value << " must be " << requirement;
+  throw std::invalid_argument(os.str());
+}
+
+// ---------------------------------------------------------------------------------------------
+// Jacobi polynomials for exponents that may be <= -1 (the image family of the nu = -1 class above
+// the boundary has p = gam - 1 < -1): the recurrence itself is valid as long as no denominator
+// vanishes, which math.md section 4's families guarantee for alpha not an integer >= 1.
+void jacobi_all_unchecked(std::size_t n_max, double p, double q, double x, std::vector<double>& v) {
+  v.assign(n_max + 1, 0.0);
+  v[0] = 1;
+  if (n_max >= 1) v[1] = (p + q + 2) / 2 * x + (p - q) / 2;
+  for (std::size_t k = 1; k < n_max; ++k) {
+    const double n = static_cast<double>(k), s = 2 * n + p + q;
+    const double den = 2 * (n + 1) * (n + p + q + 1) * s;
+    const double A = (s + 1) * (s + 2) * s / den, B = (s + 1) * (p * p - q * q) / den,
+                 C = 2 * (n + p) * (n + q) * (s + 2) / den;
+    v[k + 1] = (A * x + B) * v[k] - C * v[k - 1];
+  }
+}
+
+// Gauss-Jacobi rules are reused many times inside one solve: cache them.
+const quadrature::quadrature_rule<double>& cached_rule(std::size_t n, double p, double q) {
+  thread_local std::map<std::tuple<std::size_t, double, double>, quadrature::quadrature_rule<double>> cache;
+  const auto key = std::make_tuple(n, p, q);
+  auto it = cache.find(key);
+  if (it == cache.end()) {
+    if (cache.size() > 256) cache.clear();
+    it = cache.emplace(key, quadrature::gauss_jacobi<double>(n, p, q)).first;
+  }
+  return it->second;
+}
+
+// Position s of [a, b] -> (x, 1 + x, 1 - x) with both distances computed directly.
+struct mapped {
+  double x, one_plus, one_minus;
+};
+mapped map_to_reference(double s, double a, double b) {
+  const double L = b - a;
+  const double one_plus = 2 * (s - a) / L, one_minus = 2 * (b - s) / L;
+  return {one_plus <= one_minus ? one_plus - 1 : 1 - one_minus, one_plus, one_minus};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Image coefficients: F(s) = sum_m d_m P_m^(p, q)(y) on [a, b], p = gam + nu (at y = +1),
+// q = del + nu (at y = -1). Returns d_0 .. d_M.
+struct image_expansion {
+  std::vector<double> d;
+  double tail = 0;
+};
+
+image_expansion image_coefficients(double a, double b, const edge_exponents& e, const forcing& F,
+                                   std::size_t M) {
+  const double p = e.gam + e.nu, q = e.del + e.nu;
+  image_expansion out;
+  out.d.assign(M + 1, 0.0);
+  std::vector<double> P;
+  if (p > -1 && q > -1) {
+    // Orthogonal projection with the (integrable) image weight (1 - y)^p (1 + y)^q.
+    if (F.smooth) {
+      const auto& rule = cached_rule(M + 8, p, q);
+      for (std::size_t i = 0; i < rule.size(); ++i) {
+        const double y = rule.x[i];
+        const double s = rule.x_minus_lo[i] <= rule.hi_minus_x[i] ? a + (b - a) * rule.x_minus_lo[i] / 2
+                                                                  : b - (b - a) * rule.hi_minus_x[i] / 2;
+        const double f = F.smooth(s) * rule.weight[i];
+        jacobi_all_unchecked(M, p, q, y, P);
+        for (std::size_t m = 0; m <= M; ++m) out.d[m] += f * P[m];
+      }
+    }
+    // Steps H(s - s_k): int_{y_k}^1 w' P_m, by Rodrigues' formula (DLMF 18.9.16) for m >= 1 and by
+    // the incomplete beta function for m = 0.
+    for (const auto& [position, jump] : F.steps) {
+      if (position >= b) continue;
+      if (position <= a) {
+        out.d[0] += jump * std::exp(quadrature::log_jacobi_norm_squared<double>(0, p, q));
+        continue;
+      }
+      const mapped y = map_to_reference(position, a, b);
+      out.d[0] += jump * std::pow(2.0, p + q + 1) * boost::math::beta(p + 1, q + 1, y.one_minus / 2);
+      if (M >= 1) {
+        jacobi_all_unchecked(M - 1, p + 1, q + 1, y.x, P);
+        const double W = std::pow(y.one_minus, p + 1) * std::pow(y.one_plus, q + 1);
+        for (std::size_t m = 1; m <= M; ++m) out.d[m] += jump * W * P[m - 1] / (2.0 * static_cast<double>(m));
+      }
+    }
+    for (std::size_t m = 0; m <= M; ++m) out.d[m] /= quadrature::jacobi_norm_squared<double>(m, p, q);
+    if (!F.steps.empty()) {
+      // The step coefficients are exact (closed form); only the smooth part's projection can be
+      // unresolved, so the adaptive degree is judged on it alone.
+      std::vector<double> smooth_only(M + 1, 0.0);
+      if (F.smooth) {
+        const auto& rule = cached_rule(M + 8, p, q);
+        for (std::size_t i = 0; i < rule.size(); ++i) {
+          const double s = rule.x_minus_lo[i] <= rule.hi_minus_x[i] ? a + (b - a) * rule.x_minus_lo[i] / 2
+                                                                    : b - (b - a) * rule.hi_minus_x[i] / 2;
+          const double f = F.smooth(s) * rule.weight[i];
+          jacobi_all_unchecked(M, p, q, rule.x[i], P);
+          for (std::size_t m = 0; m <= M; ++m) smooth_only[m] += f * P[m];
+        }
+      }
+      double largest = 0, tail = 0;
+      for (std::size_t m = 0; m <= M; ++m) {
+        const double v = std::abs(smooth_only[m] / quadrature::jacobi_norm_squared<double>(m, p, q));
+        largest = std::max(largest, std::abs(out.d[m]));
+        if (4 * m >= 3 * M && m > 0) tail = std::max(tail, v);
+      }
+      out.tail = largest > 0 ? tail / largest : 0;
+      return out;
+    }
+  } else {
+    // Non-integrable image weight (nu = -1 above the boundary): interpolate F at Chebyshev points
+    // in the image basis. The expansion of a polynomial is still unique (the family has exact
+    // degrees), and d_0 = 0 is the analytic continuation of the orthogonality condition.
+    const std::size_t n = M + 1;
+    Eigen::MatrixXd V(n, n);
+    Eigen::VectorXd rhs(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const double theta = pi * (static_cast<double>(i) + 0.5) / static_cast<double>(n);
+      const double y = std::cos(theta);
+      const double s = a + (b - a) * (1 + y) / 2;
+      double f = F.smooth ? F.smooth(s) : 0.0;
+      for (const auto& [position, jump] : F.steps)
+        if (s > position) f += jump;
+      rhs[static_cast<Eigen::Index>(i)] = f;
+      jacobi_all_unchecked(M, p, q, y, P);
+      for (std::size_t m = 0; m < n; ++m) V(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(m)) = P[m];
+    }
+    const Eigen::VectorXd d = V.partialPivLu().solve(rhs);
+    for (std::size_t m = 0; m < n; ++m) out.d[m] = d[static_cast<Eigen::Index>(m)];
+  }
+  double largest = 0, tail = 0;
+  for (std::size_t m = 0; m <= M; ++m) {
+    largest = std::max(largest, std::abs(out.d[m]));
+    if (4 * m >= 3 * M && m > 0) tail = std::max(tail, std::abs(out.d[m]));
+  }
+  out.tail = largest > 0 ? tail / largest : 0;
+  return out;
+}
+
+// Density from the image coefficients: c_n = d_(n - nu) / ((L/2)^alpha lambda_n). For nu = +1 the
+// homogeneous coefficient c_0 is left at 0 (the caller adds the load).
+interval_density density_from_image(double a, double b, double alpha, const edge_exponents& e,
+                                    const image_expansion& img) {
+  interval_density g;
+  g.a = a;
+  g.b = b;
+  g.alpha = alpha;
+  g.e = e;
+  g.tail = img.tail;
+  const std::size_t M = img.d.size() - 1;
+  const double scale = std::pow((b - a) / 2, alpha);
+  const double base = -std::pow(2.0, -e.nu) * pi / std::sin(pi * e.del);
+  const std::size_t n_terms = e.nu == -1 ? M : (e.nu == 0 ? M + 1 : M + 2);
+  g.c.assign(n_terms, 0.0);
+  double ratio = 1;  // (1 - alpha)_n / n!
+  for (std::size_t n = 0; n < n_terms; ++n) {
+    if (n > 0) ratio *= (static_cast<double>(n) - alpha) / static_cast<double>(n);
+    const long m = static_cast<long>(n) - e.nu;
+    if (m < 0 || m > static_cast<long>(M)) continue;
+    g.c[n] = img.d[static_cast<std::size_t>(m)] / (scale * base * ratio);
+  }
+  g.d0 = e.nu == -1 ? img.d[0] : 0.0;
+  return g;
+}
+
+// A g (s) for s outside (or on the edge of) the support of g: the operator of (8). kappa_ is kappa.
+// Gauss-Jacobi with the density's own weight; the kernel is smooth when s is away from [a, b].
+double apply_outside(const interval_density& g, double s, double kappa, std::size_t nodes) {
+  const double alpha = g.alpha;
+  if (g.line_load) {
+    const double r = g.a - s;
+    if (r > 0) return g.line_weight * std::pow(r, alpha - 1);
+    return -kappa * g.line_weight * std::pow(-r, alpha - 1);
+  }
+  const auto& rule = cached_rule(nodes, g.e.del, g.e.gam);
+  const double L = g.length();
+  double sum = 0;
+  for (std::size_t i = 0; i < rule.size(); ++i) {
+    const double t = rule.x_minus_lo[i] <= rule.hi_minus_x[i] ? g.a + L * rule.x_minus_lo[i] / 2
+                                                              : g.b - L * rule.hi_minus_x[i] / 2;
+    const double S = g.smooth_factor(rule.x[i]);
+    const double r = s < g.a ? (g.a - s) + L * rule.x_minus_lo[i] / 2 : (s - g.b) + L * rule.hi_minus_x[i] / 2;
+    (void)t;
+    sum += rule.weight[i] * S * std::pow(r, alpha - 1);
+  }
+  sum *= L / 2;
+  double result = s < g.a ? sum : -kappa * sum;
+  if (g.has_apex) {
+    const double y = s < g.a ? -1 - 2 * (g.a - s) / L : 1 + 2 * (s - g.b) / L;
+    result += g.apex.sigma * std::pow(L / 2, alpha) * g.apex.apply(y);
+  }
+  return result;
+}
+
+// (8) evaluated at s inside the support by an independent quadrature of the two one-sided
+// integrals (Gauss-Jacobi with the kernel singularity (t - s)^(alpha-1) as a weight). It does not use
+// the spectral relation, so it checks it. Needs alpha > 0.
+double apply_inside(const interval_density& g, double s, double kappa, std::size_t nodes) {
+  const double alpha = g.alpha, L = g.length();
+  const double wscale = std::pow(2 / L, g.e.del + g.e.gam);
+  // int_s^b: weight (b - t)^del (t - s)^(alpha-1) on [s, b]; remaining factor (t - a)^gam S(x).
+  const double h_right = (g.b - s) / 2, h_left = (s - g.a) / 2;
+  const auto& right = cached_rule(nodes, g.e.del, alpha - 1);
+  double r = 0;
+  for (std::size_t i = 0; i < right.size(); ++i) {
+    const double t = s + h_right * right.x_minus_lo[i];
+    const mapped y = map_to_reference(t, g.a, g.b);
+    r += right.weight[i] * std::pow(t - g.a, g.e.gam) * g.smooth_factor(y.x);
+  }
+  r *= std::pow(h_right, g.e.del + alpha);
+  // int_a^s: weight (s - t)^(alpha-1) (t - a)^gam on [a, s]; remaining factor (b - t)^del S(x).
+  const auto& left = cached_rule(nodes, alpha - 1, g.e.gam);
+  double l = 0;
+  for (std::size_t i = 0; i < left.size(); ++i) {
+    const double t = g.a + h_left * left.x_minus_lo[i];
+    const mapped y = map_to_reference(t, g.a, g.b);
+    l += left.weight[i] * std::pow(g.b - t, g.e.del) * g.smooth_factor(y.x);
+  }
+  l *= std::pow(h_left, g.e.gam + alpha);
+  double result = wscale * (r - kappa * l);
+  if (g.has_apex) result += g.apex.sigma * std::pow(L / 2, alpha) * g.apex.apply(map_to_reference(s, g.a, g.b).x);
+  return result;
+}
+
+// ---------------------------------------------------------------------------------------------
+// One indentor inside a scene: its shape, its own F and the solved density.
+
+enum class kind { parabola, wedge, flat, general };
+
+struct indentor_state {
+  kind k = kind::parabola;
+  const indentor* source = nullptr;
+  double apex = 0;
+  double target_load = 0;  // in units of int g (the load divided by (pi/2) E_U)
+  interval_density g;
+  std::string status = "ok";
+  std::optional<double> epsilon;
+  bool solved = false;
+};
+
+struct context {
+  double alpha = 0, beta = 0, kappa = 0, offset = 0;
+  double gamma_factor = 1;  // Gamma(1 - alpha)
+  double one_minus_kappa_over_alpha = 0;  // (1 - kappa)/alpha, -> pi tan(beta pi/2) at alpha = 0
+  double pressure_scale = 1;  // (pi/2) E_U
+  solve_options options;
+};
+
+// Own slope f' of an indentor at absolute position s.
+double own_slope(const indentor_state& st, double s) {
+  const double x = s - st.apex;
+  switch (st.k) {
+    case kind::parabola: return -x / std::get<parabolic>(st.source->shape).radius;
+    case kind::wedge: {
+      const auto& w = std::get<wedge>(st.source->shape);
+      return x < 0 ? w.slope_leading : -w.slope_trailing;
+    }
+    case kind::flat: return 0;
+    case kind::general: return std::get<general_profile>(st.source->shape).slope(x);
+  }
+  return 0;
+}
+
+// F = f'/Gamma(1 - alpha) as smooth part + steps, minus the action of the other indentors.
+forcing own_forcing(const indentor_state& st, const context& cx, const std::vector<indentor_state>& all,
+                    std::size_t self, bool couple) {
+  forcing F;
+  const double gf = cx.gamma_factor;
+  std::function<double(double)> cross;
+  std::vector<const interval_density*> others;
+  for (std::size_t i = 0; i < all.size(); ++i)
+    if (couple && i != self && all[i].solved) others.push_back(&all[i].g);
+  const std::size_t nodes = 64;
+  const double kappa = cx.kappa;
+  if (!others.empty()) {
+    cross = [others, kappa, nodes](double s) {
+      double sum = 0;
+      for (const auto* o : others) sum += apply_outside(*o, s, kappa, nodes);
+      return sum;
+    };
+  }
+  switch (st.k) {
+    case kind::parabola: {
+      const double R = std::get<parabolic>(st.source->shape).radius, apex = st.apex;
+      F.smooth = [=](double s) { return -(s - apex) / (R * gf) - (cross ? cross(s) : 0.0); };
+      break;
+    }
+    case kind::wedge: {
+      const auto& w = std::get<wedge>(st.source->shape);
+      const double S1 = w.slope_leading;
+      if (cross) F.smooth = [=](double s) { return S1 / gf - cross(s); };
+      else F.smooth = [=](double) { return S1 / gf; };
+      F.steps.push_back({st.apex, -(w.slope_leading + w.slope_trailing) / gf});
+      break;
+    }
+    case kind::flat:
+      if (cross) F.smooth = [=](double s) { return -cross(s); };
+      break;
+    case kind::general: {
+      const auto& gp = std::get<general_profile>(st.source->shape);
+      const auto slope = gp.slope;
+      const double apex = st.apex;
+      // Jumps of f' at the corners are taken out as steps so that the smooth part is continuous.
+      std::vector<std::pair<double, double>> jumps;
+      for (double c : gp.corners) {
+        const double h = 1e-9 * std::max(1.0, std::abs(c));
+        jumps.push_back({apex + c, (slope(c + h) - slope(c - h)) / gf});
+      }
+      F.steps = jumps;
+      F.smooth = [=](double s) {
+        double v = slope(s - apex) / gf;
+        for (const auto& [pos, j] : jumps)
+          if (s > pos) v -= j;
+        return v - (cross ? cross(s) : 0.0);
+      };
+      break;
+    }
+  }
+  return F;
+}
+
+// Builds the density on [a, b] for the forcing, with adaptive degree for smooth forcings.
+interval_density build(double a, double b, const context& cx, const edge_exponents& e, const forcing& F,
+                       bool adaptive) {
+  const std::size_t max_degree = std::max<std::size_t>(cx.options.max_degree, 8);
+  std::size_t M = adaptive ? 8 : max_degree;
+  for (;;) {
+    const auto img = image_coefficients(a, b, e, F, M);
+    if (!adaptive || img.tail <= cx.options.tolerance || M >= max_degree)
+      return density_from_image(a, b, cx.alpha, e, img);
+    M = std::min(2 * M, max_degree);
+  }
+}
+
+// Only the orthogonality coefficient d_0 (nu = -1): one projection, no full expansion.
+double orthogonality_coefficient(double a, double b, const edge_exponents& e, const forcing& F, std::size_t M) {
+  return image_coefficients(a, b, e, F, e.gam - 1 > -1 ? 0 : M).d[0];
+}
+
+// ---------------------------------------------------------------------------------------------
+// Root finding helpers.
+
+template <class Fn>
+double bracket_and_solve(Fn f, double x0, double step, double tol_abs, const char* what) {
+  // f decreasing in x: expand a bracket around x0 and polish with TOMS 748.
+  double lo = x0 - step, hi = x0 + step;
+  double flo = f(lo), fhi = f(hi);
+  for (int k = 0; k < 60 && !(flo >= 0 && fhi <= 0); ++k) {
+    if (flo < 0) {
+      lo -= step;
+      flo = f(lo);
+    }
+    if (fhi > 0) {
+      hi += step;
+      fhi = f(hi);
+    }
+    step *= 2;
+  }
+  if (!(flo >= 0 && fhi <= 0)) throw std::domain_error(std::string("rhabel::punch::solve: no bracket for ") + what);
+  if (flo == 0) return lo;
+  if (fhi == 0) return hi;
+  std::uintmax_t iterations = 200;
+  const auto r = boost::math::tools::toms748_solve(
+      f, lo, hi, flo, fhi, [tol_abs](double u, double v) { return std::abs(u - v) <= tol_abs; }, iterations);
+  return (r.first + r.second) / 2;
+}
+
+// Solve load(L) = target where load is increasing, with load ~ L^exponent as a first guess.
+template <class Fn>
+double solve_length(Fn load_of, double L0, double target, double exponent, double tol) {
+  double L = L0, v = load_of(L);
+  double logL_prev = 0, logv_prev = 0;
+  bool have_prev = false;
+  for (int it = 0; it < 60; ++it) {
+    double slope = exponent;
+    if (have_prev && std::abs(std::log(L) - logL_prev) > 0) slope = (std::log(v) - logv_prev) / (std::log(L) - logL_prev);
+    if (!(slope > 0) || !std::isfinite(slope)) slope = exponent;
+    const double step = (std::log(target) - std::log(v)) / slope;
+    logL_prev = std::log(L);
+    logv_prev = std::log(v);
+    have_prev = true;
+    L = std::exp(std::log(L) + std::clamp(step, -3.0, 3.0));
+    v = load_of(L);
+    if (std::abs(step) < tol) break;
+  }
+  return L;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Per-shape contact solvers. Each fills st.g for the current forcing (others held fixed).
+
+// Wedge density on [a, b] with the apex singularity split off (detail::apex_part): the step of F
+// at the apex (jump -(S1+S2)/Gamma(1-alpha)) is carried by sigma h exactly, the rest of F (the
+// faces' constants, the other indentors' smooth action) by the spectral expansion.
+interval_density build_wedge_split(double a, double b, double apex, double S1, double S2, const context& cx,
+                                   const edge_exponents& e, const forcing& F) {
+  const double L = b - a, alpha = cx.alpha, gf = cx.gamma_factor;
+  detail::apex_part ap;
+  ap.alpha = alpha;
+  ap.kappa = cx.kappa;
+  ap.one_minus_kappa_over_alpha = cx.one_minus_kappa_over_alpha;
+  const mapped m0 = map_to_reference(apex, a, b);
+  ap.x0 = m0.x;
+  ap.r = std::min(m0.one_plus, m0.one_minus);
+  const double scale = std::pow(L / 2, alpha);
+  ap.sigma = -(S1 + S2) / (gf * scale) / ap.jump();
+  forcing rest;
+  const auto smooth = F.smooth;
+  const auto steps = F.steps;
+  rest.smooth = [=](double s) {
+    double f = smooth ? smooth(s) : 0.0;
+    for (const auto& [position, jump] : steps)
+      if (s > position) f += jump;
+    return f - ap.sigma * scale * ap.apply(map_to_reference(s, a, b).x);
+  };
+  interval_density g = build(a, b, cx, e, rest, false);
+  g.has_apex = true;
+  g.apex = ap;
+  return g;
+}
+
+void solve_smooth_edges(indentor_state& st, const context& cx, const forcing& F, double L_guess, double b_guess,
+                        double load_exponent) {
+  const edge_exponents e{gam_smooth(cx.alpha, cx.beta), del_smooth(cx.beta), -1};
+  const double tol = cx.options.tolerance;
+  std::size_t M = 8;
+  {
+    // Degree needed by the forcing, measured once on the guessed interval.
+    const auto g0 = build(b_guess - L_guess, b_guess, cx, e, F, true);
+    M = std::max<std::size_t>(g0.c.size(), 8);
+  }
+  double a_last = b_guess - L_guess;
+  auto place = [&](double L) {
+    auto d0 = [&](double a) { return orthogonality_coefficient(a, a + L, e, F, M); };
+    a_last = bracket_and_solve(d0, a_last + (L - L_guess) * 0, L / 8, tol * L, "the leading edge (orthogonality)");
+    return a_last;
+  };
+  auto load_of = [&](double L) {
+    const double a = place(L);
+    st.g = build(a, a + L, cx, e, F, true);
+    return st.g.integral();
+  };
+  solve_length(load_of, L_guess, st.target_load, load_exponent, tol);
+}
+
+void solve_parabola(indentor_state& st, const context& cx, const forcing& F) {
+  const double R = std::get<parabolic>(st.source->shape).radius;
+  const double alpha = cx.alpha, beta = cx.beta;
+  // First guess from the closed form of math.md section 5 (exact for a single indentor).
+  // load = int g = cos(beta pi/2) L^(2-alpha) B(gam+1, del+1)/(pi R Gamma(2-alpha)).
+  const double gam = gam_smooth(alpha, beta), del = del_smooth(beta);
+  const double K = std::cos(beta * pi / 2) * boost::math::beta(gam + 1, del + 1) / (pi * R * boost::math::tgamma(2 - alpha));
+  const double L = std::pow(st.target_load / K, 1 / (2 - alpha));
+  const double b = st.apex + L * (1 - 2 * alpha - beta) / (2 * (1 - alpha));
+  solve_smooth_edges(st, cx, F, L, b, 2 - alpha);
+}
+
+void solve_general(indentor_state& st, const context& cx, const forcing& F) {
+  const auto& gp = std::get<general_profile>(st.source->shape);
+  // Guess: parabola of the same curvature at the apex.
+  const double h = 1e-6 * (gp.search_hi - gp.search_lo);
+  const double curvature = -(gp.slope(h) - gp.slope(-h)) / (2 * h);
+  double L = (gp.search_hi - gp.search_lo) / 4;
+  if (curvature > 0 && std::isfinite(curvature)) {
+    const double gam = gam_smooth(cx.alpha, cx.beta), del = del_smooth(cx.beta);
+    const double K = std::cos(cx.beta * pi / 2) * boost::math::beta(gam + 1, del + 1) * curvature /
+                     (pi * boost::math::tgamma(2 - cx.alpha));
+    L = std::min(L, std::pow(st.target_load / K, 1 / (2 - cx.alpha)));
+  }
+  solve_smooth_edges(st, cx, F, L, st.apex + L / 2, 2 - cx.alpha);
+  if (st.g.a < st.apex + gp.search_lo || st.g.b > st.apex + gp.search_hi) {
+    std::ostringstream os;
+    os << "contact [" << st.g.a << ", " << st.g.b << "] leaves the search window of the general profile";
+    st.status = os.str();
+  }
+}
+
+void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool isolated) {
+  const auto& w = std::get<wedge>(st.source->shape);
+  const double alpha = cx.alpha, beta = cx.beta;
+  if (cx.offset >= -boundary_width) {
+    // Contact ends at the apex (math.md section 5): nu = 0, b = apex, one unknown L.
+    const edge_exponents e{gam_smooth(alpha, beta), del_corner(beta), 0};
+    auto load_of = [&](double L) {
+      st.g = build(st.apex - L, st.apex, cx, e, F, true);
+      return st.g.integral();
+    };
+    // Closed-form guess: int g = S1 cos(beta pi/2) L^(1-alpha) B(gam+1, del+1) / (pi Gamma(1-alpha)).
+    const double K = w.slope_leading * std::cos(beta * pi / 2) * boost::math::beta(e.gam + 1, e.del + 1) /
+                     (pi * cx.gamma_factor);
+    const double L0 = std::pow(st.target_load / K, 1 / (1 - alpha));
+    solve_length(load_of, L0, st.target_load, 1 - alpha, cx.options.tolerance);
+    st.epsilon = 1.0;
+    return;
+  }
+  // Below the boundary: nu = -1, smooth at both edges, contact wraps around the apex.
+  const edge_exponents e{gam_smooth(alpha, beta), del_smooth(beta), -1};
+  const double S1 = w.slope_leading, S2 = w.slope_trailing;
+  // eps = (apex - a)/L from I_eps(del, gam) = S2/(S1 + S2) (math.md section 5); 1 - eps from the
+  // complementary equation so that both are accurate at extreme slope ratios.
+  const double eps = boost::math::ibeta_inv(e.del, e.gam, S2 / (S1 + S2));
+  const double one_minus_eps = boost::math::ibeta_inv(e.gam, e.del, S1 / (S1 + S2));
+  if (isolated && one_minus_eps * 1e14 < 1) {
+    // The apex is within 1e-14 L of the trailing edge: to double precision the contact ends at the
+    // apex, as on the boundary (eps -> 1 exponentially fast as alpha + beta/2 -> 1/2 or S2/S1 -> inf).
+    context above = cx;
+    above.offset = 0;
+    solve_wedge(st, above, F, isolated);
+    st.status = "eps within 1e-14 of 1: solved as a contact ending at the apex";
+    return;
+  }
+  // The split needs room around the apex (chi's half-width is 2 min(eps, 1 - eps) on the reference
+  // axis): at 1 - eps = 0.011 it still converges (load defect 4e-8 at degree 512), at 3.5e-4 it does
+  // not; below 0.5% the plain series is used (C_f is then within ~(1 - eps) S2 of S1 anyway).
+  const bool split = cx.options.wedge_apex_split && std::min(eps, one_minus_eps) > 5e-3;
+  if (isolated && !split) {
+    auto load_of = [&](double L) {
+      const double a = st.apex - eps * L, b = st.apex + one_minus_eps * L;
+      st.g = build(a, b, cx, e, F, false);
+      return st.g.integral();
+    };
+    // int g is exactly proportional to L^(1 - alpha), and int g = (L/2) c_0 int w with c_0 from the
+    // closed-form image coefficient d_1 of the step (Rodrigues): one evaluation fixes L exactly.
+    const double v = load_of(1.0);
+    const double L = std::pow(st.target_load / v, 1 / (1 - alpha));
+    // The step makes the density's coefficients decay only like n^(alpha - 1/2): report the size of
+    // their tail (the last quarter relative to the largest), which flags the unresolved apex.
+    {
+      double largest = 0, tail = 0;
+      const std::size_t N = st.g.c.size();
+      for (std::size_t n = 0; n < N; ++n) {
+        largest = std::max(largest, std::abs(st.g.c[n]));
+        if (4 * n >= 3 * N) tail = std::max(tail, std::abs(st.g.c[n]));
+      }
+      st.g.tail = largest > 0 ? tail / largest : 0;
+      st.status = "apex within 0.5% of an edge (or split disabled): plain Jacobi series, pressure "
+                  "unresolved next to the apex, C_f by Richardson extrapolation";
+    }
+    const double shrink = std::pow(L, -alpha);
+    for (double& c : st.g.c) c *= shrink;
+    st.g.a = st.apex - eps * L;
+    st.g.b = st.apex + one_minus_eps * L;
+    st.epsilon = eps;
+    return;
+  }
+  if (isolated) {
+    // Exact L first: the load only needs c_0, i.e. the closed-form image coefficient d_1 of the step.
+    double L_exact = 0;
+    {
+      const double a1 = st.apex - eps, b1 = st.apex + one_minus_eps;
+      const auto img = image_coefficients(a1, b1, e, F, 1);
+      const interval_density g1 = density_from_image(a1, b1, alpha, e, img);
+      L_exact = std::pow(st.target_load / g1.integral(), 1 / (1 - alpha));
+    }
+    const double a1 = st.apex - eps, b1 = st.apex + one_minus_eps;  // solved at L = 1, then rescaled
+    st.g = build_wedge_split(a1, b1, st.apex, S1, S2, cx, e, F);
+    const double L = L_exact;
+    // The split density must carry the exact load: its defect is the error estimate.
+    st.g.tail = std::abs(st.g.integral() * std::pow(L, 1 - alpha) / st.target_load - 1);
+    const double shrink = std::pow(L, -alpha);
+    for (double& c : st.g.c) c *= shrink;
+    st.g.apex.sigma *= shrink;
+    st.g.a = st.apex - eps * L;
+    st.g.b = st.apex + one_minus_eps * L;
+    st.epsilon = eps;
+    return;
+  }
+  // Coupled: generic orthogonality root (the step part of d_0 is exact, the smooth part by quadrature).
+  const double L_guess = st.g.length() > 0 ? st.g.length() : 1.0;
+  solve_smooth_edges(st, cx, F, L_guess, st.apex + one_minus_eps * L_guess, 1 - alpha);
+  const double e_now = (st.apex - st.g.a) / st.g.length();
+  st.epsilon = e_now;
+  if (cx.options.wedge_apex_split && std::min(e_now, 1 - e_now) > 5e-3) {
+    const double load = st.g.integral();  // exact: c_0 needs only d_1 (closed form for the step)
+    st.g = build_wedge_split(st.g.a, st.g.b, st.apex, S1, S2, cx, e, F);
+    st.g.tail = std::abs(st.g.integral() / load - 1);
+  }
+}
+
+void solve_flat(indentor_state& st, const context& cx, const forcing& F) {
+  const double width = std::get<flat>(st.source->shape).width;
+  const double a = st.apex - width / 2, b = st.apex + width / 2;
+  if (cx.offset >= -boundary_width) {
+    // Contact collapses to a moving line load at the leading corner (paper 24-25).
+    st.g = interval_density{};
+    st.g.a = st.g.b = a;
+    st.g.alpha = cx.alpha;
+    st.g.line_load = true;
+    st.g.line_weight = st.target_load;
+    st.status = "line load at the leading corner; C_f is undefined for a line load (reported as 0)";
+    return;
+  }
+  const edge_exponents e{gam_corner(cx.alpha, cx.beta), del_corner(cx.beta), 1};
+  st.g = build(a, b, cx, e, F, true);
+  // Homogeneous solution w itself (nu = +1): c_0 adds load without changing F.
+  const double particular = st.g.integral();
+  const double unit = (b - a) / 2 * std::pow(2.0, e.del + e.gam + 1) * boost::math::beta(e.del + 1, e.gam + 1);
+  st.g.c[0] += (st.target_load - particular) / unit;
+}
+
+// ---------------------------------------------------------------------------------------------
+
+void validate(const scene& s) {
+  const auto& m = s.material;
+  if (!(m.alpha >= 0 && m.alpha < 1)) bad_field("material.alpha", m.alpha, "in [0, 1)");
+  if (!(m.E1 > 0) || !std::isfinite(m.E1)) bad_field("material.E1", m.E1, "finite and > 0");
+  if (!(m.poisson > -1 && m.poisson <= 0.5)) bad_field("material.poisson", m.poisson, "in (-1, 0.5]");
+  if (!(m.coulomb >= 0) || !std::isfinite(m.coulomb)) bad_field("material.coulomb", m.coulomb, "finite and >= 0");
+  if (!(s.speed > 0) || !std::isfinite(s.speed)) bad_field("speed", s.speed, "finite and > 0");
+  if (s.indentors.empty()) throw std::invalid_argument("rhabel::punch::solve: indentors is empty; give at least one");
+  for (std::size_t i = 0; i < s.indentors.size(); ++i) {
+    const auto& ind = s.indentors[i];
+    const std::string p = "indentors[" + std::to_string(i) + "].";
+    if (!(ind.load > 0) || !std::isfinite(ind.load)) bad_field(p + "load", ind.load, "finite and > 0");
+    if (!std::isfinite(ind.apex)) bad_field(p + "apex", ind.apex, "finite");
+    if (const auto* q = std::get_if<parabolic>(&ind.shape)) {
+      if (!(q->radius > 0) || !std::isfinite(q->radius)) bad_field(p + "radius", q->radius, "finite and > 0");
+    } else if (const auto* w = std::get_if<wedge>(&ind.shape)) {
+      if (!(w->slope_leading > 0) || !std::isfinite(w->slope_leading))
+        bad_field(p + "slope_leading", w->slope_leading, "finite and > 0");
+      if (!(w->slope_trailing > 0) || !std::isfinite(w->slope_trailing))
+        bad_field(p + "slope_trailing", w->slope_trailing, "finite and > 0");
+    } else if (const auto* f = std::get_if<flat>(&ind.shape)) {
+      if (!(f->width > 0) || !std::isfinite(f->width)) bad_field(p + "width", f->width, "finite and > 0");
+    } else if (const auto* g = std::get_if<general_profile>(&ind.shape)) {
+      if (!g->slope) throw std::invalid_argument("rhabel::punch::solve: " + p + "slope is empty; give f'(x)");
+      if (!std::isfinite(g->search_lo) || !(g->search_lo < 0)) bad_field(p + "search_lo", g->search_lo, "finite and < 0");
+      if (!std::isfinite(g->search_hi) || !(g->search_hi > 0)) bad_field(p + "search_hi", g->search_hi, "finite and > 0");
+      for (std::size_t k = 0; k < g->corners.size(); ++k)
+        if (!std::isfinite(g->corners[k]))
+          bad_field(p + "corners[" + std::to_string(k) + "]", g->corners[k], "finite");
+    }
+  }
+}
+
+std::string indentor_name(std::size_t i, const indentor& ind) {
+  static const char* names[] = {"parabolic", "wedge", "flat", "general_profile"};
+  return "indentors[" + std::to_string(i) + "] (" + names[ind.shape.index()] + ")";
+}
+
+// Non-const: Boost 1.74 defines tanh_sinh::integrate(f, a, b) without the const of its declaration.
+boost::math::quadrature::tanh_sinh<double>& tanh_sinh_rule() {
+  thread_local boost::math::quadrature::tanh_sinh<double> rule;
+  return rule;
+}
+
+// Peak pressure on [a, b] of a bounded density: sampling + Brent refinement.
+std::pair<double, double> peak_of(const interval_density& g) {
+  const int n = 128;
+  double best = -1, where = g.a;
+  for (int k = 0; k <= n; ++k) {
+    const double t = g.a + g.length() * (k + 0.5) / (n + 1);
+    const double v = g.value(t);
+    if (v > best) {
+      best = v;
+      where = t;
+    }
+  }
+  const double h = g.length() / (n + 1);
+  const auto r = boost::math::tools::brent_find_minima([&](double t) { return -g.value(t); },
+                                                       std::max(g.a, where - h), std::min(g.b, where + h), 40);
+  if (-r.second > best) return {-r.second, r.first};
+  return {best, where};
+}
+
+// Surface height h(x) - h(a_ref) from the slope field Gamma(1-alpha) A g (s), integrated in closed
+// form in s first: int_{a_ref}^x K(t, s) ds = Psi(t, x) - Psi(t, a_ref), with
+//   Psi(t, s) = -((t - s)^alpha - 1)/alpha                              (s < t)
+//   Psi(t, s) = -kappa ((s - t)^alpha - 1)/alpha + (1 - kappa)/alpha      (s > t),
+// continuous at s = t and finite as alpha -> 0 (the log kernel of the elastic half-plane).
+double psi(double t, double s, double alpha, double one_minus_kappa_over_alpha, double kappa);
+double psi_distance(double d, double alpha, double one_minus_kappa_over_alpha, double kappa);
+double psi(double t, double s, double alpha, double one_minus_kappa_over_alpha, double kappa) {
+  return psi_distance(s - t, alpha, one_minus_kappa_over_alpha, kappa);
+}
+// Psi as a function of d = s - t (exact when the caller knows the distance).
+double psi_distance(double d, double alpha, double one_minus_kappa_over_alpha, double kappa) {
+  const double t = 0, s = d;
+  auto em = [alpha](double r) {  // (r^alpha - 1)/alpha, stable for small alpha
+    const double l = std::log(r);
+    return alpha == 0 ? l : std::expm1(alpha * l) / alpha;
+  };
+  if (s < t) return -em(t - s);
+  if (s > t) return -kappa * em(s - t) + one_minus_kappa_over_alpha;
+  return 0;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// Public API.
+
+double material::beta() const { return material_beta(*this); }
+double material::kappa() const { return material_kappa(*this); }
+double material::effective_modulus(double speed) const {
+  return E1 * boost::math::tgamma(1 - alpha) * std::pow(speed, alpha) / (1 - poisson * poisson);
+}
+
+std::string regime(const material& m) {
+  const double off = regime_offset(m);
+  if (std::abs(off) <= boundary_width) return "boundary";
+  return off < 0 ? "below" : "above";
+}
+
+trial_result trial_interval(const material& m, double speed, const indentor& ind, double a, double b,
+                            const solve_options& options) {
+  scene sc{m, speed, {ind}};
+  validate(sc);
+  if (!(a < b) || !std::isfinite(a) || !std::isfinite(b))
+    throw std::invalid_argument("rhabel::punch::trial_interval: need finite a < b, got a = " + std::to_string(a) +
+                                ", b = " + std::to_string(b));
+  if (std::holds_alternative<flat>(ind.shape))
+    throw std::invalid_argument("rhabel::punch::trial_interval: a flat punch has no trial family (its interval is fixed)");
+  context cx;
+  cx.alpha = m.alpha;
+  cx.beta = material_beta(m);
+  cx.kappa = material_kappa(m);
+  cx.offset = regime_offset(m);
+  cx.gamma_factor = boost::math::tgamma(1 - cx.alpha);
+  cx.one_minus_kappa_over_alpha = cx.alpha == 0 ? pi * std::tan(cx.beta * pi / 2)
+                                                : 2 * std::sin((cx.alpha + cx.beta) * pi / 2) *
+                                                      std::sin(cx.alpha * pi / 2) / (std::cos(cx.beta * pi / 2) * cx.alpha);
+  cx.pressure_scale = pi / 2 * m.effective_modulus(speed);
+  cx.options = options;
+  std::vector<indentor_state> st(1);
+  st[0].source = &sc.indentors[0];
+  st[0].k = static_cast<kind>(ind.shape.index());
+  st[0].apex = ind.apex;
+  const forcing F = own_forcing(st[0], cx, st, 0, false);
+  const edge_exponents e{gam_smooth(cx.alpha, cx.beta), del_corner(cx.beta), 0};
+  interval_density g;
+  if (st[0].k == kind::wedge && ind.apex > a && ind.apex < b && options.wedge_apex_split) {
+    const auto& w = std::get<wedge>(ind.shape);
+    g = build_wedge_split(a, b, ind.apex, w.slope_leading, w.slope_trailing, cx, e, F);
+  } else {
+    g = build(a, b, cx, e, F, F.steps.empty());
+  }
+  trial_result out;
+  const double total = g.integral();
+  out.load = cx.pressure_scale * total;
+  out.error_estimate = g.tail;
+  if (st[0].k == kind::wedge) {
+    const auto& w = std::get<wedge>(ind.shape);
+    const double behind = ind.apex <= a ? total : g.integral_from(ind.apex);
+    out.hysteretic_friction = (w.slope_leading * (total - behind) - w.slope_trailing * behind) / total;
+  } else {
+    const auto& rule = cached_rule(g.c.size() + 32, g.e.del, g.e.gam);
+    double num = 0, den = 0;
+    for (std::size_t q = 0; q < rule.size(); ++q) {
+      const double t = g.a + g.length() * rule.x_minus_lo[q] / 2;
+      const double S = g.smooth_factor(rule.x[q]) * rule.weight[q];
+      num += own_slope(st[0], t) * S;
+      den += S;
+    }
+    out.hysteretic_friction = num / den;
+  }
+  return out;
+}
+
+indentor_result solve_single(const material& m, double speed, const indentor& ind, const solve_options& options) {
+  scene s{m, speed, {ind}};
+  return solve(s, options).indentors.front();
+}
+
+scene_result solve(const scene& s, const solve_options& options) {
+  const auto start = std::chrono::steady_clock::now();
+  validate(s);
+  if (!(options.tolerance > 0) || !(options.tolerance < 1))
+    throw std::invalid_argument("rhabel::punch::solve: options.tolerance must be in (0, 1)");
+  context cx;
+  cx.alpha = s.material.alpha;
+  cx.beta = material_beta(s.material);
+  cx.kappa = material_kappa(s.material);
+  cx.offset = regime_offset(s.material);
+  if (std::abs(cx.offset) <= boundary_width) cx.offset = 0;
+  cx.gamma_factor = boost::math::tgamma(1 - cx.alpha);
+  // 1 - kappa = 2 sin((alpha+beta) pi/2) sin(alpha pi/2)/cos(beta pi/2): no cancellation near alpha = 0.
+  cx.one_minus_kappa_over_alpha = cx.alpha == 0 ? pi * std::tan(cx.beta * pi / 2)
+                                                : 2 * std::sin((cx.alpha + cx.beta) * pi / 2) *
+                                                      std::sin(cx.alpha * pi / 2) / (std::cos(cx.beta * pi / 2) * cx.alpha);
+  if (cx.offset == 0) cx.one_minus_kappa_over_alpha = 1 / cx.alpha;
+  cx.pressure_scale = pi / 2 * s.material.effective_modulus(s.speed);
+  cx.options = options;
+
+  // Indentors sorted by apex (leading first).
+  std::vector<std::size_t> order(s.indentors.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t i, std::size_t j) { return s.indentors[i].apex < s.indentors[j].apex; });
+  std::vector<indentor_state> st(s.indentors.size());
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    const auto& ind = s.indentors[order[i]];
+    st[i].source = &ind;
+    st[i].k = static_cast<kind>(ind.shape.index());
+    st[i].apex = ind.apex;
+    st[i].target_load = ind.load / cx.pressure_scale;
+  }
+  const bool isolated = st.size() == 1;
+
+  auto check_overlap = [&]() {
+    for (std::size_t i = 0; i + 1 < st.size(); ++i) {
+      if (st[i].solved && st[i + 1].solved && st[i].g.b >= st[i + 1].g.a) {
+        std::ostringstream os;
+        os << "rhabel::punch::solve: the contacts of " << indentor_name(order[i], *st[i].source) << " ["
+           << st[i].g.a << ", " << st[i].g.b << "] and " << indentor_name(order[i + 1], *st[i + 1].source) << " ["
+           << st[i + 1].g.a << ", " << st[i + 1].g.b << "] overlap; move the indentors apart";
+        throw std::domain_error(os.str());
+      }
+    }
+  };
+
+  // Block Gauss-Seidel over the indentors (paper system 41): each interval is solved with the
+  // action of the others' current densities moved to the right side.
+  // Pass 0 solves every indentor alone: overlapping single contacts are reported before coupling.
+  const int max_sweeps = isolated ? 1 : 200;
+  int sweeps = 0;
+  double change = 0;
+  for (; sweeps < max_sweeps; ++sweeps) {
+    change = 0;
+    for (std::size_t i = 0; i < st.size(); ++i) {
+      const double a_old = st[i].g.a, b_old = st[i].g.b, load_scale = st[i].g.length();
+      const forcing F = own_forcing(st[i], cx, st, i, sweeps > 0);
+      try {
+        switch (st[i].k) {
+          case kind::parabola: solve_parabola(st[i], cx, F); break;
+          case kind::wedge: solve_wedge(st[i], cx, F, isolated); break;
+          case kind::flat: solve_flat(st[i], cx, F); break;
+          case kind::general: solve_general(st[i], cx, F); break;
+        }
+      } catch (const std::domain_error& err) {
+        std::ostringstream os;
+        os << "rhabel::punch::solve: " << indentor_name(order[i], *st[i].source)
+           << (sweeps > 0 ? " failed in the coupled iteration (sweep " + std::to_string(sweeps) +
+                                "; contacts nearly touching or overlapping?): "
+                          : " failed: ")
+           << err.what();
+        throw std::domain_error(os.str());
+      }
+      if (st[i].solved && load_scale > 0) {
+        change = std::max(change, std::max(std::abs(st[i].g.a - a_old), std::abs(st[i].g.b - b_old)) / load_scale);
+        // Densities change even where edges do not (flat punch): compare the loads' distribution.
+      }
+      if (!st[i].solved) change = 1;
+    }
+    for (auto& x : st) x.solved = true;
+    check_overlap();
+    if (isolated || change <= 10 * options.tolerance) break;
+  }
+  // Flat punches have fixed edges: iterate a few more sweeps so their densities settle too.
+  std::string global_status = "ok";
+  if (!isolated && change > 10 * options.tolerance) {
+    std::ostringstream os;
+    os << "coupled iteration stopped after " << sweeps << " sweeps with relative edge change " << change;
+    global_status = os.str();
+  }
+
+  scene_result out;
+  out.beta = cx.beta;
+  out.kappa = cx.kappa;
+  out.regime = regime(s.material);
+  out.indentors.resize(st.size());
+  const double ps = cx.pressure_scale;
+  const double omk_over_alpha = cx.alpha == 0 ? pi * std::tan(cx.beta * pi / 2)
+                                              : 2 * std::sin((cx.alpha + cx.beta) * pi / 2) *
+                                                    std::sin(cx.alpha * pi / 2) / (std::cos(cx.beta * pi / 2) * cx.alpha);
+  double worst_residual = 0;
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    const auto& g = st[i].g;
+    indentor_result r;
+    r.a = g.a;
+    r.b = g.b;
+    r.contact_length = g.length();
+    r.epsilon = st[i].epsilon;
+    r.load = ps * g.integral();
+    r.degree = g.c.empty() ? 0 : g.c.size() - 1;
+    r.error_estimate = g.tail;
+    r.status = st[i].status;
+    // Hysteretic friction C_f = int f' g / int g with the indentor's own f'.
+    if (g.line_load) {
+      r.hysteretic_friction = 0;
+    } else if (st[i].k == kind::wedge) {
+      const auto& w = std::get<wedge>(st[i].source->shape);
+      // C_f = S1 - (S1 + S2) int_apex^b g / int g. The Jacobi series of int_apex^b g converges only
+      // algebraically (the step of F at the apex): its truncation error behaves like
+      // N^(alpha-1) (1 + O(1/N)), so the partial sums at N/4, N/2, N are Richardson-extrapolated
+      // with the exponents alpha - 1 and alpha - 2; the spread of the extrapolants is the estimate.
+      auto fraction_behind = [&](std::size_t terms) {
+        interval_density t = g;
+        t.c.resize(std::min(terms, g.c.size()));
+        return t.integral_from(st[i].apex) / g.integral();
+      };
+      const std::size_t N = g.c.size();
+      double behind = fraction_behind(N);
+      if (cx.offset < 0 && N >= 32 && !g.has_apex) {
+        const double s1 = fraction_behind(N / 4), s2 = fraction_behind(N / 2), s3 = behind;
+        const double r1 = std::pow(2.0, 1 - cx.alpha), r2 = std::pow(2.0, 2 - cx.alpha);
+        const double e12 = s2 + (s2 - s1) / (r1 - 1), e23 = s3 + (s3 - s2) / (r1 - 1);
+        behind = e23 + (e23 - e12) / (r2 - 1);
+        r.error_estimate = std::max(r.error_estimate, std::abs(behind - e23));
+      }
+      r.hysteretic_friction = w.slope_leading - (w.slope_leading + w.slope_trailing) * behind;
+    } else if (st[i].k == kind::flat) {
+      r.hysteretic_friction = 0;
+    } else {
+      const auto& rule = cached_rule(g.c.size() + 32, g.e.del, g.e.gam);
+      double num = 0, den = 0;
+      for (std::size_t q = 0; q < rule.size(); ++q) {
+        const double t = g.a + g.length() * rule.x_minus_lo[q] / 2;
+        const double S = g.smooth_factor(rule.x[q]) * rule.weight[q];
+        num += own_slope(st[i], t) * S;
+        den += S;
+      }
+      r.hysteretic_friction = num / den;
+    }
+    r.total_friction = r.hysteretic_friction + s.material.coulomb;
+    // Edges.
+    if (!g.line_load) {
+      const double L = g.length();
+      const double lead_factor = g.smooth_factor(-1), trail_factor = g.smooth_factor(1);
+      edge_report lead{edge_side::leading, g.a, g.e.gam < 0, g.e.gam,
+                       ps * std::pow(2.0, g.e.del) * std::pow(2 / L, g.e.gam) * lead_factor};
+      edge_report trail{edge_side::trailing, g.b, g.e.del < 0, g.e.del,
+                        ps * std::pow(2.0, g.e.gam) * std::pow(2 / L, g.e.del) * trail_factor};
+      r.edges = {lead, trail};
+      if (lead.singular) {
+        r.peak_pressure = std::numeric_limits<double>::infinity();
+        r.peak_pressure_at = g.a;
+      } else if (trail.singular) {
+        r.peak_pressure = std::numeric_limits<double>::infinity();
+        r.peak_pressure_at = g.b;
+      } else if (st[i].k == kind::wedge) {
+        // Below the boundary the wedge density has a weak singularity at the apex
+        // (|s|^-alpha, logarithmic at alpha = 0: math.md section 5).
+        r.peak_pressure = std::numeric_limits<double>::infinity();
+        r.peak_pressure_at = st[i].apex;
+      } else {
+        const auto [peak, where] = peak_of(g);
+        r.peak_pressure = ps * peak;
+        r.peak_pressure_at = where;
+      }
+    } else {
+      r.edges = {edge_report{edge_side::leading, g.a, true, -1, ps * g.line_weight},
+                 edge_report{edge_side::trailing, g.b, true, -1, ps * g.line_weight}};
+      r.peak_pressure = std::numeric_limits<double>::infinity();
+      r.peak_pressure_at = g.a;
+    }
+    // Residual of (8) at interior check points, by an independent quadrature (alpha > 0).
+    if (!g.line_load && cx.alpha >= 1e-3) {
+      const std::size_t nodes = std::min<std::size_t>(g.c.size() + 32, 200);
+      double worst = 0, scale = 0;
+      for (int k = 1; k <= 7; ++k) {
+        double sck = g.a + g.length() * (1 - std::cos(pi * k / 8)) / 2;
+        if (st[i].k == kind::wedge && std::abs(sck - st[i].apex) < 1e-3 * g.length()) sck += 2e-3 * g.length();
+        double lhs = apply_inside(g, sck, cx.kappa, nodes);
+        for (std::size_t j = 0; j < st.size(); ++j)
+          if (j != i) lhs += apply_outside(st[j].g, sck, cx.kappa, 64);
+        const double rhs = own_slope(st[i], sck) / cx.gamma_factor;
+        worst = std::max(worst, std::abs(lhs - rhs));
+        scale = std::max(scale, std::abs(rhs));
+      }
+      r.residual = scale > 0 ? worst / scale : worst;
+      worst_residual = std::max(worst_residual, r.residual);
+    }
+    // Fields on request.
+    if (options.grid_points > 0) {
+      const std::size_t n = options.grid_points;
+      r.grid_x.resize(n);
+      r.pressure.resize(n);
+      for (std::size_t k = 0; k < n; ++k) {
+        const double t = g.a + g.length() * (static_cast<double>(k) + 0.5) / static_cast<double>(n);
+        r.grid_x[k] = t;
+        r.pressure[k] = g.line_load ? 0.0 : ps * g.value(t);
+      }
+      if (g.line_load) r.status += "; pressure grid is empty of meaning for a line load (all zeros)";
+    }
+    if (options.grid_points > 0 && options.displacement) {
+      const std::size_t n = options.grid_points;
+      const double L = g.length() > 0 ? g.length() : 1.0;
+      r.displacement_x.resize(n);
+      r.displacement.resize(n);
+      const double lo = g.a - L, hi = g.b + L;
+      auto profile = [&](double x) {  // f(x) - f(a) for x in this indentor's contact
+        switch (st[i].k) {
+          case kind::parabola: {
+            const double R = std::get<parabolic>(st[i].source->shape).radius;
+            return -((x - st[i].apex) * (x - st[i].apex) - (g.a - st[i].apex) * (g.a - st[i].apex)) / (2 * R);
+          }
+          case kind::wedge: {
+            const auto& w = std::get<wedge>(st[i].source->shape);
+            const double fa = w.slope_leading * (g.a - st[i].apex);
+            const double fx = x < st[i].apex ? w.slope_leading * (x - st[i].apex) : -w.slope_trailing * (x - st[i].apex);
+            return fx - fa;
+          }
+          case kind::flat: return 0.0;
+          case kind::general: {
+            // int_a^x f' by Gauss-Legendre (f' smooth on the contact).
+            const auto& rule = cached_rule(32, 0.0, 0.0);
+            double sum = 0;
+            for (std::size_t q = 0; q < rule.size(); ++q)
+              sum += rule.weight[q] * own_slope(st[i], g.a + (x - g.a) * (1 + rule.x[q]) / 2);
+            return sum * (x - g.a) / 2;
+          }
+        }
+        return 0.0;
+      };
+      // h(x) = Gamma(1-alpha) sum_o int g_o(t) Psi(t, x) dt - (the same at x = a): every moment by
+      // Gauss-Jacobi for the regular part (smooth in t when x is off the interval) and tanh-sinh for
+      // the apex part; the datum (log-singular at t = a) by tanh-sinh on the whole own interval.
+      auto height_moment = [&](const interval_density& d, double x) {
+        if (d.line_load) return d.line_weight * psi(d.a, x, cx.alpha, omk_over_alpha, cx.kappa);
+        const auto& rule = cached_rule(std::max<std::size_t>(d.c.size() + 64, 96), d.e.del, d.e.gam);
+        double sum = 0;
+        for (std::size_t q = 0; q < rule.size(); ++q) {
+          const double t = rule.x_minus_lo[q] <= rule.hi_minus_x[q] ? d.a + d.length() * rule.x_minus_lo[q] / 2
+                                                                    : d.b - d.length() * rule.hi_minus_x[q] / 2;
+          sum += rule.weight[q] * d.smooth_factor(rule.x[q]) * psi(t, x, cx.alpha, omk_over_alpha, cx.kappa);
+        }
+        sum *= d.length() / 2;
+        if (d.has_apex) {
+          // In the offset from the apex (h is singular there; x0 + offset would round onto x0).
+          auto f = [&](double dx0) {
+            const double t = d.a + d.length() * (1 + d.apex.x0 + dx0) / 2;
+            return d.apex.h_of(dx0) * psi(t, x, cx.alpha, omk_over_alpha, cx.kappa);
+          };
+          auto f_left = [&](double o) { return f(-o); };
+          const double left = std::min(d.apex.r, 1 + d.apex.x0), right = std::min(d.apex.r, 1 - d.apex.x0);
+          sum += d.apex.sigma * d.length() / 2 * (tanh_sinh_rule().integrate(f_left, 0.0, left, 1e-12) +
+                                                  tanh_sinh_rule().integrate(f, 0.0, right, 1e-12));
+        }
+        return sum;
+      };
+      double datum = 0;
+      for (const auto& o : st) {
+        if (&o.g != &g) {
+          datum += height_moment(o.g, g.a);
+          continue;
+        }
+        if (g.line_load) continue;  // psi(a, a) = 0
+        // In offsets from the nearer end, so that the end singularities (t-a)^gam log(t-a) and
+        // (b-t)^del are evaluated from exact distances (tanh-sinh clusters its nodes there).
+        const double Lg = g.length();
+        // density from u = t - a, v = b - t and dx0 = x - x0 (reference axis), whichever are exact.
+        auto density_at = [&](double u, double v, double dx0) {
+          const double one_plus = 2 * u / Lg, one_minus = 2 * v / Lg;
+          const double xr = one_plus <= one_minus ? one_plus - 1 : 1 - one_minus;
+          double val = std::pow(one_minus, g.e.del) * std::pow(one_plus, g.e.gam) * g.smooth_factor(xr);
+          if (g.has_apex) val += g.apex.sigma * g.apex.h_of(dx0);
+          return val;
+        };
+        auto weight = [&](double u) { return psi_distance(-u, cx.alpha, omk_over_alpha, cx.kappa); };
+        if (!g.has_apex) {
+          const double half = Lg / 2;
+          datum += tanh_sinh_rule().integrate([&](double u) { return density_at(u, Lg - u, 0) * weight(u); }, 0.0, half, 1e-12) +
+                   tanh_sinh_rule().integrate([&](double v) { return density_at(Lg - v, v, 0) * weight(Lg - v); }, 0.0, half, 1e-12);
+        } else {
+          // Four pieces, each parametrised by the offset from its singular end (a, apex, apex, b).
+          const double ua = st[i].apex - g.a, vb = g.b - st[i].apex, x0 = g.apex.x0;
+          auto piece = [&](auto&& f, double length) { return tanh_sinh_rule().integrate(f, 0.0, length, 1e-12); };
+          datum += piece([&](double u) { return density_at(u, Lg - u, 2 * u / Lg - 1 - x0) * weight(u); }, ua / 2);
+          datum += piece([&](double o) { return density_at(ua - o, vb + o, -2 * o / Lg) * weight(ua - o); }, ua / 2);
+          datum += piece([&](double o) { return density_at(ua + o, vb - o, 2 * o / Lg) * weight(ua + o); }, vb / 2);
+          datum += piece([&](double v) { return density_at(Lg - v, v, 1 - 2 * v / Lg - x0) * weight(Lg - v); }, vb / 2);
+        }
+      }
+      for (std::size_t k = 0; k < n; ++k) {
+        const double x = n == 1 ? (lo + hi) / 2 : lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(n - 1);
+        r.displacement_x[k] = x;
+        if (!g.line_load && x >= g.a && x <= g.b) {
+          r.displacement[k] = profile(x);
+          continue;
+        }
+        double h = 0;
+        for (const auto& o : st) h += height_moment(o.g, x);
+        h -= datum;
+        r.displacement[k] = cx.gamma_factor * h;
+      }
+    }
+    out.indentors[order[i]] = std::move(r);
+  }
+  out.diagnostics.residual = worst_residual;
+  out.diagnostics.status = global_status;
+  for (std::size_t i = 0; i < out.indentors.size(); ++i)
+    if (out.indentors[i].status != "ok" && global_status == "ok")
+      out.diagnostics.status = "see indentors[" + std::to_string(i) + "].status";
+  out.diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace rhabel::punch

@@ -1,0 +1,156 @@
+// rhabel/quadrature/detail/gauss_jacobi_asymptotic.hpp
+//
+// Private part of gauss_jacobi.hpp: the interior (Hahn) asymptotic expansion of P_n^(a,b)(cos t)
+// used for Newton's method in t, its constants, and initial guesses. Double precision only
+// (the caller, gauss_jacobi.hpp, documents the regimes and the measured accuracy).
+//
+// Expansion (Hahn 1980; Hale & Townsend 2013, eq. (3.1)): with rho = n + (a + b + 1)/2,
+// s = sin(t/2), c = cos(t/2),
+//   P_n^(a,b)(cos t) = 2^(2 rho) B(n+a+1, n+b+1) / (pi s^(a+1/2) c^(b+1/2)) * G(t) + R_M,
+//   G(t) = sum_{m<M} 2^-m / (2 rho + 1)_m sum_{l=0}^m alpha_l beta_{m-l} cos(phi_m - l pi/2) / (s^l c^(m-l)),
+//   phi_m = (2 rho + m) t / 2 - (a + 1/2) pi / 2,
+//   alpha_l = (1/2 + a)_l (1/2 - a)_l / l!,   beta_j = (1/2 + b)_j (1/2 - b)_j / j!.
+// (Checked against mpmath's jacobi at 30 digits, n = 50, (a, b) = (0.3, -0.4) and (5, 2), t = 1.)
+// The series is asymptotic in 1/(n s) and 1/(n c); it is exact after one term when
+// a, b are +-1/2. Each term is bounded, independently of the phase, by
+//   bound_m = 2^-m / (2 rho + 1)_m sum_l |alpha_l beta_{m-l}| s^-l c^-(m-l),
+// and the evaluation stops at the first m with bound_m < eps / 16. If no m < 30 reaches that,
+// or if the sum of the bounds exceeds 2 (the terms first grow like (p^2/(2 rho t))^m / m! for
+// large p, and cancellation would cost accuracy), the point is outside the interior region and
+// the caller uses the recurrence. Measured at n = 10^6: the interior starts at rho t = 20 for
+// |p| <= 2, 22 for p = 5, and ~650 for p = 30.
+//
+// The zeros of P_n are those of G. Newton's method is run on G in t: the phase phi_0 = rho t
+// is formed with relative error eps, so t is found to relative accuracy O(eps) for every
+// node, and 1 - x = 2 sin^2(t/2) inherits it (no cancellation). At a zero,
+//   w = K_n / (dP/dt)^2 = Q s^(2a+1) c^(2b+1) / G'(t)^2,
+//   Q = K_n pi^2 / (2^(2 rho) B)^2 = pi 2^(a+b+1) Gamma(rho+1/2)^2 Gamma(rho+1)^2
+//       / (Gamma(n+a+b+1) n! Gamma(n+a+1) Gamma(n+b+1)),
+// where 2^(2 rho) B(n+a+1, n+b+1) = sqrt(pi) Gamma(n+a+1) Gamma(n+b+1) / (Gamma(rho+1/2) Gamma(rho+1))
+// by Legendre's duplication formula. Q is the product of four gamma ratios with arguments
+// n + O(1) (gamma_delta_ratio: a few ulps), so nothing overflows and nothing cancels.
+#pragma once
+
+#include <boost/math/constants/constants.hpp>
+#include <boost/math/special_functions/bessel.hpp>
+#include <boost/math/special_functions/gamma.hpp>
+
+#include "rhabel/quadrature/detail/gauss_jacobi_recurrence.hpp"
+
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+namespace rhabel::quadrature::detail {
+
+// Largest number of terms of the interior expansion that is ever summed.
+inline constexpr int hahn_max_terms = 30;
+// Largest admissible sum of the term bounds: the terms may first grow (by (p^2/(2 rho t))^m/m!)
+// before they decay, and the rounding error of G is about eps times this sum (G has amplitude 1).
+inline constexpr double hahn_max_total = 2;
+
+// The weight factor Q of the header comment (symmetric in a, b).
+inline double hahn_weight_factor(std::size_t n, double p, double q) {
+  // In long double: rho is not a double for most p, q, and each ratio is then exact to a few
+  // ulps of long double before the product is rounded.
+  using L = long double;
+  const L P = p, Q = q, m = static_cast<L>(n);
+  const L rho = m + (P + Q + 1) / 2;
+  const L r1 = gamma_delta_ratio(rho + 0.5L, (P - Q) / 2);     // Gamma(rho+1/2)/Gamma(n+p+1)
+  const L r2 = gamma_delta_ratio(rho + 0.5L, (Q - P) / 2);     // Gamma(rho+1/2)/Gamma(n+q+1)
+  const L r3 = gamma_delta_ratio(rho + 1, (P + Q - 1) / 2);    // Gamma(rho+1)/Gamma(n+p+q+1)
+  const L r4 = gamma_delta_ratio(rho + 1, -(P + Q + 1) / 2);   // Gamma(rho+1)/Gamma(n+1)
+  return static_cast<double>(boost::math::constants::pi<L>() * std::pow(2.0L, P + Q + 1) * r1 * r2 * r3 * r4);
+}
+
+// The interior expansion for the end t = 0 with exponent a there and b at t = pi.
+class hahn_expansion {
+ public:
+  hahn_expansion(std::size_t n, double a, double b) : a_(a) {
+    rho_ = static_cast<double>(n) + (a + b + 1) / 2;
+    alpha_.resize(hahn_max_terms);
+    beta_.resize(hahn_max_terms);
+    inverse_.resize(hahn_max_terms);
+    alpha_[0] = beta_[0] = inverse_[0] = 1;
+    for (int l = 1; l < hahn_max_terms; ++l) {
+      const double j = l - 1;
+      alpha_[l] = alpha_[l - 1] * (0.5 + a + j) * (0.5 - a + j) / l;
+      beta_[l] = beta_[l - 1] * (0.5 + b + j) * (0.5 - b + j) / l;
+      inverse_[l] = inverse_[l - 1] / (2 * (2 * rho_ + 1 + j));
+    }
+  }
+
+  double rho() const { return rho_; }
+
+  // G(t) and G'(t) (value, slope), with s = sin(t/2) and c = cos(t/2). Returns false when
+  // the series does not reach eps/16 within hahn_max_terms terms at t (t is then outside the
+  // interior region).
+  bool evaluate(double t, double& value, double& slope, double& s, double& c) const {
+    s = std::sin(t / 2);
+    c = std::cos(t / 2);
+    const double inverse_s = 1 / s, inverse_c = 1 / c;
+    const double half_cot = c * inverse_s / 2, half_tan = s * inverse_c / 2;
+    double g[hahn_max_terms], h[hahn_max_terms];  // alpha_l s^-l, beta_j c^-j, filled as needed
+    double power_s = 1, power_c = 1;
+    const double tolerance = std::numeric_limits<double>::epsilon() / 16;
+    const double phase = rho_ * t - (a_ + 0.5) * boost::math::constants::half_pi<double>();
+    double cos_phi = std::cos(phase), sin_phi = std::sin(phase);
+    value = 0;
+    slope = 0;
+    double total = 0;  // sum of the bounds: the rounding error of G is about eps * total
+    for (int m = 0; m < hahn_max_terms; ++m) {
+      g[m] = alpha_[m] * power_s;
+      h[m] = beta_[m] * power_c;
+      power_s *= inverse_s;
+      power_c *= inverse_c;
+      double U = 0, V = 0, dU = 0, dV = 0, bound = 0;
+      for (int l = 0; l <= m; ++l) {
+        const double product = g[l] * h[m - l];
+        const double d = (m - l) * half_tan - l * half_cot;  // d/dt log(s^-l c^-(m-l))
+        bound += std::abs(product);
+        switch (l & 3) {
+          case 0: U += product; dU += product * d; break;
+          case 1: V += product; dV += product * d; break;
+          case 2: U -= product; dU -= product * d; break;
+          default: V -= product; dV -= product * d; break;
+        }
+      }
+      const double w = inverse_[m];
+      value += w * (cos_phi * U + sin_phi * V);
+      slope += w * ((2 * rho_ + m) / 2 * (cos_phi * V - sin_phi * U) + cos_phi * dU + sin_phi * dV);
+      total += w * bound;
+      if (w * bound < tolerance) return total <= hahn_max_total;
+      // phi_{m+1} = phi_m + t/2: rotate by the angle t/2.
+      const double next_cos = cos_phi * c - sin_phi * s;
+      sin_phi = sin_phi * c + cos_phi * s;
+      cos_phi = next_cos;
+    }
+    return false;
+  }
+
+ private:
+  double a_, rho_;
+  std::vector<double> alpha_, beta_, inverse_;
+};
+
+// Interior initial guess for the k-th zero (k = 1 nearest t = 0) in t (Gatteschi & Pittaluga
+// 1985; Hale & Townsend 2013 eq. (3.4)): K = (k + a/2 - 1/4) pi / rho,
+//   t ~ K + ((1/4 - a^2) cot(K/2) - (1/4 - b^2) tan(K/2)) / (4 rho^2).
+inline double interior_guess(std::size_t k, double a, double b, double rho) {
+  const double K = (static_cast<double>(k) + a / 2 - 0.25) * boost::math::constants::pi<double>() / rho;
+  const double tan_half = std::tan(K / 2);
+  return K + ((0.25 - a * a) / tan_half - (0.25 - b * b) * tan_half) / (4 * rho * rho);
+}
+
+// Boundary initial guess for the k-th zero from the k-th zero j of J_a (Olver 1974;
+// DLMF 18.16.8; Hale & Townsend 2013 eq. (3.8)): phi = j / rho,
+//   t ~ phi + ((a^2 - 1/4)(1 - phi cot phi) / (2 phi) - (a^2 - b^2) tan(phi/2) / 4) / rho^2.
+inline double boundary_guess(std::size_t k, double a, double b, double rho) {
+  const double j = boost::math::cyl_bessel_j_zero(a, static_cast<int>(k));
+  const double phi = j / rho;
+  return phi + ((a * a - 0.25) * (1 - phi / std::tan(phi)) / (2 * phi) - (a * a - b * b) * std::tan(phi / 2) / 4) /
+                   (rho * rho);
+}
+
+}  // namespace rhabel::quadrature::detail

@@ -1,0 +1,133 @@
+#!/usr/bin/env bash
+# CLI test of `rhabel solve` on good scenes:
+#   bash test_solve.sh <path-to-rhabel-binary> <source-dir>
+# Checks (with the python3 standard library only): valid JSON with the required fields, no NaN/Inf
+# tokens, `-` reads stdin and gives the same document, --grid N adds N samples per field inside the
+# contact, --csv writes both files consistent with the JSON, the shipped examples all solve, and
+# the elastic Hertz scene reproduces the closed form a = sqrt(4 R P / (pi E*)) (an oracle that
+# shares no code with the solver) to 1e-12 relative (the solver's tolerance is 1e-12 by default).
+set -u
+rhabel="$1"; src="$2"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+py=/usr/bin/python3; [ -x "$py" ] || py=python3
+tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
+
+cat > "$tmp/scene.json" <<'JSON'
+{"material": {"alpha": 0.3, "E1": 1.0e6, "nu": 0.5, "coulomb": 0.0}, "speed": 0.01,
+ "indentors": [{"shape": "parabolic", "radius": 0.02, "load": 100.0, "apex": 0.0},
+               {"shape": "wedge", "slope_leading": 0.05, "slope_trailing": 0.05, "load": 50.0, "apex": 0.05}]}
+JSON
+
+# --- required fields, types, finiteness ---------------------------------------------------
+"$rhabel" solve "$tmp/scene.json" > "$tmp/out.json" 2> "$tmp/err"; rc=$?
+[ "$rc" -eq 0 ] || fail "good scene: exit code $rc ($(cat "$tmp/err"))"
+"$py" - "$tmp/out.json" <<'PY' || fail "good scene: result document (see above)"
+import json, math, sys
+text = open(sys.argv[1]).read()
+for bad in ("NaN", "Infinity"):
+    assert bad not in text, f"{bad} in output"
+r = json.loads(text)
+for k in ("beta", "regime", "indentors", "diagnostics"):
+    assert k in r, f"missing {k}"
+assert r["beta"] == 0.0, "nu = 0.5 must give beta = 0"
+assert r["regime"] == "below", r["regime"]
+assert len(r["indentors"]) == 2
+for i, ind in enumerate(r["indentors"]):
+    for k in ("contact", "contact_length", "load", "hysteretic_friction", "total_friction",
+              "peak_pressure", "peak_pressure_at", "edges"):
+        assert k in ind, f"indentors[{i}] missing {k}"
+    a, b = ind["contact"]
+    assert a < b and abs((b - a) - ind["contact_length"]) <= 1e-12 * (b - a), f"indentors[{i}].contact"
+    assert abs(ind["load"] / [100.0, 50.0][i] - 1) < 1e-6, f"indentors[{i}].load = {ind['load']}"
+    assert ("epsilon" in ind) == (i == 1), "epsilon only for wedges"
+    assert isinstance(ind["edges"], list) and len(ind["edges"]) == 2
+    if ind["peak_pressure"] is None:
+        assert ind["peak_pressure_singular"] is True
+    else:
+        assert ind["peak_pressure"] > 0 and a <= ind["peak_pressure_at"] <= b
+assert r["indentors"][1]["peak_pressure_singular"] is True, "a wedge below 1/2 has a singular apex"
+assert 0 < r["indentors"][1]["epsilon"] < 1
+d = r["diagnostics"]
+assert "residual" in d and "seconds" in d and d["seconds"] >= 0
+assert "pressure" not in r["indentors"][0], "fields sampled without --grid"
+def walk(v, path):
+    if isinstance(v, float): assert math.isfinite(v), path
+    elif isinstance(v, dict): [walk(x, f"{path}.{k}") for k, x in v.items()]
+    elif isinstance(v, list): [walk(x, f"{path}[{j}]") for j, x in enumerate(v)]
+walk(r, "result")
+PY
+
+# --- 17 significant digits: every double round-trips (the printer is shortest-round-trip) --
+"$py" - "$tmp/out.json" <<'PY' || fail "numbers do not round-trip"
+import json, re, sys
+text = open(sys.argv[1]).read()
+for tok in re.findall(r'-?\d+\.\d+(?:[eE][-+]?\d+)?|-?\d+[eE][-+]?\d+', text):
+    assert repr(float(tok)) == repr(float(repr(float(tok)))), tok
+    assert len(re.sub(r'[-.]|[eE].*', '', tok).lstrip('0')) <= 17, f"{tok} has more than 17 digits"
+PY
+
+# --- '-' reads stdin; same document apart from the timing ---------------------------------
+"$rhabel" solve - < "$tmp/scene.json" > "$tmp/stdin.json"; rc=$?
+[ "$rc" -eq 0 ] || fail "stdin: exit code $rc"
+"$py" - "$tmp/out.json" "$tmp/stdin.json" <<'PY' || fail "stdin result differs from file result"
+import json, sys
+a, b = (json.load(open(f)) for f in sys.argv[1:3])
+a["diagnostics"].pop("seconds"); b["diagnostics"].pop("seconds")
+assert a == b
+PY
+
+# --- --grid N and --csv PREFIX -------------------------------------------------------------
+"$rhabel" solve "$tmp/scene.json" --grid 17 --csv "$tmp/run" --compact > "$tmp/grid.json"; rc=$?
+[ "$rc" -eq 0 ] || fail "--grid/--csv: exit code $rc"
+[ "$(wc -l < "$tmp/grid.json")" -eq 1 ] || fail "--compact: output is not one line"
+"$py" - "$tmp/grid.json" "$tmp/run_pressure.csv" "$tmp/run_displacement.csv" <<'PY' || fail "--grid/--csv content"
+import csv, json, sys
+r = json.load(open(sys.argv[1]))
+rows_p = list(csv.DictReader(open(sys.argv[2])))
+rows_w = list(csv.DictReader(open(sys.argv[3])))
+assert list(rows_p[0].keys()) == ["indentor", "x", "pressure"], rows_p[0].keys()
+assert list(rows_w[0].keys()) == ["indentor", "x", "displacement"], rows_w[0].keys()
+for i, ind in enumerate(r["indentors"]):
+    a, b = ind["contact"]
+    px, pp = ind["pressure"]["x"], ind["pressure"]["p"]
+    assert len(px) == len(pp) == 17, len(px)
+    assert all(a <= x <= b for x in px), "pressure abscissae outside the contact"
+    assert all(p >= 0 for p in pp), "negative pressure"
+    assert len(ind["displacement"]["x"]) == len(ind["displacement"]["w"]) == 17
+    mine = [row for row in rows_p if int(row["indentor"]) == i]
+    assert [float(row["x"]) for row in mine] == px, "CSV x differs from JSON"
+    assert [float(row["pressure"]) for row in mine] == pp, "CSV pressure differs from JSON"
+    mine = [row for row in rows_w if int(row["indentor"]) == i]
+    assert [float(row["displacement"]) for row in mine] == ind["displacement"]["w"]
+PY
+ls "$tmp"/*.partial > /dev/null 2>&1 && fail "--csv left temporary files"
+
+# --csv alone implies --grid 201
+"$rhabel" solve "$tmp/scene.json" --csv "$tmp/implied" > /dev/null || fail "--csv without --grid"
+[ "$(wc -l < "$tmp/implied_pressure.csv")" -eq $((2 * 201 + 1)) ] || fail "--csv alone: expected 201 rows per indentor"
+
+# --- the elastic limit: Hertz line contact (closed form, no shared code) ------------------
+"$rhabel" solve "$src/examples/hertz_elastic.json" > "$tmp/hertz.json" || fail "hertz_elastic.json"
+"$py" - "$tmp/hertz.json" <<'PY' || fail "Hertz line contact"
+import json, math, sys
+r = json.load(open(sys.argv[1]))
+E_star, R, P = 1.0e6 / (1 - 0.3 ** 2), 0.02, 100.0
+a_hertz = math.sqrt(4 * R * P / (math.pi * E_star))
+a, b = r["indentors"][0]["contact"]
+tol = 1e-12  # the solver's default relative tolerance on the contact edges
+assert abs(b / a_hertz - 1) < tol and abs(-a / a_hertz - 1) < tol, (a, b, a_hertz)
+p0 = 2 * P / (math.pi * a_hertz)   # Hertz peak pressure
+assert abs(r["indentors"][0]["peak_pressure"] / p0 - 1) < 1e-9, r["indentors"][0]["peak_pressure"]
+assert abs(r["indentors"][0]["hysteretic_friction"]) < 1e-12, "no friction in the elastic limit"
+PY
+
+# --- every shipped example solves and gives a finite document -----------------------------
+for scene in "$src"/examples/*.json; do
+  out="$("$rhabel" solve "$scene" --compact 2>&1)"; rc=$?
+  [ "$rc" -eq 0 ] || fail "example $(basename "$scene"): exit $rc: $out"
+  printf '%s' "$out" | grep -q -E 'NaN|Infinity' && fail "example $(basename "$scene"): NaN/Inf"
+done
+
+[ "$failures" -eq 0 ] && echo "test_solve: all passed"
+exit "$failures"

@@ -1,0 +1,393 @@
+// Tests of rhabel::quadrature::gauss_jacobi against oracles that share no code with it:
+//  * tests/data/gauss_jacobi_reference.csv: 60-digit nodes and weights from
+//    tools/reference/gauss_jacobi_reference.cpp (orthonormal recurrence in x at 64 digits,
+//    Christoffel-function weights, Sturm-checked indices);
+//  * moments int (1 + x)^j (1 - x)^p (1 + x)^q dx = 2^(p+q+j+1) B(p+1, q+j+1) (Boost.Math beta),
+//    sums of positive terms, so the check itself does not cancel;
+//  * closed forms for n = 1, 2 and the published regression weights;
+//  * agreement of the two independent paths (recurrence, asymptotic) and of the Chebyshev
+//    closed forms with both; symmetry for p = q; the mapped interval; bad input.
+// The table covers n = 1, 2, 3, 100 | 101 (recurrence | asymptotic switch), 10^4 (node indices
+// on both sides of the boundary/interior switch), 10^6, and the regression cases. Runtime
+// ~8 s in Release, most of it the n = 10^6 rules (2 s for p = 30).
+#include <doctest/doctest.h>
+
+#include <rhabel/quadrature/gauss_jacobi.hpp>
+
+#include <boost/math/special_functions/beta.hpp>
+#include <boost/multiprecision/cpp_bin_float.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <vector>
+
+namespace {
+
+using rhabel::quadrature::gauss_jacobi;
+using rhabel::quadrature::gauss_jacobi_method;
+using rhabel::quadrature::gauss_jacobi_options;
+using rhabel::quadrature::quadrature_rule;
+
+constexpr double eps = std::numeric_limits<double>::epsilon();
+// The accuracy contract of gauss_jacobi.hpp: 1e-14 relative (= 45 eps) in every weight and in
+// min(1 - x, 1 + x), for n <= 10^6 and p, q in (-1, 5].
+constexpr double contract_tolerance = 45 * eps;
+// For p or q = 30 the documented bound: a weight is proportional to s^(2p+1), s = sin(t/2), so
+// the one-ulp rounding of the node (and of s) is amplified up to 2p + 1 = 61 times (measured: 43 eps).
+constexpr double large_exponent_tolerance = 128 * eps;
+
+struct reference_row {
+  std::size_t n;
+  double p, q;
+  std::size_t index;
+  std::string one_minus_x, one_plus_x, weight;  // 60 significant digits
+};
+
+const std::vector<reference_row>& reference_table() {
+  static const std::vector<reference_row> rows = [] {
+    std::vector<reference_row> result;
+    std::ifstream file(std::string(RHABEL_TEST_DATA_DIR) + "/gauss_jacobi_reference.csv");
+    if (!file) throw std::runtime_error("cannot open tests/data/gauss_jacobi_reference.csv");
+    std::string line;
+    std::getline(file, line);  // header
+    while (std::getline(file, line)) {
+      if (line.empty()) continue;
+      std::stringstream fields(line);
+      std::string n, p, q, index;
+      reference_row row;
+      std::getline(fields, n, ',');
+      std::getline(fields, p, ',');
+      std::getline(fields, q, ',');
+      std::getline(fields, index, ',');
+      std::getline(fields, row.one_minus_x, ',');
+      std::getline(fields, row.one_plus_x, ',');
+      std::getline(fields, row.weight, ',');
+      row.n = std::stoull(n);
+      row.p = std::stod(p);  // printed with 17 digits: the exact double the generator used
+      row.q = std::stod(q);
+      row.index = std::stoull(index);
+      result.push_back(row);
+    }
+    return result;
+  }();
+  return rows;
+}
+
+double relative_error(double computed, const std::string& reference) {
+  const long double exact = std::strtold(reference.c_str(), nullptr);
+  return static_cast<double>(std::fabs((static_cast<long double>(computed) - exact) / exact));
+}
+
+struct worst_case {
+  double error = 0;
+  std::string where;
+  void update(double e, const reference_row& row, const char* what) {
+    if (e > error) {
+      error = e;
+      std::ostringstream text;
+      text << what << " n=" << row.n << " p=" << row.p << " q=" << row.q << " index=" << row.index;
+      where = text.str();
+    }
+  }
+};
+
+// Compares every table row with n in [n_min, n_max] against the double rule.
+void check_against_table(std::size_t n_min, std::size_t n_max, gauss_jacobi_method method, bool skip_large_exponents = false) {
+  std::map<std::tuple<std::size_t, double, double>, std::vector<const reference_row*>> cases;
+  for (const auto& row : reference_table()) {
+    if (skip_large_exponents && (row.p > 5 || row.q > 5)) continue;
+    if (row.n >= n_min && row.n <= n_max) cases[{row.n, row.p, row.q}].push_back(&row);
+  }
+  REQUIRE(!cases.empty());
+  worst_case worst_weight, worst_node, worst_weight_large, worst_node_large;
+  for (const auto& [key, rows] : cases) {
+    const auto [n, p, q] = key;
+    const auto rule = gauss_jacobi<double>(n, p, q, gauss_jacobi_options{method});
+    REQUIRE(rule.size() == n);
+    const bool large = p > 5 || q > 5;
+    for (const reference_row* row : rows) {
+      const std::size_t i = row->index;
+      // min(1 - x, 1 + x): compare the distance to the nearer end (the other one is ~1).
+      const bool right = std::strtold(row->one_minus_x.c_str(), nullptr) <= 1;
+      const double node_error = right ? relative_error(rule.hi_minus_x[i], row->one_minus_x)
+                                      : relative_error(rule.x_minus_lo[i], row->one_plus_x);
+      const double far_error = right ? relative_error(rule.x_minus_lo[i], row->one_plus_x)
+                                     : relative_error(rule.hi_minus_x[i], row->one_minus_x);
+      const double weight_error = relative_error(rule.weight[i], row->weight);
+      (large ? worst_node_large : worst_node).update(std::max(node_error, far_error), *row, "node");
+      (large ? worst_weight_large : worst_weight).update(weight_error, *row, "weight");
+    }
+  }
+  MESSAGE("n in [" << n_min << ", " << n_max << "]: worst node error " << worst_node.error / eps << " eps ("
+                   << worst_node.where << "), worst weight error " << worst_weight.error / eps << " eps ("
+                   << worst_weight.where << ")");
+  MESSAGE("  p or q = 30: worst node error " << worst_node_large.error / eps << " eps (" << worst_node_large.where
+                                             << "), worst weight error " << worst_weight_large.error / eps
+                                             << " eps (" << worst_weight_large.where << ")");
+  CHECK(worst_node.error <= contract_tolerance);
+  CHECK(worst_weight.error <= contract_tolerance);
+  CHECK(worst_node_large.error <= large_exponent_tolerance);
+  CHECK(worst_weight_large.error <= large_exponent_tolerance);
+}
+
+}  // namespace
+
+TEST_CASE("gauss_jacobi: reference table, n <= 101 (recurrence path and first asymptotic n)") {
+  check_against_table(1, 101, gauss_jacobi_method::automatic);
+}
+
+TEST_CASE("gauss_jacobi: reference table, n = 1024 ... 65536 (asymptotic path)") {
+  check_against_table(1024, 65536, gauss_jacobi_method::automatic);
+}
+
+TEST_CASE("gauss_jacobi: reference table, forced recurrence path at n = 101 agrees too") {
+  check_against_table(101, 101, gauss_jacobi_method::recurrence);
+}
+
+TEST_CASE("gauss_jacobi: reference table, n = 10^6 (0.3 s per rule, 2 s for p = 30)") {
+  check_against_table(1000000, 1000000, gauss_jacobi_method::automatic);
+}
+
+namespace {
+
+// int_{-1}^{1} (1 + x)^j (1 - x)^p (1 + x)^q dx = 2^(p+q+j+1) B(p+1, q+j+1), in long double.
+long double shifted_moment(int j, double p, double q) {
+  const long double a = static_cast<long double>(p) + 1, b = static_cast<long double>(q) + j + 1;
+  return std::pow(2.0L, a + b - 1) * boost::math::beta(a, b);
+}
+
+}  // namespace
+
+TEST_CASE("gauss_jacobi: exact for (1 + x)^j and (1 - x)^j, j <= 2n - 1 (Beta-function moments)") {
+  // sum_i w_i (1 + x_i)^j has positive terms; each carries the weight error plus j times the
+  // relative error of 1 + x_i, so the sum is good to about (j + 8) eps: tolerance 4 (2n + 8) eps.
+  for (const auto method : {gauss_jacobi_method::automatic, gauss_jacobi_method::recurrence}) {
+    for (std::size_t n : {1, 2, 3, 7, 20, 101, 150}) {
+      for (double p : {-0.999, -0.5, 0.0, 0.25, 3.0}) {
+        for (double q : {-0.9, 0.5, 5.0}) {
+          const auto rule = gauss_jacobi<double>(n, p, q, gauss_jacobi_options{method});
+          const double tolerance = 4.0 * static_cast<double>(2 * n + 8) * eps;
+          for (int j = 0; j <= static_cast<int>(2 * n - 1); ++j) {
+            long double plus = 0, minus = 0;
+            for (std::size_t i = 0; i < n; ++i) {
+              plus += rule.weight[i] * std::pow(static_cast<long double>(rule.x_minus_lo[i]), j);
+              minus += rule.weight[i] * std::pow(static_cast<long double>(rule.hi_minus_x[i]), j);
+            }
+            const double plus_error = static_cast<double>(std::fabs(plus / shifted_moment(j, p, q) - 1));
+            const double minus_error = static_cast<double>(std::fabs(minus / shifted_moment(j, q, p) - 1));
+            if (plus_error > tolerance || minus_error > tolerance) {
+              CAPTURE(n);
+              CAPTURE(p);
+              CAPTURE(q);
+              CAPTURE(j);
+              CHECK(plus_error <= tolerance);
+              CHECK(minus_error <= tolerance);
+            }
+          }
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("gauss_jacobi: regression n = 1024, p = 0.25, q = 0 (weight nearest +1 = 3.607554904604311e-7)") {
+  const auto rule = gauss_jacobi<double>(1024, 0.25, 0.0);
+  // The published value has 16 digits: allow 4 eps of rounding in it plus the contract.
+  CHECK(std::fabs(rule.weight.back() / 3.607554904604311e-7 - 1) <= contract_tolerance + 4 * eps);
+}
+
+TEST_CASE("gauss_jacobi: regression n = 65536, p = -0.9, q = 0 (weight nearest +1 = 1.223027243345722)") {
+  const auto rule = gauss_jacobi<double>(65536, -0.9, 0.0);
+  CHECK(std::fabs(rule.weight.back() / 1.223027243345722 - 1) <= contract_tolerance + 4 * eps);
+  // Its node: 1 - x = 4.9e-11, where x itself has only 5 significant digits of 1 - x.
+  CHECK(rule.hi_minus_x.back() == doctest::Approx(4.8857672333405e-11).epsilon(1e-12));
+}
+
+TEST_CASE("gauss_jacobi: n = 1 closed form x = (q - p)/(p + q + 2), w = 2^(p+q+1) B(p+1, q+1)") {
+  // Two roundings in each closed-form expression, a few in the rule: 8 eps.
+  constexpr double closed_form_tolerance = 8 * eps;
+  for (double p : {-0.999, -0.5, 0.0, 0.25, 30.0}) {
+    for (double q : {-0.9, 0.0, 0.5, 5.0}) {
+      const auto rule = gauss_jacobi<double>(1, p, q);
+      REQUIRE(rule.size() == 1);
+      const double one_minus_x = 2 * (p + 1) / (p + q + 2), one_plus_x = 2 * (q + 1) / (p + q + 2);
+      const double weight = std::pow(2.0, p + q + 1) * boost::math::beta(p + 1, q + 1);
+      CHECK(std::fabs(rule.hi_minus_x[0] / one_minus_x - 1) <= closed_form_tolerance);
+      CHECK(std::fabs(rule.x_minus_lo[0] / one_plus_x - 1) <= closed_form_tolerance);
+      CHECK(std::fabs(rule.weight[0] / weight - 1) <= closed_form_tolerance);
+    }
+  }
+}
+
+TEST_CASE("gauss_jacobi: n = 2 closed form from the monic recurrence, weights from the first two moments") {
+  // Zeros of (x - a0)(x - a1) - b1, a0 = (q-p)/(p+q+2), a1 = (q^2-p^2)/((p+q+2)(p+q+4)),
+  // b1 = 4(p+1)(q+1)/((p+q+2)^2 (p+q+3)); in long double, then w from mu0, mu1.
+  constexpr double closed_form_tolerance = 16 * eps;  // well-separated nodes, a dozen roundings
+  for (double p : {-0.9, 0.0, 0.5, 5.0}) {
+    for (double q : {-0.5, 0.25, 5.0, 30.0}) {
+      const long double P = p, Q = q;
+      const long double a0 = (Q - P) / (P + Q + 2), a1 = (Q * Q - P * P) / ((P + Q + 2) * (P + Q + 4));
+      const long double b1 = 4 * (P + 1) * (Q + 1) / ((P + Q + 2) * (P + Q + 2) * (P + Q + 3));
+      const long double centre = (a0 + a1) / 2, radius = std::sqrt((a0 - a1) * (a0 - a1) / 4 + b1);
+      const long double x0 = centre - radius, x1 = centre + radius;
+      const long double mu0 = std::pow(2.0L, P + Q + 1) * boost::math::beta(P + 1, Q + 1);
+      const long double mu1 = mu0 * a0;  // int x w = mu0 a0 (the first recurrence coefficient)
+      const long double w0 = (mu1 - mu0 * x1) / (x0 - x1), w1 = mu0 - w0;
+      const auto rule = gauss_jacobi<double>(2, p, q);
+      CHECK(std::fabs(rule.x_minus_lo[0] / static_cast<double>(1 + x0) - 1) <= closed_form_tolerance);
+      CHECK(std::fabs(rule.hi_minus_x[1] / static_cast<double>(1 - x1) - 1) <= closed_form_tolerance);
+      CHECK(std::fabs(rule.weight[0] / static_cast<double>(w0) - 1) <= closed_form_tolerance);
+      CHECK(std::fabs(rule.weight[1] / static_cast<double>(w1) - 1) <= closed_form_tolerance);
+    }
+  }
+}
+
+TEST_CASE("gauss_jacobi: symmetry for p = q (x_i = -x_{n-1-i}, equal weights)") {
+  // Both halves of a symmetric rule agree to the contract (the asymptotic path mirrors exactly).
+  for (const auto method : {gauss_jacobi_method::recurrence, gauss_jacobi_method::asymptotic}) {
+    for (std::size_t n : {2, 5, 64, 101, 1000}) {
+      for (double p : {-0.9, 0.0, 2.5}) {
+        const auto rule = gauss_jacobi<double>(n, p, p, gauss_jacobi_options{method});
+        for (std::size_t i = 0; i < n; ++i) {
+          const std::size_t j = n - 1 - i;
+          CHECK(std::fabs(rule.hi_minus_x[i] / rule.x_minus_lo[j] - 1) <= contract_tolerance);
+          CHECK(std::fabs(rule.weight[i] / rule.weight[j] - 1) <= contract_tolerance);
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("gauss_jacobi: Chebyshev closed forms are reproduced by both generic paths") {
+  for (double p : {-0.5, 0.5}) {
+    for (std::size_t n : {1, 7, 1000}) {
+      const auto closed = gauss_jacobi<double>(n, p, p);
+      // The closed form itself: first kind w = pi/n; second kind w = pi/(n+1) sin^2.
+      const double pi = 3.141592653589793;
+      if (p < 0) {
+        CHECK(closed.weight[0] == doctest::Approx(pi / static_cast<double>(n)).epsilon(4 * eps));
+      }
+      for (const auto method : {gauss_jacobi_method::recurrence, gauss_jacobi_method::asymptotic}) {
+        const auto generic = gauss_jacobi<double>(n, p, p, gauss_jacobi_options{method});
+        REQUIRE(generic.size() == n);
+        for (std::size_t i = 0; i < n; ++i) {
+          CHECK(std::fabs(generic.weight[i] / closed.weight[i] - 1) <= contract_tolerance);
+          CHECK(std::fabs(generic.hi_minus_x[i] / closed.hi_minus_x[i] - 1) <= contract_tolerance);
+          CHECK(std::fabs(generic.x_minus_lo[i] / closed.x_minus_lo[i] - 1) <= contract_tolerance);
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("gauss_jacobi: the two paths agree across the n = 100 / 101 switch and beyond") {
+  for (std::size_t n : {100, 101, 400}) {
+    for (double p : {-0.999, 0.25, 5.0}) {
+      for (double q : {-0.5, 1.0, 30.0}) {
+        const auto a = gauss_jacobi<double>(n, p, q, gauss_jacobi_options{gauss_jacobi_method::recurrence});
+        const auto b = gauss_jacobi<double>(n, p, q, gauss_jacobi_options{gauss_jacobi_method::asymptotic});
+        for (std::size_t i = 0; i < n; ++i) {
+          const double near_a = std::min(a.hi_minus_x[i], a.x_minus_lo[i]);
+          const double near_b = std::min(b.hi_minus_x[i], b.x_minus_lo[i]);
+          // two independent computations, each within the contract (large_exponent for q = 30)
+          CHECK(std::fabs(near_a / near_b - 1) <= 2 * large_exponent_tolerance);
+          CHECK(std::fabs(a.weight[i] / b.weight[i] - 1) <= 2 * large_exponent_tolerance);
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("gauss_jacobi: mapped to [lo, hi], including tiny and huge intervals") {
+  struct interval {
+    double lo, hi;
+  };
+  for (const interval I : {interval{0.0, 1.0}, interval{-3.0, 7.5}, interval{1.0, 1.0 + 1e-10},
+                           interval{-1e-300, 1e-300}, interval{0.0, 1e100}, interval{-1e300, 1e300}}) {
+    for (double p : {-0.9, 0.5}) {
+      const double q = -0.5;  // p + q + 1 in (-0.4, 1): the weight scale stays in range
+      const std::size_t n = 40;
+      const auto unit = gauss_jacobi<double>(n, p, q);
+      const auto rule = gauss_jacobi<double>(n, p, q, I.lo, I.hi);
+      const double half = I.hi / 2 - I.lo / 2;
+      // One extra rounding in each scaled quantity; pow adds a few ulps: 8 eps.
+      constexpr double mapping_tolerance = 8 * eps;
+      for (std::size_t i = 0; i < n; ++i) {
+        CHECK(std::fabs(rule.hi_minus_x[i] / (half * unit.hi_minus_x[i]) - 1) <= mapping_tolerance);
+        CHECK(std::fabs(rule.x_minus_lo[i] / (half * unit.x_minus_lo[i]) - 1) <= mapping_tolerance);
+        CHECK(std::fabs(rule.weight[i] / (std::pow(half, p + q + 1) * unit.weight[i]) - 1) <= mapping_tolerance);
+        CHECK(rule.x[i] >= I.lo);
+        CHECK(rule.x[i] <= I.hi);
+        if (i > 0) CHECK(rule.x[i] >= rule.x[i - 1]);
+      }
+      // int_lo^hi (hi - t)^p (t - lo)^q dt = (hi - lo)^(p+q+1) B(p+1, q+1), from half^(p+q+1).
+      double total = 0;
+      for (double w : rule.weight) total += w;
+      const double exact = std::pow(half, p + q + 1) * static_cast<double>(shifted_moment(0, p, q));
+      CHECK(std::fabs(total / exact - 1) <= 64 * eps);  // n positive terms: 40 roundings + contract
+    }
+  }
+}
+
+TEST_CASE("gauss_jacobi: cpp_bin_float_50 run of the recurrence path against the 60-digit table") {
+  using mp = boost::multiprecision::cpp_bin_float_50;
+  // Newton stops at a phase step below sqrt(eps)/16, leaving O(eps/256) in phase; the
+  // recurrence's rounding is O(sqrt(n)) eps relative to the local amplitude: 2^10 eps_50.
+  const mp mp_tolerance = 1024 * std::numeric_limits<mp>::epsilon();
+  mp worst = 0;
+  std::string where;
+  for (const auto& row : reference_table()) {
+    const bool selected = row.n <= 3 || (row.n == 100 && row.p == 0.25 && (row.q == -0.5 || row.q == 30.0));
+    if (!selected) continue;
+    static std::map<std::tuple<std::size_t, double, double>, quadrature_rule<mp>> cache;
+    const auto key = std::make_tuple(row.n, row.p, row.q);
+    if (!cache.count(key)) cache[key] = gauss_jacobi<mp>(row.n, mp(row.p), mp(row.q));
+    const auto& rule = cache[key];
+    const mp one_minus_x(row.one_minus_x), one_plus_x(row.one_plus_x), weight(row.weight);
+    const std::size_t i = row.index;
+    using boost::multiprecision::abs;
+    for (const auto& [what, error] : {std::pair<const char*, mp>{"1-x", abs(rule.hi_minus_x[i] / one_minus_x - 1)},
+                                      std::pair<const char*, mp>{"1+x", abs(rule.x_minus_lo[i] / one_plus_x - 1)},
+                                      std::pair<const char*, mp>{"weight", abs(rule.weight[i] / weight - 1)}}) {
+      if (error > worst) {
+        worst = error;
+        where = std::string(what) + " n=" + std::to_string(row.n) + " p=" + std::to_string(row.p) +
+                " q=" + std::to_string(row.q) + " index=" + std::to_string(i);
+      }
+    }
+  }
+  MESSAGE("cpp_bin_float_50: worst relative error " << static_cast<double>(worst / std::numeric_limits<mp>::epsilon())
+                                                    << " eps_50 (" << where << ")");
+  CHECK(worst <= mp_tolerance);
+}
+
+TEST_CASE("gauss_jacobi: bad input throws std::domain_error naming the parameter") {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto message_of = [](auto&& call) -> std::string {
+    try {
+      call();
+    } catch (const std::domain_error& error) {
+      return error.what();
+    }
+    return "no exception";
+  };
+  CHECK(message_of([] { gauss_jacobi<double>(0, 0.0, 0.0); }).find("n = 0") != std::string::npos);
+  CHECK(message_of([] { gauss_jacobi<double>(5, -1.0, 0.0); }).find("p = -1") != std::string::npos);
+  CHECK(message_of([] { gauss_jacobi<double>(5, 0.0, -1.5); }).find("q = -1.5") != std::string::npos);
+  CHECK(message_of([&] { gauss_jacobi<double>(5, nan, 0.0); }).find("p = nan") != std::string::npos);
+  CHECK(message_of([&] { gauss_jacobi<double>(5, 0.0, nan); }).find("q = nan") != std::string::npos);
+  CHECK(message_of([] { gauss_jacobi<double>(5, 0.0, 0.0, 1.0, 1.0); }).find("hi = 1") != std::string::npos);
+  CHECK(message_of([] { gauss_jacobi<double>(5, 0.0, 0.0, 2.0, 1.0); }).find("hi = 1") != std::string::npos);
+  CHECK(message_of([&] { gauss_jacobi<double>(5, 0.0, 0.0, nan, 1.0); }).find("lo = nan") != std::string::npos);
+  CHECK(message_of([] { gauss_jacobi<double>(5, 0.0, 0.0, 0.0, HUGE_VAL); }).find("hi = inf") != std::string::npos);
+  CHECK_THROWS_AS(gauss_jacobi<boost::multiprecision::cpp_bin_float_50>(
+                      3, 0, 0, gauss_jacobi_options{gauss_jacobi_method::asymptotic}),
+                  std::invalid_argument);
+}
