@@ -49,6 +49,16 @@ void rhabel_legendre(benchmark::State& state) {
   }
 }
 
+// The exponent pairs of the performance issue: (p, q) = (-0.5, 0) (range(1) = 0) and (0.25, 0) (= 1).
+void rhabel_pairs(benchmark::State& state) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const double p = state.range(1) == 0 ? -0.5 : 0.25;
+  for (auto _ : state) {
+    auto rule = gauss_jacobi<double>(n, p, 0.0);
+    benchmark::DoNotOptimize(rule.weight.data());
+  }
+}
+
 void gsl_fixed_jacobi(benchmark::State& state) {
   const auto n = static_cast<std::size_t>(state.range(0));
   for (auto _ : state) {
@@ -61,6 +71,9 @@ void gsl_fixed_jacobi(benchmark::State& state) {
 
 BENCHMARK(rhabel_rule)->Arg(100)->Arg(101)->Arg(1000)->Arg(4000)->Arg(10000)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond);
 BENCHMARK(rhabel_legendre)->Arg(10000)->Arg(1000000)->Unit(benchmark::kMillisecond);
+BENCHMARK(rhabel_pairs)
+    ->ArgsProduct({{8, 100, 1000, 10000, 1000000}, {0, 1}})
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(gsl_fixed_jacobi)->Arg(1000)->Arg(4000)->Unit(benchmark::kMillisecond);
 
 // Max relative weight error of rhabel's default rule and of GSL's rule at n, against the

@@ -7,7 +7,8 @@
 //  * closed forms for n = 1, 2 and the published regression weights;
 //  * agreement of the two independent paths (recurrence, asymptotic) and of the Chebyshev
 //    closed forms with both; symmetry for p = q; the mapped interval; bad input.
-// The table covers n = 1, 2, 3, 100 | 101 (recurrence | asymptotic switch), 10^4 (node indices
+// The table covers n = 1, 2, 3, 100, 101 (the recurrence | asymptotic switch was there; it is
+// now at 40 | 41, where the last test pins the two paths together), 10^4 (node indices
 // on both sides of the boundary/interior switch), 10^6, and the regression cases. Runtime
 // ~8 s in Release, most of it the n = 10^6 rules (2 s for p = 30).
 #include <doctest/doctest.h>
@@ -139,7 +140,7 @@ void check_against_table(std::size_t n_min, std::size_t n_max, gauss_jacobi_meth
 
 }  // namespace
 
-TEST_CASE("gauss_jacobi: reference table, n <= 101 (recurrence path and first asymptotic n)") {
+TEST_CASE("gauss_jacobi: reference table, n <= 101 (recurrence path to n = 40, asymptotic above)") {
   check_against_table(1, 101, gauss_jacobi_method::automatic);
 }
 
@@ -287,7 +288,7 @@ TEST_CASE("gauss_jacobi: Chebyshev closed forms are reproduced by both generic p
   }
 }
 
-TEST_CASE("gauss_jacobi: the two paths agree across the n = 100 / 101 switch and beyond") {
+TEST_CASE("gauss_jacobi: the two forced paths agree at n = 100, 101 and 400") {
   for (std::size_t n : {100, 101, 400}) {
     for (double p : {-0.999, 0.25, 5.0}) {
       for (double q : {-0.5, 1.0, 30.0}) {
@@ -390,4 +391,30 @@ TEST_CASE("gauss_jacobi: bad input throws std::domain_error naming the parameter
   CHECK_THROWS_AS(gauss_jacobi<boost::multiprecision::cpp_bin_float_50>(
                       3, 0, 0, gauss_jacobi_options{gauss_jacobi_method::asymptotic}),
                   std::invalid_argument);
+}
+
+TEST_CASE("gauss_jacobi: the two paths agree across the n = 40 / 41 switch (recurrence_max_n = 40)") {
+  // The automatic switch was lowered from 100 to 40 (the asymptotic path is cheaper above it);
+  // the table pins n = 100 and 101 on the asymptotic side, this pins the new switch itself.
+  static_assert(rhabel::quadrature::gauss_jacobi_recurrence_max_n == 40);
+  for (std::size_t n : {40, 41, 60}) {
+    for (double p : {-0.999, -0.9, 0.0, 0.25, 5.0}) {
+      for (double q : {-0.999, -0.5, 1.0, 5.0}) {
+        const auto a = gauss_jacobi<double>(n, p, q, gauss_jacobi_options{gauss_jacobi_method::recurrence});
+        const auto b = gauss_jacobi<double>(n, p, q, gauss_jacobi_options{gauss_jacobi_method::asymptotic});
+        const auto automatic = gauss_jacobi<double>(n, p, q);
+        for (std::size_t i = 0; i < n; ++i) {
+          const double near_a = std::min(a.hi_minus_x[i], a.x_minus_lo[i]);
+          const double near_b = std::min(b.hi_minus_x[i], b.x_minus_lo[i]);
+          // the recurrence path is within 0.5 eps of the table, so this is the asymptotic
+          // path's error at small n, held to the contract
+          CHECK(std::fabs(near_a / near_b - 1) <= contract_tolerance);
+          CHECK(std::fabs(a.weight[i] / b.weight[i] - 1) <= contract_tolerance);
+          const auto& chosen = n <= 40 ? a : b;
+          CHECK(automatic.weight[i] == chosen.weight[i]);
+          CHECK(automatic.hi_minus_x[i] == chosen.hi_minus_x[i]);
+        }
+      }
+    }
+  }
 }

@@ -23,10 +23,10 @@
 // -0.9), converted exactly, so the table describes the rule the double code is asked for.
 //
 // Build and run (single thread; the n = 10^6 cases take a few minutes each):
-//   g++ -O2 -std=c++20 -I quadrature/include -I /usr/include/eigen3 \
-//       tools/reference/gauss_jacobi_reference.cpp -o /tmp/gauss_jacobi_reference
-//   /tmp/gauss_jacobi_reference small > /tmp/small.csv    # n <= 65536
-//   /tmp/gauss_jacobi_reference large > /tmp/large.csv    # n = 10^6
+//   cmake --preset release -DRHABEL_BUILD_TOOLS=ON && cmake --build build --target gauss_jacobi_reference
+//   (builds build/bin/gauss_jacobi_reference; the tools are off in the default build)
+//   build/bin/gauss_jacobi_reference small > /tmp/small.csv    # n <= 65536
+//   build/bin/gauss_jacobi_reference large > /tmp/large.csv    # n = 10^6
 //   cat /tmp/small.csv /tmp/large.csv > tests/data/gauss_jacobi_reference.csv
 // (the CSV header line is printed by the "small" group only).
 #include <rhabel/quadrature/gauss_jacobi.hpp>

@@ -18,13 +18,13 @@
 // Algorithms and regimes (gauss_jacobi_method::automatic chooses; the others force a path):
 //  * closed forms, any n: p = q = -1/2 (t_k = (2k-1) pi/(2n), w_k = pi/n) and p = q = 1/2
 //    (t_k = k pi/(n+1), w_k = pi/(n+1) sin^2 t_k), formed in the angle from the nearer end.
-//  * recurrence (n <= gauss_jacobi_recurrence_max_n = 100, and every Real other than float
+//  * recurrence (n <= gauss_jacobi_recurrence_max_n = 40, and every Real other than float
 //    and double): Golub-Welsch eigenvalues (Eigen, double) as starting values, then Newton's
 //    method in u = distance to the nearer end on the three-term recurrence in difference form
 //    (detail/gauss_jacobi_recurrence.hpp; it evaluates P_n at the exact point 1 - u), run in
 //    long double when Real is double or float and in Real otherwise; weights from
 //    K_n / ((1 - x^2) P_n'^2). O(n^2) per sweep, a handful of sweeps.
-//  * asymptotic (n > 100, Real = double or float): after Hale & Townsend (2013). The nodes with
+//  * asymptotic (n > 40, Real = double or float): after Hale & Townsend (2013). The nodes with
 //    t <= pi/2 are found for (p, q), the others as the same problem for (q, p) (for p = q the
 //    half is mirrored). Interior nodes: Newton in t on Hahn's interior expansion of P_n
 //    (detail/gauss_jacobi_asymptotic.hpp) from the Gatteschi-Pittaluga guesses, finished by a
@@ -34,12 +34,18 @@
 //    eps/16 and a sum of term bounds <= 2 (no cancellation). Measured at n = 10^6 this puts the
 //    first interior node at rho t ~ 20 for |p| <= 2, 22 for p = 5 and ~650 for p = 30
 //    (rho = n + (p+q+1)/2), i.e. 6, 4 and ~190 boundary nodes at that end (none for p = 1/2).
-//    Boundary nodes: Newton in u on the long double difference-form recurrence from Bessel-zero
-//    guesses (Olver; DLMF 18.16.8; boost::math::cyl_bessel_j_zero), all boundary nodes of one
-//    end sharing each O(n) sweep; for n >= ~10^4 the guesses are already within 1e-15 and one
-//    sweep suffices. Hale & Townsend use the Baratella-Gatteschi Bessel expansion there; the
-//    recurrence is used instead because it has no truncation error to control at any n, at
-//    the price of O(n) per boundary node (dominant at n = 10^6: ~35% of the time for p <= 5).
+//    Boundary nodes: Newton in u on the difference-form recurrence from Bessel-zero guesses
+//    (Olver; DLMF 18.16.8; boost::math::cyl_bessel_j_zero), all boundary nodes of one end
+//    sharing each O(n) sweep; for n >= ~10^4 the guesses are already within 1e-15 and one
+//    sweep suffices. The sweep runs in double with all four running sums compensated, two
+//    nodes per SIMD vector, and coefficients formed from p + 1 and q + 1 (no cancellation at
+//    p = -0.999); the Newton step is also required to be small relative to u (first node at
+//    p = -0.999). Against the former long double sweep it moves these nodes by <= 1 ulp and
+//    their weights by <= 4.5 eps (measured, n = 101 ... 10^6, p, q down to -0.999), at a
+//    ninth of the cost. Hale & Townsend use the Baratella-Gatteschi Bessel expansion there;
+//    the recurrence is used instead because it has no truncation error to control at any n,
+//    at the price of O(n) per boundary node (~17% of the time at n = 10^6 for p <= 5; the
+//    rest is the interior expansion, one evaluation per node, and its sin/cos).
 //    Safety net: if the Newton iterations fail or the distances of the assembled nodes are not
 //    strictly monotone (never observed), the routine falls back to the recurrence path for
 //    n <= gauss_jacobi_fallback_max_n = 20000 and throws std::runtime_error above.
@@ -50,12 +56,14 @@
 //    tests/data/gauss_jacobi_reference.csv (tools/reference/gauss_jacobi_reference.cpp:
 //    n = 1, 2, 3, 100, 101, 10^4 for all 64 pairs p, q in {-0.999, -0.9, -0.5, 0, 0.25, 0.5, 5, 30},
 //    n = 10^6 for five pairs, 1024 and 65536 for the regression values; node indices on both
-//    sides of the boundary/interior switch): worst 2.6 eps for the nodes and 12 eps for the
+//    sides of the boundary/interior switch): worst 2.9 eps for the nodes and 12 eps for the
 //    weights (n = 10^6: 2.3 and 5.5 eps). The weights of the asymptotic path carry
 //    s^(2p+1) c^(2q+1), s = sin(t/2), c = cos(t/2), so a one-ulp rounding of the node is
-//    amplified by up to 2p + 1; the recurrence path (n <= 100) is within 0.5 eps.
+//    amplified by up to 2p + 1; the recurrence path (n <= 40, or forced) is within 0.5 eps.
+//    At the n = 40 / 41 switch and for n = 10 ... 100 the asymptotic path is within 3.5 eps
+//    (nodes) and 18 eps (weights) of the recurrence path (p, q in [-0.999, 5]).
 //  * p or q in (5, 30]: nodes within 4 eps (measured 3.2), weights within 128 eps (measured
-//    43 eps at n = 10^4, 28 eps at n = 10^6).
+//    62 eps at n = 100, 48 eps at n = 10^4 and at n = 10^6).
 //  * Real = cpp_bin_float_50 (recurrence path): measured 46 eps_50 (n <= 100, q = 30).
 //  Never judge a rule by sum(w) alone: it hides 1e-9 errors in individual weights.
 //
@@ -66,12 +74,17 @@
 // difference of lgamma values of size n log n would lose 7 digits at n = 10^6.
 //
 // Cost (bench/gauss_jacobi.cpp, Release, CPU time on a shared, loaded 2-core machine where wall
-// time was twice that; p = 0.25, q = -0.5): n = 4000 0.96 ms against 261 ms for GSL's
-// gsl_integration_fixed_jacobi (270x; GSL's weights are off by up to 4e-10 there), n = 10^4
-// 2.5 ms, n = 10^6 234 ms (Legendre 1.8 ms and 196 ms). The targets (1 ms, 100 ms) are
-// missed by about 2.5x: ~40% of the n = 10^6 time is the long double boundary recurrence
-// (6 nodes per end, one O(n) sweep each), the rest the interior expansion. Large exponents cost
-// more: p = 30 at n = 10^6 takes 2.1 s (~190 boundary nodes in the recurrence).
+// time was twice that; measured back to back with the previous version, whose figures follow
+// in brackets): p = 0.25, q = -0.5: n = 4000 0.53-0.61 ms [1.0 ms; GSL's
+// gsl_integration_fixed_jacobi 261 ms, its weights off by up to 4e-10 there], n = 10^4 1.4 ms
+// [2.6 ms], n = 10^6 130-140 ms [266-291 ms]; Legendre n = 10^4 0.7 ms [1.9 ms], n = 10^6
+// 90 ms [205-223 ms]. (p, q) = (-0.5, 0): n = 100 0.037 ms [0.43-0.52 ms], 1000 0.15 ms
+// [0.27 ms], 10^4 1.2 ms [2.3 ms], 10^6 135 ms [247 ms]; (0.25, 0): 0.080 ms [0.42 ms],
+// 0.22 ms [0.47 ms], 1.5 ms [3.7 ms], 150 ms [381 ms]; n = 8: 7-8 us (unchanged, recurrence
+// path). The targets (1 ms at 10^4, 100 ms at 10^6) are still missed by up to 1.5x
+// for p != -1/2, 0: at n = 10^6 ~17% of the time is the boundary sweep and most of the rest
+// the interior expansion (one evaluation, a tan and two sincos per node). Large exponents
+// cost more: p = 30 at n = 10^6 has ~190 boundary nodes in the sweep.
 //
 // References.
 //  N. Hale, A. Townsend, Fast and accurate computation of Gauss-Legendre and Gauss-Jacobi
@@ -123,7 +136,7 @@ struct quadrature_rule {
 
 /// Which algorithm gauss_jacobi uses (see the header comment for the regimes).
 enum class gauss_jacobi_method {
-  automatic,   ///< closed forms where exact, recurrence for n <= 100 or Real not float/double, else asymptotic
+  automatic,   ///< closed forms where exact, recurrence for n <= 40 or Real not float/double, else asymptotic
   recurrence,  ///< Golub-Welsch start + Newton on the recurrence, O(n^2); any Real
   asymptotic,  ///< interior expansion + boundary recurrence, O(n); Real = float or double only
 };
@@ -132,8 +145,10 @@ struct gauss_jacobi_options {
   gauss_jacobi_method method = gauss_jacobi_method::automatic;
 };
 
-/// n up to this uses the recurrence path under gauss_jacobi_method::automatic.
-inline constexpr std::size_t gauss_jacobi_recurrence_max_n = 100;
+/// n up to this uses the recurrence path under gauss_jacobi_method::automatic (above it the
+/// asymptotic path is cheaper: measured 0.12 against 0.16 ms at n = 40, 0.15 against 0.86 ms
+/// at n = 100, loaded machine; it was 100 until the boundary sweep moved to double).
+inline constexpr std::size_t gauss_jacobi_recurrence_max_n = 40;
 /// Largest n for which a failure of the asymptotic path falls back to the O(n^2) recurrence
 /// path (above it, std::runtime_error; never observed).
 inline constexpr std::size_t gauss_jacobi_fallback_max_n = 20000;
@@ -285,6 +300,29 @@ quadrature_rule<Real> gauss_jacobi_by_recurrence(std::size_t n, const Real& p, c
   return gauss_jacobi_assemble(right_half, left_half);
 }
 
+// x^e for x in (0, 1] and a fixed exponent e: the frequent exponents 0, 1/2, 1, 3/2, 2 by
+// sqrt and products (within 1.5 ulp, like pow's 1 ulp), others by pow.
+class weight_power {
+ public:
+  explicit weight_power(double e) : e_(e) {
+    kind_ = e == 0 ? 0 : e == 0.5 ? 1 : e == 1 ? 2 : e == 1.5 ? 3 : e == 2 ? 4 : 5;
+  }
+  double operator()(double x) const {
+    switch (kind_) {
+      case 0: return 1;
+      case 1: return std::sqrt(x);
+      case 2: return x;
+      case 3: return x * std::sqrt(x);
+      case 4: return x * x;
+      default: return std::pow(x, e_);
+    }
+  }
+
+ private:
+  double e_;
+  int kind_;
+};
+
 // One half of the asymptotic path (double): nodes 1..count nearest the end with exponent a.
 inline gauss_jacobi_half<double> gauss_jacobi_asymptotic_half(std::size_t n, double a, double b, std::size_t count,
                                                               double weight_factor) {
@@ -299,11 +337,11 @@ inline gauss_jacobi_half<double> gauss_jacobi_asymptotic_half(std::size_t n, dou
   double value = 0, slope = 0, s = 0, c = 0;
   while (boundary < count && !hahn.evaluate(interior_guess(boundary + 1, a, b, rho), value, slope, s, c)) ++boundary;
   std::vector<std::size_t> by_recurrence;  // 0-based indices k - 1
-  std::vector<long double> recurrence_start;
+  std::vector<double> recurrence_start;
   for (std::size_t k = 1; k <= boundary; ++k) {
     by_recurrence.push_back(k - 1);
     const double t = boundary_guess(k, a, b, rho);
-    const long double sin_half = std::sin(static_cast<long double>(t) / 2);
+    const double sin_half = std::sin(t / 2);
     recurrence_start.push_back(2 * sin_half * sin_half);
   }
   // Interior: Newton in t on y = P_n(cos t) = prefactor(t) G(t). Once the phase step
@@ -312,6 +350,7 @@ inline gauss_jacobi_half<double> gauss_jacobi_asymptotic_half(std::size_t n, dou
   //   y'' = -C(t) y' - lambda y,  C = (a - b + (a + b + 1) cos t) / sin t,  lambda = n (n + a + b + 1)
   // (DLMF 18.8.1 in t); the neglected terms are O(sigma^3) relative, below 1e-17.
   const double lambda = static_cast<double>(n) * (static_cast<double>(n) + a + b + 1);
+  const weight_power power_s(2 * a + 1), power_c(2 * b + 1);
   for (std::size_t k = boundary + 1; k <= count; ++k) {
     double t = interior_guess(k, a, b, rho);
     bool ok = false;
@@ -334,7 +373,7 @@ inline gauss_jacobi_half<double> gauss_jacobi_asymptotic_half(std::size_t n, dou
       const double taylor = 1 + ratio2 * h + ratio3 * h * h / 2;
       const double weight_slope = y_slope * taylor;
       half.weight[k - 1] =
-          weight_factor * std::pow(s, 2 * a + 1) * std::pow(c, 2 * b + 1) / (weight_slope * weight_slope);
+          weight_factor * power_s(s) * power_c(c) / (weight_slope * weight_slope);
       // sin, cos of (t + h)/2 by the addition theorem; |h/2| < 1e-8, so two terms of each series are exact.
       const double half_h = h / 2, sin_dh = half_h - half_h * half_h * half_h / 6, cos_dh = 1 - half_h * half_h / 2;
       const double s1 = s * cos_dh + c * sin_dh, c1 = c * cos_dh - s * sin_dh;
@@ -345,20 +384,21 @@ inline gauss_jacobi_half<double> gauss_jacobi_asymptotic_half(std::size_t n, dou
     }
     if (!ok) {
       by_recurrence.push_back(k - 1);
-      const long double sin_half = std::sin(static_cast<long double>(interior_guess(k, a, b, rho)) / 2);
+      const double sin_half = std::sin(interior_guess(k, a, b, rho) / 2);
       recurrence_start.push_back(2 * sin_half * sin_half);
     }
   }
   if (!by_recurrence.empty()) {
     const long double la = a, lb = b;
-    const auto refined = recurrence_newton<long double>(
-        n, la, lb, recurrence_start, gauss_jacobi_weight_constant_over_end_value<long double>(n, la, lb));
+    const auto refined = recurrence_newton<double>(
+        n, a, b, recurrence_start,
+        static_cast<double>(gauss_jacobi_weight_constant_over_end_value<long double>(n, la, lb)));
     if (!refined.converged) return {};  // an empty half tells the caller to fall back
     for (std::size_t j = 0; j < by_recurrence.size(); ++j) {
       const std::size_t i = by_recurrence[j];
-      half.near[i] = static_cast<double>(refined.u[j]);
-      half.far[i] = static_cast<double>(2 - refined.u[j]);
-      half.weight[i] = static_cast<double>(refined.weight[j]);
+      half.near[i] = refined.u[j];
+      half.far[i] = 2 - refined.u[j];
+      half.weight[i] = refined.weight[j];
     }
   }
   return half;
@@ -423,7 +463,7 @@ quadrature_rule<Real> convert_rule(const quadrature_rule<double>& rule) {
 /// increasing order with 1 - x and 1 + x to full relative accuracy, and the weights.
 /// Accuracy (Real = double, relative, measured): <= 1e-14 in weights and in min(1 - x, 1 + x)
 /// for n <= 10^6, p, q in (-1, 5]; weights <= 128 eps for p or q up to 30 (header comment).
-/// Cost O(n) for n > 100 (double, float), O(n^2) otherwise.
+/// Cost O(n) for n > 40 (double, float), O(n^2) otherwise.
 /// Throws std::domain_error naming n, p or q when out of range; std::invalid_argument if the
 /// asymptotic method is forced for a Real other than float/double; std::runtime_error if
 /// Newton's method fails (never observed).
