@@ -1,8 +1,8 @@
-// The singular apex part of the wedge density (see detail/interval_density.hpp, apex_part).
+// The singular apex part of the wedge density (see detail/contact_density.hpp, apex_part).
 // Integrals use composite Gauss-Legendre on panels graded geometrically towards every point
 // where the integrand is singular or non-smooth (hp quadrature: the error falls geometrically
 // with the number of layers for integrable power and logarithmic singularities).
-#include "rhabel/punch/detail/interval_density.hpp"
+#include "rhabel/punch/detail/contact_density.hpp"
 
 #include <boost/math/constants/constants.hpp>
 

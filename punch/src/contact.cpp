@@ -2,7 +2,7 @@
 // viscoelastic half-space. Mathematics: ../include/rhabel/punch/contact.hpp and
 // ../../../shared/notes/math.md. Everything here is double precision.
 #include "rhabel/punch/contact.hpp"
-#include "rhabel/punch/detail/interval_density.hpp"
+#include "rhabel/punch/detail/contact_density.hpp"
 
 #include "rhabel/quadrature/gauss_jacobi.hpp"
 #include "rhabel/quadrature/jacobi_polynomial.hpp"
@@ -20,6 +20,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <sstream>
 #include <stdexcept>
 #include <tuple>
@@ -33,7 +34,7 @@ constexpr double boundary_width = 1e-12;  // |alpha + beta/2 - 1/2| below this i
 
 using detail::edge_exponents;
 using detail::forcing;
-using detail::interval_density;
+using detail::contact_density;
 
 // ---------------------------------------------------------------------------------------------
 // Material helpers.
@@ -55,9 +56,7 @@ double material_kappa(const material& m) {
 
 // Bounded ("smooth edge") and unbounded ("corner") edge exponents of math.md section 3.
 double gam_smooth(double alpha, double beta) { return (1 - 2 * alpha - beta) / 2; }
-double gam_corner(double alpha, double beta) { return -(1 + 2 * alpha + beta) / 2; }
 double del_smooth(double beta) { return (1 + beta) / 2; }
-double del_corner(double beta) { return (beta - 1) / 2; }
 
 [[noreturn]] void bad_field(const std::string& field, double value, const char* requirement) {
   std::ostringstream os;
@@ -107,7 +106,11 @@ mapped map_to_reference(double s, double a, double b) {
 
 // ---------------------------------------------------------------------------------------------
 // Image coefficients: F(s) = sum_m d_m P_m^(p, q)(y) on [a, b], p = gam + nu (at y = +1),
-// q = del + nu (at y = -1). Returns d_0 .. d_M.
+// q = del + nu (at y = -1). Returns d_0 .. d_M. Kept here (not abel::solve_piecewise) for forcings
+// with steps and for d_0 alone: the steps' coefficients in closed form (Rodrigues), M + 8 Gauss-Jacobi
+// nodes for the smooth part (the wedge's apex-split remainder is only C^3: solve_piecewise's
+// M/2 + 24 nodes per piece failed the split tests, 3e-6 load defect instead of < 1e-6), and the
+// Chebyshev fallback for a non-integrable image weight (nu = -1 above the boundary).
 struct image_expansion {
   std::vector<double> d;
   double tail = 0;
@@ -202,90 +205,109 @@ image_expansion image_coefficients(double a, double b, const edge_exponents& e, 
   return out;
 }
 
-// Density from the image coefficients: c_n = d_(n - nu) / ((L/2)^alpha lambda_n). For nu = +1 the
-// homogeneous coefficient c_0 is left at 0 (the caller adds the load).
-interval_density density_from_image(double a, double b, double alpha, const edge_exponents& e,
-                                    const image_expansion& img) {
-  interval_density g;
-  g.a = a;
-  g.b = b;
-  g.alpha = alpha;
-  g.e = e;
+// Edge classes of the index nu used here: -1 (bounded, bounded), 0 (bounded, unbounded), +1 (unbounded, unbounded).
+abel::edge leading_edge(int nu) { return nu == 1 ? abel::edge::unbounded : abel::edge::bounded; }
+abel::edge trailing_edge(int nu) { return nu == -1 ? abel::edge::bounded : abel::edge::unbounded; }
+
+// Density from the image coefficients of F (abel::solve_image_series: c_n = d_(n - nu) / lambda_n on
+// F~ = (L/2)^(-alpha) F). For nu = +1 the homogeneous coefficient c_0 is left at 0 (the caller adds the load).
+contact_density density_from_image(double a, double b, const abel::abel_parameters<double>& par, const edge_exponents& e,
+                                   const image_expansion& img) {
+  const abel::abel_operator<double> op(par, a, b);
+  const double scale = std::pow((b - a) / 2, -par.alpha());
+  std::vector<double> d = img.d;
+  for (double& v : d) v *= scale;
+  auto sol = abel::solve_image_series(op, leading_edge(e.nu), trailing_edge(e.nu), d);
+  contact_density g;
+  g.jacobi = std::move(sol.density);
+  g.nu = e.nu;
   g.tail = img.tail;
-  const std::size_t M = img.d.size() - 1;
-  const double scale = std::pow((b - a) / 2, alpha);
-  const double base = -std::pow(2.0, -e.nu) * pi / std::sin(pi * e.del);
-  const std::size_t n_terms = e.nu == -1 ? M : (e.nu == 0 ? M + 1 : M + 2);
-  g.c.assign(n_terms, 0.0);
-  double ratio = 1;  // (1 - alpha)_n / n!
-  for (std::size_t n = 0; n < n_terms; ++n) {
-    if (n > 0) ratio *= (static_cast<double>(n) - alpha) / static_cast<double>(n);
-    const long m = static_cast<long>(n) - e.nu;
-    if (m < 0 || m > static_cast<long>(M)) continue;
-    g.c[n] = img.d[static_cast<std::size_t>(m)] / (scale * base * ratio);
-  }
-  g.d0 = e.nu == -1 ? img.d[0] : 0.0;
   return g;
 }
 
-// A g (s) for s outside (or on the edge of) the support of g: the operator of (8). kappa_ is kappa.
-// Gauss-Jacobi with the density's own weight; the kernel is smooth when s is away from [a, b].
-double apply_outside(const interval_density& g, double s, double kappa, std::size_t nodes) {
-  const double alpha = g.alpha;
+// A g (s) for s outside (or on the edge of) the support of g: the operator of (8)
+// (abel_operator::apply: graded Gauss-Jacobi quadrature outside the interval), plus the apex part.
+double apply_outside(const contact_density& g, double s, const abel::abel_parameters<double>& par) {
+  const double alpha = par.alpha();
   if (g.line_load) {
-    const double r = g.a - s;
+    const double r = g.a() - s;
     if (r > 0) return g.line_weight * std::pow(r, alpha - 1);
-    return -kappa * g.line_weight * std::pow(-r, alpha - 1);
+    return -par.kappa() * g.line_weight * std::pow(-r, alpha - 1);
   }
-  const auto& rule = cached_rule(nodes, g.e.del, g.e.gam);
-  const double L = g.length();
-  double sum = 0;
-  for (std::size_t i = 0; i < rule.size(); ++i) {
-    const double t = rule.x_minus_lo[i] <= rule.hi_minus_x[i] ? g.a + L * rule.x_minus_lo[i] / 2
-                                                              : g.b - L * rule.hi_minus_x[i] / 2;
-    const double S = g.smooth_factor(rule.x[i]);
-    const double r = s < g.a ? (g.a - s) + L * rule.x_minus_lo[i] / 2 : (s - g.b) + L * rule.hi_minus_x[i] / 2;
-    (void)t;
-    sum += rule.weight[i] * S * std::pow(r, alpha - 1);
-  }
-  sum *= L / 2;
-  double result = s < g.a ? sum : -kappa * sum;
+  const abel::abel_operator<double> op(par, g.a(), g.b());
+  double result = op.apply(g.jacobi, s);
   if (g.has_apex) {
-    const double y = s < g.a ? -1 - 2 * (g.a - s) / L : 1 + 2 * (s - g.b) / L;
+    const double L = g.length();
+    const double y = s < g.a() ? -1 - 2 * (g.a() - s) / L : 1 + 2 * (s - g.b()) / L;
     result += g.apex.sigma * std::pow(L / 2, alpha) * g.apex.apply(y);
   }
   return result;
 }
 
-// (8) evaluated at s inside the support by an independent quadrature of the two one-sided
-// integrals (Gauss-Jacobi with the kernel singularity (t - s)^(alpha-1) as a weight). It does not use
-// the spectral relation, so it checks it. Needs alpha > 0.
-double apply_inside(const interval_density& g, double s, double kappa, std::size_t nodes) {
-  const double alpha = g.alpha, L = g.length();
-  const double wscale = std::pow(2 / L, g.e.del + g.e.gam);
-  // int_s^b: weight (b - t)^del (t - s)^(alpha-1) on [s, b]; remaining factor (t - a)^gam S(x).
-  const double h_right = (g.b - s) / 2, h_left = (s - g.a) / 2;
-  const auto& right = cached_rule(nodes, g.e.del, alpha - 1);
-  double r = 0;
-  for (std::size_t i = 0; i < right.size(); ++i) {
-    const double t = s + h_right * right.x_minus_lo[i];
-    const mapped y = map_to_reference(t, g.a, g.b);
-    r += right.weight[i] * std::pow(t - g.a, g.e.gam) * g.smooth_factor(y.x);
+// (8) evaluated at points s inside the support by an independent quadrature of the two one-sided
+// integrals (abel_operator::quadrature_evaluator, built once per density; it does not use the
+// spectral relation, so it checks it), plus the apex part.
+class inside_action {
+ public:
+  inside_action(const contact_density& g, const abel::abel_parameters<double>& par)
+      : g_(g), op_(par, g.a(), g.b()), evaluate_(op_, g.jacobi.gam, g.jacobi.del, g.jacobi.coefficients.size() + 32) {}
+  inside_action(const inside_action&) = delete;
+  inside_action& operator=(const inside_action&) = delete;
+  double operator()(double s) const {
+    const auto& jd = g_.jacobi;
+    double result = evaluate_([&](double x) { return jd.series(x); }, s);
+    if (g_.has_apex) {
+      const double L = g_.length();
+      result += g_.apex.sigma * std::pow(L / 2, op_.parameters().alpha()) *
+                g_.apex.apply(map_to_reference(s, g_.a(), g_.b()).x);
+    }
+    return result;
   }
-  r *= std::pow(h_right, g.e.del + alpha);
-  // int_a^s: weight (s - t)^(alpha-1) (t - a)^gam on [a, s]; remaining factor (b - t)^del S(x).
-  const auto& left = cached_rule(nodes, alpha - 1, g.e.gam);
-  double l = 0;
-  for (std::size_t i = 0; i < left.size(); ++i) {
-    const double t = g.a + h_left * left.x_minus_lo[i];
-    const mapped y = map_to_reference(t, g.a, g.b);
-    l += left.weight[i] * std::pow(g.b - t, g.e.del) * g.smooth_factor(y.x);
+
+ private:
+  const contact_density& g_;
+  abel::abel_operator<double> op_;
+  abel::abel_operator<double>::quadrature_evaluator evaluate_;
+};
+
+// The action A g (s) of another indentor's density at points s of an interval [lo, hi] outside its
+// contact, for the coupling of paper system 41: the nodes of abel's cross terms (abel::detail::
+// make_cross_nodes, composite Gauss-Jacobi graded toward the end facing [lo, hi]; the same as in
+// abel::solve_union) are built once and reused at every s; the kernel is abel::detail::cross_kernel.
+class cross_action {
+ public:
+  cross_action(const contact_density& g, const abel::abel_parameters<double>& par, double lo, double hi)
+      : g_(g), par_(par), right_of_(g.a() > hi) {
+    if (g.line_load) return;
+    const double gap = right_of_ ? g.a() - hi : lo - g.b();
+    nodes_ = abel::detail::make_cross_nodes(g.jacobi, std::max(gap, 1e-3 * g.length()), right_of_,
+                                            std::max<std::size_t>(g.jacobi.coefficients.size() / 2 + 16, 32));
+    series_.resize(nodes_.x.size());
+    for (std::size_t q = 0; q < nodes_.x.size(); ++q) series_[q] = nodes_.weight[q] * g.jacobi.series(nodes_.x[q]);
   }
-  l *= std::pow(h_left, g.e.gam + alpha);
-  double result = wscale * (r - kappa * l);
-  if (g.has_apex) result += g.apex.sigma * std::pow(L / 2, alpha) * g.apex.apply(map_to_reference(s, g.a, g.b).x);
-  return result;
-}
+  double operator()(double s) const {
+    if (g_.line_load || (right_of_ ? !(s < g_.a()) : !(s > g_.b()))) return apply_outside(g_, s, par_);
+    double sum = 0;
+    for (std::size_t q = 0; q < series_.size(); ++q) {
+      // t - s from the distances to the facing end (no cancellation).
+      const double t_minus_s = right_of_ ? nodes_.t_minus_lo[q] + (g_.a() - s) : -(nodes_.hi_minus_t[q] + (s - g_.b()));
+      sum += series_[q] * abel::detail::cross_kernel(par_, t_minus_s);
+    }
+    if (g_.has_apex) {
+      const double L = g_.length();
+      const double y = right_of_ ? -1 - 2 * (g_.a() - s) / L : 1 + 2 * (s - g_.b()) / L;
+      sum += g_.apex.sigma * std::pow(L / 2, par_.alpha()) * g_.apex.apply(y);
+    }
+    return sum;
+  }
+
+ private:
+  contact_density g_;
+  abel::abel_parameters<double> par_;
+  bool right_of_;
+  abel::detail::cross_nodes<double> nodes_;
+  std::vector<double> series_;
+};
 
 // ---------------------------------------------------------------------------------------------
 // One indentor inside a scene: its shape, its own F and the solved density.
@@ -297,7 +319,7 @@ struct indentor_state {
   const indentor* source = nullptr;
   double apex = 0;
   double target_load = 0;  // in units of int g (the load divided by (pi/2) E_U)
-  interval_density g;
+  contact_density g;
   std::string status = "ok";
   std::optional<double> epsilon;
   bool solved = false;
@@ -309,6 +331,15 @@ struct context {
   double one_minus_kappa_over_alpha = 0;  // (1 - kappa)/alpha, -> pi tan(beta pi/2) at alpha = 0
   double pressure_scale = 1;  // (pi/2) E_U
   solve_options options;
+  // The operator's parameters for rhabel::abel; on the boundary (kappa = 0 above) kappa is exactly 0.
+  abel::abel_parameters<double> par{0.0, 0.0};
+
+  void set_parameters() {
+    par = abel::abel_parameters<double>(alpha, beta);
+    if (kappa == 0 && par.kappa() != 0) par = abel::abel_parameters<double>::from_kappa(alpha, 0.0);
+  }
+  /// Edge exponents of the class of index nu (see leading_edge, trailing_edge).
+  edge_exponents exponents(int nu) const { return par.exponents(leading_edge(nu), trailing_edge(nu)); }
 };
 
 // Own slope f' of an indentor at absolute position s.
@@ -326,21 +357,30 @@ double own_slope(const indentor_state& st, double s) {
   return 0;
 }
 
+// C_f = int f' g / int g for a density without apex part (abel::jacobi_density::integrate, split at the corners).
+double mean_slope(const indentor_state& st, const contact_density& g) {
+  std::vector<double> corners;
+  if (st.k == kind::general)
+    for (double c : std::get<general_profile>(st.source->shape).corners) corners.push_back(st.apex + c);
+  return g.jacobi.integrate([&](double t) { return own_slope(st, t); }, corners) / g.jacobi.integral();
+}
+
 // F = f'/Gamma(1 - alpha) as smooth part + steps, minus the action of the other indentors.
 forcing own_forcing(const indentor_state& st, const context& cx, const std::vector<indentor_state>& all,
                     std::size_t self, bool couple) {
   forcing F;
   const double gf = cx.gamma_factor;
   std::function<double(double)> cross;
-  std::vector<const interval_density*> others;
+  std::vector<std::shared_ptr<const cross_action>> others;
+  // The own interval (or, before it is solved, the apex) sets the grading of the others' nodes.
+  const double own_lo = st.solved ? st.g.a() : st.apex, own_hi = st.solved ? st.g.b() : st.apex;
   for (std::size_t i = 0; i < all.size(); ++i)
-    if (couple && i != self && all[i].solved) others.push_back(&all[i].g);
-  const std::size_t nodes = 64;
-  const double kappa = cx.kappa;
+    if (couple && i != self && all[i].solved)
+      others.push_back(std::make_shared<const cross_action>(all[i].g, cx.par, own_lo, own_hi));
   if (!others.empty()) {
-    cross = [others, kappa, nodes](double s) {
+    cross = [others](double s) {
       double sum = 0;
-      for (const auto* o : others) sum += apply_outside(*o, s, kappa, nodes);
+      for (const auto& o : others) sum += (*o)(s);
       return sum;
     };
   }
@@ -384,15 +424,33 @@ forcing own_forcing(const indentor_state& st, const context& cx, const std::vect
   return F;
 }
 
-// Builds the density on [a, b] for the forcing, with adaptive degree for smooth forcings.
-interval_density build(double a, double b, const context& cx, const edge_exponents& e, const forcing& F,
+// Builds the density on [a, b] for the forcing: a smooth forcing (adaptive) by abel::solve; a forcing
+// with steps (wedge, corners) or at fixed degree max_degree by the projection above (step coefficients
+// in closed form, adaptive in the smooth part's tail), then abel::solve_image_series.
+contact_density build(double a, double b, const context& cx, const edge_exponents& e, const forcing& F,
                        bool adaptive) {
   const std::size_t max_degree = std::max<std::size_t>(cx.options.max_degree, 8);
+  if (adaptive && F.steps.empty()) {
+    // Smooth forcing: abel::solve (adaptive Chebyshev interpolation, exact re-expansion in the image basis).
+    const abel::abel_operator<double> op(cx.par, a, b);
+    abel::solve_options<double> o;
+    o.residual_points = 0;
+    o.tolerance = cx.options.tolerance;
+    o.max_degree = max_degree + 1;
+    const auto smooth = F.smooth;
+    auto sol = abel::solve(op, leading_edge(e.nu), trailing_edge(e.nu),
+                           [&](double s) { return smooth ? smooth(s) : 0.0; }, o);
+    contact_density g;
+    g.jacobi = std::move(sol.density);
+    g.nu = e.nu;
+    g.tail = sol.coefficient_tail;
+    return g;
+  }
   std::size_t M = adaptive ? 8 : max_degree;
   for (;;) {
     const auto img = image_coefficients(a, b, e, F, M);
     if (!adaptive || img.tail <= cx.options.tolerance || M >= max_degree)
-      return density_from_image(a, b, cx.alpha, e, img);
+      return density_from_image(a, b, cx.par, e, img);
     M = std::min(2 * M, max_degree);
   }
 }
@@ -457,7 +515,7 @@ double solve_length(Fn load_of, double L0, double target, double exponent, doubl
 // Wedge density on [a, b] with the apex singularity split off (detail::apex_part): the step of F
 // at the apex (jump -(S1+S2)/Gamma(1-alpha)) is carried by sigma h exactly, the rest of F (the
 // faces' constants, the other indentors' smooth action) by the spectral expansion.
-interval_density build_wedge_split(double a, double b, double apex, double S1, double S2, const context& cx,
+contact_density build_wedge_split(double a, double b, double apex, double S1, double S2, const context& cx,
                                    const edge_exponents& e, const forcing& F) {
   const double L = b - a, alpha = cx.alpha, gf = cx.gamma_factor;
   detail::apex_part ap;
@@ -478,7 +536,7 @@ interval_density build_wedge_split(double a, double b, double apex, double S1, d
       if (s > position) f += jump;
     return f - ap.sigma * scale * ap.apply(map_to_reference(s, a, b).x);
   };
-  interval_density g = build(a, b, cx, e, rest, false);
+  contact_density g = build(a, b, cx, e, rest, false);
   g.has_apex = true;
   g.apex = ap;
   return g;
@@ -486,13 +544,13 @@ interval_density build_wedge_split(double a, double b, double apex, double S1, d
 
 void solve_smooth_edges(indentor_state& st, const context& cx, const forcing& F, double L_guess, double b_guess,
                         double load_exponent) {
-  const edge_exponents e{gam_smooth(cx.alpha, cx.beta), del_smooth(cx.beta), -1};
+  const edge_exponents e = cx.exponents(-1);
   const double tol = cx.options.tolerance;
   std::size_t M = 8;
   {
     // Degree needed by the forcing, measured once on the guessed interval.
     const auto g0 = build(b_guess - L_guess, b_guess, cx, e, F, true);
-    M = std::max<std::size_t>(g0.c.size(), 8);
+    M = std::max<std::size_t>(g0.jacobi.coefficients.size(), 8);
   }
   double a_last = b_guess - L_guess;
   auto place = [&](double L) {
@@ -533,9 +591,9 @@ void solve_general(indentor_state& st, const context& cx, const forcing& F) {
     L = std::min(L, std::pow(st.target_load / K, 1 / (2 - cx.alpha)));
   }
   solve_smooth_edges(st, cx, F, L, st.apex + L / 2, 2 - cx.alpha);
-  if (st.g.a < st.apex + gp.search_lo || st.g.b > st.apex + gp.search_hi) {
+  if (st.g.jacobi.lo < st.apex + gp.search_lo || st.g.jacobi.hi > st.apex + gp.search_hi) {
     std::ostringstream os;
-    os << "contact [" << st.g.a << ", " << st.g.b << "] leaves the search window of the general profile";
+    os << "contact [" << st.g.jacobi.lo << ", " << st.g.jacobi.hi << "] leaves the search window of the general profile";
     st.status = os.str();
   }
 }
@@ -545,7 +603,7 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
   const double alpha = cx.alpha, beta = cx.beta;
   if (cx.offset >= -boundary_width) {
     // Contact ends at the apex (math.md section 5): nu = 0, b = apex, one unknown L.
-    const edge_exponents e{gam_smooth(alpha, beta), del_corner(beta), 0};
+    const edge_exponents e = cx.exponents(0);
     auto load_of = [&](double L) {
       st.g = build(st.apex - L, st.apex, cx, e, F, true);
       return st.g.integral();
@@ -559,7 +617,7 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
     return;
   }
   // Below the boundary: nu = -1, smooth at both edges, contact wraps around the apex.
-  const edge_exponents e{gam_smooth(alpha, beta), del_smooth(beta), -1};
+  const edge_exponents e = cx.exponents(-1);
   const double S1 = w.slope_leading, S2 = w.slope_trailing;
   // eps = (apex - a)/L from I_eps(del, gam) = S2/(S1 + S2) (math.md section 5); 1 - eps from the
   // complementary equation so that both are accurate at extreme slope ratios.
@@ -592,19 +650,19 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
     // their tail (the last quarter relative to the largest), which flags the unresolved apex.
     {
       double largest = 0, tail = 0;
-      const std::size_t N = st.g.c.size();
+      const std::size_t N = st.g.jacobi.coefficients.size();
       for (std::size_t n = 0; n < N; ++n) {
-        largest = std::max(largest, std::abs(st.g.c[n]));
-        if (4 * n >= 3 * N) tail = std::max(tail, std::abs(st.g.c[n]));
+        largest = std::max(largest, std::abs(st.g.jacobi.coefficients[n]));
+        if (4 * n >= 3 * N) tail = std::max(tail, std::abs(st.g.jacobi.coefficients[n]));
       }
       st.g.tail = largest > 0 ? tail / largest : 0;
       st.status = "apex within 0.5% of an edge (or split disabled): plain Jacobi series, pressure "
                   "unresolved next to the apex, C_f by Richardson extrapolation";
     }
     const double shrink = std::pow(L, -alpha);
-    for (double& c : st.g.c) c *= shrink;
-    st.g.a = st.apex - eps * L;
-    st.g.b = st.apex + one_minus_eps * L;
+    for (double& c : st.g.jacobi.coefficients) c *= shrink;
+    st.g.jacobi.lo = st.apex - eps * L;
+    st.g.jacobi.hi = st.apex + one_minus_eps * L;
     st.epsilon = eps;
     return;
   }
@@ -614,7 +672,7 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
     {
       const double a1 = st.apex - eps, b1 = st.apex + one_minus_eps;
       const auto img = image_coefficients(a1, b1, e, F, 1);
-      const interval_density g1 = density_from_image(a1, b1, alpha, e, img);
+      const contact_density g1 = density_from_image(a1, b1, cx.par, e, img);
       L_exact = std::pow(st.target_load / g1.integral(), 1 / (1 - alpha));
     }
     const double a1 = st.apex - eps, b1 = st.apex + one_minus_eps;  // solved at L = 1, then rescaled
@@ -623,21 +681,21 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
     // The split density must carry the exact load: its defect is the error estimate.
     st.g.tail = std::abs(st.g.integral() * std::pow(L, 1 - alpha) / st.target_load - 1);
     const double shrink = std::pow(L, -alpha);
-    for (double& c : st.g.c) c *= shrink;
+    for (double& c : st.g.jacobi.coefficients) c *= shrink;
     st.g.apex.sigma *= shrink;
-    st.g.a = st.apex - eps * L;
-    st.g.b = st.apex + one_minus_eps * L;
+    st.g.jacobi.lo = st.apex - eps * L;
+    st.g.jacobi.hi = st.apex + one_minus_eps * L;
     st.epsilon = eps;
     return;
   }
   // Coupled: generic orthogonality root (the step part of d_0 is exact, the smooth part by quadrature).
   const double L_guess = st.g.length() > 0 ? st.g.length() : 1.0;
   solve_smooth_edges(st, cx, F, L_guess, st.apex + one_minus_eps * L_guess, 1 - alpha);
-  const double e_now = (st.apex - st.g.a) / st.g.length();
+  const double e_now = (st.apex - st.g.jacobi.lo) / st.g.length();
   st.epsilon = e_now;
   if (cx.options.wedge_apex_split && std::min(e_now, 1 - e_now) > 5e-3) {
     const double load = st.g.integral();  // exact: c_0 needs only d_1 (closed form for the step)
-    st.g = build_wedge_split(st.g.a, st.g.b, st.apex, S1, S2, cx, e, F);
+    st.g = build_wedge_split(st.g.jacobi.lo, st.g.jacobi.hi, st.apex, S1, S2, cx, e, F);
     st.g.tail = std::abs(st.g.integral() / load - 1);
   }
 }
@@ -647,20 +705,19 @@ void solve_flat(indentor_state& st, const context& cx, const forcing& F) {
   const double a = st.apex - width / 2, b = st.apex + width / 2;
   if (cx.offset >= -boundary_width) {
     // Contact collapses to a moving line load at the leading corner (paper 24-25).
-    st.g = interval_density{};
-    st.g.a = st.g.b = a;
-    st.g.alpha = cx.alpha;
+    st.g = contact_density{};
+    st.g.jacobi.lo = st.g.jacobi.hi = a;
     st.g.line_load = true;
     st.g.line_weight = st.target_load;
     st.status = "line load at the leading corner; C_f is undefined for a line load (reported as 0)";
     return;
   }
-  const edge_exponents e{gam_corner(cx.alpha, cx.beta), del_corner(cx.beta), 1};
+  const edge_exponents e = cx.exponents(1);
   st.g = build(a, b, cx, e, F, true);
   // Homogeneous solution w itself (nu = +1): c_0 adds load without changing F.
   const double particular = st.g.integral();
   const double unit = (b - a) / 2 * std::pow(2.0, e.del + e.gam + 1) * boost::math::beta(e.del + 1, e.gam + 1);
-  st.g.c[0] += (st.target_load - particular) / unit;
+  st.g.jacobi.coefficients[0] += (st.target_load - particular) / unit;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -710,11 +767,11 @@ boost::math::quadrature::tanh_sinh<double>& tanh_sinh_rule() {
 }
 
 // Peak pressure on [a, b] of a bounded density: sampling + Brent refinement.
-std::pair<double, double> peak_of(const interval_density& g) {
+std::pair<double, double> peak_of(const contact_density& g) {
   const int n = 128;
-  double best = -1, where = g.a;
+  double best = -1, where = g.jacobi.lo;
   for (int k = 0; k <= n; ++k) {
-    const double t = g.a + g.length() * (k + 0.5) / (n + 1);
+    const double t = g.jacobi.lo + g.length() * (k + 0.5) / (n + 1);
     const double v = g.value(t);
     if (v > best) {
       best = v;
@@ -723,7 +780,7 @@ std::pair<double, double> peak_of(const interval_density& g) {
   }
   const double h = g.length() / (n + 1);
   const auto r = boost::math::tools::brent_find_minima([&](double t) { return -g.value(t); },
-                                                       std::max(g.a, where - h), std::min(g.b, where + h), 40);
+                                                       std::max(g.jacobi.lo, where - h), std::min(g.jacobi.hi, where + h), 40);
   if (-r.second > best) return {-r.second, r.first};
   return {best, where};
 }
@@ -787,13 +844,14 @@ trial_result trial_interval(const material& m, double speed, const indentor& ind
                                                       std::sin(cx.alpha * pi / 2) / (std::cos(cx.beta * pi / 2) * cx.alpha);
   cx.pressure_scale = pi / 2 * m.effective_modulus(speed);
   cx.options = options;
+  cx.set_parameters();
   std::vector<indentor_state> st(1);
   st[0].source = &sc.indentors[0];
   st[0].k = static_cast<kind>(ind.shape.index());
   st[0].apex = ind.apex;
   const forcing F = own_forcing(st[0], cx, st, 0, false);
-  const edge_exponents e{gam_smooth(cx.alpha, cx.beta), del_corner(cx.beta), 0};
-  interval_density g;
+  const edge_exponents e = cx.exponents(0);
+  contact_density g;
   if (st[0].k == kind::wedge && ind.apex > a && ind.apex < b && options.wedge_apex_split) {
     const auto& w = std::get<wedge>(ind.shape);
     g = build_wedge_split(a, b, ind.apex, w.slope_leading, w.slope_trailing, cx, e, F);
@@ -809,15 +867,7 @@ trial_result trial_interval(const material& m, double speed, const indentor& ind
     const double behind = ind.apex <= a ? total : g.integral_from(ind.apex);
     out.hysteretic_friction = (w.slope_leading * (total - behind) - w.slope_trailing * behind) / total;
   } else {
-    const auto& rule = cached_rule(g.c.size() + 32, g.e.del, g.e.gam);
-    double num = 0, den = 0;
-    for (std::size_t q = 0; q < rule.size(); ++q) {
-      const double t = g.a + g.length() * rule.x_minus_lo[q] / 2;
-      const double S = g.smooth_factor(rule.x[q]) * rule.weight[q];
-      num += own_slope(st[0], t) * S;
-      den += S;
-    }
-    out.hysteretic_friction = num / den;
+    out.hysteretic_friction = mean_slope(st[0], g);
   }
   return out;
 }
@@ -846,6 +896,7 @@ scene_result solve(const scene& s, const solve_options& options) {
   if (cx.offset == 0) cx.one_minus_kappa_over_alpha = 1 / cx.alpha;
   cx.pressure_scale = pi / 2 * s.material.effective_modulus(s.speed);
   cx.options = options;
+  cx.set_parameters();
 
   // Indentors sorted by apex (leading first).
   std::vector<std::size_t> order(s.indentors.size());
@@ -864,11 +915,11 @@ scene_result solve(const scene& s, const solve_options& options) {
 
   auto check_overlap = [&]() {
     for (std::size_t i = 0; i + 1 < st.size(); ++i) {
-      if (st[i].solved && st[i + 1].solved && st[i].g.b >= st[i + 1].g.a) {
+      if (st[i].solved && st[i + 1].solved && st[i].g.jacobi.hi >= st[i + 1].g.jacobi.lo) {
         std::ostringstream os;
         os << "rhabel::punch::solve: the contacts of " << indentor_name(order[i], *st[i].source) << " ["
-           << st[i].g.a << ", " << st[i].g.b << "] and " << indentor_name(order[i + 1], *st[i + 1].source) << " ["
-           << st[i + 1].g.a << ", " << st[i + 1].g.b << "] overlap; move the indentors apart";
+           << st[i].g.jacobi.lo << ", " << st[i].g.jacobi.hi << "] and " << indentor_name(order[i + 1], *st[i + 1].source) << " ["
+           << st[i + 1].g.jacobi.lo << ", " << st[i + 1].g.jacobi.hi << "] overlap; move the indentors apart";
         throw std::domain_error(os.str());
       }
     }
@@ -883,7 +934,7 @@ scene_result solve(const scene& s, const solve_options& options) {
   for (; sweeps < max_sweeps; ++sweeps) {
     change = 0;
     for (std::size_t i = 0; i < st.size(); ++i) {
-      const double a_old = st[i].g.a, b_old = st[i].g.b, load_scale = st[i].g.length();
+      const double a_old = st[i].g.jacobi.lo, b_old = st[i].g.jacobi.hi, load_scale = st[i].g.length();
       const forcing F = own_forcing(st[i], cx, st, i, sweeps > 0);
       try {
         switch (st[i].k) {
@@ -902,7 +953,7 @@ scene_result solve(const scene& s, const solve_options& options) {
         throw std::domain_error(os.str());
       }
       if (st[i].solved && load_scale > 0) {
-        change = std::max(change, std::max(std::abs(st[i].g.a - a_old), std::abs(st[i].g.b - b_old)) / load_scale);
+        change = std::max(change, std::max(std::abs(st[i].g.jacobi.lo - a_old), std::abs(st[i].g.jacobi.hi - b_old)) / load_scale);
         // Densities change even where edges do not (flat punch): compare the loads' distribution.
       }
       if (!st[i].solved) change = 1;
@@ -932,12 +983,12 @@ scene_result solve(const scene& s, const solve_options& options) {
   for (std::size_t i = 0; i < st.size(); ++i) {
     const auto& g = st[i].g;
     indentor_result r;
-    r.a = g.a;
-    r.b = g.b;
+    r.a = g.jacobi.lo;
+    r.b = g.jacobi.hi;
     r.contact_length = g.length();
     r.epsilon = st[i].epsilon;
     r.load = ps * g.integral();
-    r.degree = g.c.empty() ? 0 : g.c.size() - 1;
+    r.degree = g.jacobi.coefficients.empty() ? 0 : g.jacobi.coefficients.size() - 1;
     r.error_estimate = g.tail;
     r.status = st[i].status;
     // Hysteretic friction C_f = int f' g / int g with the indentor's own f'.
@@ -950,11 +1001,11 @@ scene_result solve(const scene& s, const solve_options& options) {
       // N^(alpha-1) (1 + O(1/N)), so the partial sums at N/4, N/2, N are Richardson-extrapolated
       // with the exponents alpha - 1 and alpha - 2; the spread of the extrapolants is the estimate.
       auto fraction_behind = [&](std::size_t terms) {
-        interval_density t = g;
-        t.c.resize(std::min(terms, g.c.size()));
+        contact_density t = g;
+        t.jacobi.coefficients.resize(std::min(terms, g.jacobi.coefficients.size()));
         return t.integral_from(st[i].apex) / g.integral();
       };
-      const std::size_t N = g.c.size();
+      const std::size_t N = g.jacobi.coefficients.size();
       double behind = fraction_behind(N);
       if (cx.offset < 0 && N >= 32 && !g.has_apex) {
         const double s1 = fraction_behind(N / 4), s2 = fraction_behind(N / 2), s3 = behind;
@@ -967,32 +1018,20 @@ scene_result solve(const scene& s, const solve_options& options) {
     } else if (st[i].k == kind::flat) {
       r.hysteretic_friction = 0;
     } else {
-      const auto& rule = cached_rule(g.c.size() + 32, g.e.del, g.e.gam);
-      double num = 0, den = 0;
-      for (std::size_t q = 0; q < rule.size(); ++q) {
-        const double t = g.a + g.length() * rule.x_minus_lo[q] / 2;
-        const double S = g.smooth_factor(rule.x[q]) * rule.weight[q];
-        num += own_slope(st[i], t) * S;
-        den += S;
-      }
-      r.hysteretic_friction = num / den;
+      r.hysteretic_friction = mean_slope(st[i], g);
     }
     r.total_friction = r.hysteretic_friction + s.material.coulomb;
     // Edges.
     if (!g.line_load) {
-      const double L = g.length();
-      const double lead_factor = g.smooth_factor(-1), trail_factor = g.smooth_factor(1);
-      edge_report lead{edge_side::leading, g.a, g.e.gam < 0, g.e.gam,
-                       ps * std::pow(2.0, g.e.del) * std::pow(2 / L, g.e.gam) * lead_factor};
-      edge_report trail{edge_side::trailing, g.b, g.e.del < 0, g.e.del,
-                        ps * std::pow(2.0, g.e.gam) * std::pow(2 / L, g.e.del) * trail_factor};
+      edge_report lead{edge_side::leading, g.jacobi.lo, g.jacobi.gam < 0, g.jacobi.gam, ps * g.jacobi.intensity_leading()};
+      edge_report trail{edge_side::trailing, g.jacobi.hi, g.jacobi.del < 0, g.jacobi.del, ps * g.jacobi.intensity_trailing()};
       r.edges = {lead, trail};
       if (lead.singular) {
         r.peak_pressure = std::numeric_limits<double>::infinity();
-        r.peak_pressure_at = g.a;
+        r.peak_pressure_at = g.jacobi.lo;
       } else if (trail.singular) {
         r.peak_pressure = std::numeric_limits<double>::infinity();
-        r.peak_pressure_at = g.b;
+        r.peak_pressure_at = g.jacobi.hi;
       } else if (st[i].k == kind::wedge) {
         // Below the boundary the wedge density has a weak singularity at the apex
         // (|s|^-alpha, logarithmic at alpha = 0: math.md section 5).
@@ -1004,21 +1043,21 @@ scene_result solve(const scene& s, const solve_options& options) {
         r.peak_pressure_at = where;
       }
     } else {
-      r.edges = {edge_report{edge_side::leading, g.a, true, -1, ps * g.line_weight},
-                 edge_report{edge_side::trailing, g.b, true, -1, ps * g.line_weight}};
+      r.edges = {edge_report{edge_side::leading, g.jacobi.lo, true, -1, ps * g.line_weight},
+                 edge_report{edge_side::trailing, g.jacobi.hi, true, -1, ps * g.line_weight}};
       r.peak_pressure = std::numeric_limits<double>::infinity();
-      r.peak_pressure_at = g.a;
+      r.peak_pressure_at = g.jacobi.lo;
     }
     // Residual of (8) at interior check points, by an independent quadrature (alpha > 0).
     if (!g.line_load && cx.alpha >= 1e-3) {
-      const std::size_t nodes = std::min<std::size_t>(g.c.size() + 32, 200);
       double worst = 0, scale = 0;
+      const inside_action apply_inside(g, cx.par);
       for (int k = 1; k <= 7; ++k) {
-        double sck = g.a + g.length() * (1 - std::cos(pi * k / 8)) / 2;
+        double sck = g.jacobi.lo + g.length() * (1 - std::cos(pi * k / 8)) / 2;
         if (st[i].k == kind::wedge && std::abs(sck - st[i].apex) < 1e-3 * g.length()) sck += 2e-3 * g.length();
-        double lhs = apply_inside(g, sck, cx.kappa, nodes);
+        double lhs = apply_inside(sck);
         for (std::size_t j = 0; j < st.size(); ++j)
-          if (j != i) lhs += apply_outside(st[j].g, sck, cx.kappa, 64);
+          if (j != i) lhs += apply_outside(st[j].g, sck, cx.par);
         const double rhs = own_slope(st[i], sck) / cx.gamma_factor;
         worst = std::max(worst, std::abs(lhs - rhs));
         scale = std::max(scale, std::abs(rhs));
@@ -1032,7 +1071,7 @@ scene_result solve(const scene& s, const solve_options& options) {
       r.grid_x.resize(n);
       r.pressure.resize(n);
       for (std::size_t k = 0; k < n; ++k) {
-        const double t = g.a + g.length() * (static_cast<double>(k) + 0.5) / static_cast<double>(n);
+        const double t = g.jacobi.lo + g.length() * (static_cast<double>(k) + 0.5) / static_cast<double>(n);
         r.grid_x[k] = t;
         r.pressure[k] = g.line_load ? 0.0 : ps * g.value(t);
       }
@@ -1043,16 +1082,16 @@ scene_result solve(const scene& s, const solve_options& options) {
       const double L = g.length() > 0 ? g.length() : 1.0;
       r.displacement_x.resize(n);
       r.displacement.resize(n);
-      const double lo = g.a - L, hi = g.b + L;
+      const double lo = g.jacobi.lo - L, hi = g.jacobi.hi + L;
       auto profile = [&](double x) {  // f(x) - f(a) for x in this indentor's contact
         switch (st[i].k) {
           case kind::parabola: {
             const double R = std::get<parabolic>(st[i].source->shape).radius;
-            return -((x - st[i].apex) * (x - st[i].apex) - (g.a - st[i].apex) * (g.a - st[i].apex)) / (2 * R);
+            return -((x - st[i].apex) * (x - st[i].apex) - (g.jacobi.lo - st[i].apex) * (g.jacobi.lo - st[i].apex)) / (2 * R);
           }
           case kind::wedge: {
             const auto& w = std::get<wedge>(st[i].source->shape);
-            const double fa = w.slope_leading * (g.a - st[i].apex);
+            const double fa = w.slope_leading * (g.jacobi.lo - st[i].apex);
             const double fx = x < st[i].apex ? w.slope_leading * (x - st[i].apex) : -w.slope_trailing * (x - st[i].apex);
             return fx - fa;
           }
@@ -1062,8 +1101,8 @@ scene_result solve(const scene& s, const solve_options& options) {
             const auto& rule = cached_rule(32, 0.0, 0.0);
             double sum = 0;
             for (std::size_t q = 0; q < rule.size(); ++q)
-              sum += rule.weight[q] * own_slope(st[i], g.a + (x - g.a) * (1 + rule.x[q]) / 2);
-            return sum * (x - g.a) / 2;
+              sum += rule.weight[q] * own_slope(st[i], g.jacobi.lo + (x - g.jacobi.lo) * (1 + rule.x[q]) / 2);
+            return sum * (x - g.jacobi.lo) / 2;
           }
         }
         return 0.0;
@@ -1071,20 +1110,20 @@ scene_result solve(const scene& s, const solve_options& options) {
       // h(x) = Gamma(1-alpha) sum_o int g_o(t) Psi(t, x) dt - (the same at x = a): every moment by
       // Gauss-Jacobi for the regular part (smooth in t when x is off the interval) and tanh-sinh for
       // the apex part; the datum (log-singular at t = a) by tanh-sinh on the whole own interval.
-      auto height_moment = [&](const interval_density& d, double x) {
-        if (d.line_load) return d.line_weight * psi(d.a, x, cx.alpha, omk_over_alpha, cx.kappa);
-        const auto& rule = cached_rule(std::max<std::size_t>(d.c.size() + 64, 96), d.e.del, d.e.gam);
+      auto height_moment = [&](const contact_density& d, double x) {
+        if (d.line_load) return d.line_weight * psi(d.jacobi.lo, x, cx.alpha, omk_over_alpha, cx.kappa);
+        const auto& rule = cached_rule(std::max<std::size_t>(d.jacobi.coefficients.size() + 64, 96), d.jacobi.del, d.jacobi.gam);
         double sum = 0;
         for (std::size_t q = 0; q < rule.size(); ++q) {
-          const double t = rule.x_minus_lo[q] <= rule.hi_minus_x[q] ? d.a + d.length() * rule.x_minus_lo[q] / 2
-                                                                    : d.b - d.length() * rule.hi_minus_x[q] / 2;
-          sum += rule.weight[q] * d.smooth_factor(rule.x[q]) * psi(t, x, cx.alpha, omk_over_alpha, cx.kappa);
+          const double t = rule.x_minus_lo[q] <= rule.hi_minus_x[q] ? d.jacobi.lo + d.length() * rule.x_minus_lo[q] / 2
+                                                                    : d.jacobi.hi - d.length() * rule.hi_minus_x[q] / 2;
+          sum += rule.weight[q] * d.jacobi.series(rule.x[q]) * psi(t, x, cx.alpha, omk_over_alpha, cx.kappa);
         }
         sum *= d.length() / 2;
         if (d.has_apex) {
           // In the offset from the apex (h is singular there; x0 + offset would round onto x0).
           auto f = [&](double dx0) {
-            const double t = d.a + d.length() * (1 + d.apex.x0 + dx0) / 2;
+            const double t = d.jacobi.lo + d.length() * (1 + d.apex.x0 + dx0) / 2;
             return d.apex.h_of(dx0) * psi(t, x, cx.alpha, omk_over_alpha, cx.kappa);
           };
           auto f_left = [&](double o) { return f(-o); };
@@ -1097,7 +1136,7 @@ scene_result solve(const scene& s, const solve_options& options) {
       double datum = 0;
       for (const auto& o : st) {
         if (&o.g != &g) {
-          datum += height_moment(o.g, g.a);
+          datum += height_moment(o.g, g.jacobi.lo);
           continue;
         }
         if (g.line_load) continue;  // psi(a, a) = 0
@@ -1108,7 +1147,7 @@ scene_result solve(const scene& s, const solve_options& options) {
         auto density_at = [&](double u, double v, double dx0) {
           const double one_plus = 2 * u / Lg, one_minus = 2 * v / Lg;
           const double xr = one_plus <= one_minus ? one_plus - 1 : 1 - one_minus;
-          double val = std::pow(one_minus, g.e.del) * std::pow(one_plus, g.e.gam) * g.smooth_factor(xr);
+          double val = std::pow(one_minus, g.jacobi.del) * std::pow(one_plus, g.jacobi.gam) * g.jacobi.series(xr);
           if (g.has_apex) val += g.apex.sigma * g.apex.h_of(dx0);
           return val;
         };
@@ -1119,7 +1158,7 @@ scene_result solve(const scene& s, const solve_options& options) {
                    tanh_sinh_rule().integrate([&](double v) { return density_at(Lg - v, v, 0) * weight(Lg - v); }, 0.0, half, 1e-12);
         } else {
           // Four pieces, each parametrised by the offset from its singular end (a, apex, apex, b).
-          const double ua = st[i].apex - g.a, vb = g.b - st[i].apex, x0 = g.apex.x0;
+          const double ua = st[i].apex - g.jacobi.lo, vb = g.jacobi.hi - st[i].apex, x0 = g.apex.x0;
           auto piece = [&](auto&& f, double length) { return tanh_sinh_rule().integrate(f, 0.0, length, 1e-12); };
           datum += piece([&](double u) { return density_at(u, Lg - u, 2 * u / Lg - 1 - x0) * weight(u); }, ua / 2);
           datum += piece([&](double o) { return density_at(ua - o, vb + o, -2 * o / Lg) * weight(ua - o); }, ua / 2);
@@ -1130,7 +1169,7 @@ scene_result solve(const scene& s, const solve_options& options) {
       for (std::size_t k = 0; k < n; ++k) {
         const double x = n == 1 ? (lo + hi) / 2 : lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(n - 1);
         r.displacement_x[k] = x;
-        if (!g.line_load && x >= g.a && x <= g.b) {
+        if (!g.line_load && x >= g.jacobi.lo && x <= g.jacobi.hi) {
           r.displacement[k] = profile(x);
           continue;
         }

@@ -47,3 +47,24 @@ TEST_CASE("50 digits: parabolic punch closed form (nu = -1)") {
   }
   CHECK(abs(sol.solvability_defect) <= 1e4 * eps50);
 }
+
+TEST_CASE("regression: double Gauss-Jacobi rule with both exponents at -1 + 1e-9 against 50 digits") {
+  // detail::gauss_jacobi_rule keeps the module's former private rule for this case only, because
+  // quadrature::gauss_jacobi<double> errs by 1.6e5 eps there (weights) and 4e4 eps (node distances).
+  // Oracle: the 50-digit quadrature::gauss_jacobi (shares no code with the private rule).
+  const double eps = std::numeric_limits<double>::epsilon();
+  for (const double p : {-1 + 1e-9, -1 + 1e-6}) {
+    const double q = -1 + 1e-9;
+    for (const std::size_t n : {std::size_t(16), std::size_t(40), std::size_t(80)}) {
+      const auto rule = detail::gauss_jacobi_rule<double>(n, p, q);
+      const auto ref = rhabel::quadrature::gauss_jacobi<real50>(n, real50(p), real50(q));
+      REQUIRE(rule.size() == n);
+      for (std::size_t i = 0; i < n; ++i) {
+        // 2048 eps: the private rule's Newton on the plain recurrence; measured <= 940 eps for n <= 80.
+        CHECK(abs(real50(rule.weight[i]) - ref.weight[i]) <= 2048 * eps * ref.weight[i]);
+        CHECK(abs(real50(rule.x_minus_lo[i]) - ref.x_minus_lo[i]) <= 2048 * eps * ref.x_minus_lo[i]);
+        CHECK(abs(real50(rule.hi_minus_x[i]) - ref.hi_minus_x[i]) <= 2048 * eps * ref.hi_minus_x[i]);
+      }
+    }
+  }
+}

@@ -17,7 +17,11 @@
 //       load per unit length  lambda = int p,   C_f = (1/lambda) int f'(s) p(s) ds   (paper 23),
 //       total friction coefficient = C_f + k.
 //   g is expanded in Jacobi polynomials times the exact edge weights (t-a)^gam (b-t)^del, which
-//   diagonalises (8) (math.md section 4). The edge exponents are
+//   diagonalises (8) (math.md section 4). The operator, its spectral relation, the density type and
+//   the independent quadrature of (8) are rhabel::abel's (abel_parameters, abel_operator,
+//   jacobi_density, solve_image_series, apply / apply_by_quadrature); this layer adds the shapes, the
+//   projection of the forcing (steps in closed form), the edge root finding, loads, friction,
+//   displacement, the wedge's apex split (detail/contact_density.hpp) and the coupling of indentors. The edge exponents are
 //       gam = (1 - 2 alpha - beta)/2 (smooth leading edge) or -(1 + 2 alpha + beta)/2 (corner),
 //       del = (1 + beta)/2 (smooth trailing edge)          or (beta - 1)/2 (corner).
 //   A smooth edge carries zero intensity factor; its position is fixed by the orthogonality
@@ -35,8 +39,9 @@
 // METHOD AND ACCURACY (measured; commands: build-punch/tests/punch_test_contact,
 //   build-punch/bin/study_wedge_table, build-punch/bin/study_wedge_stationarity)
 //   * Parabola, general smooth profile: the forcing is smooth, the Jacobi degree is chosen adaptively
-//     until the image coefficients' tail is below options.tolerance; the edges come from a TOMS 748
-//     root of the orthogonality coefficient d_0 nested in a secant iteration on log L. Against the
+//     by abel::solve (Chebyshev tail below options.tolerance; with corners: projection with the
+//     jumps in closed form); the edges come from a TOMS 748 root of the orthogonality coefficient
+//     d_0 nested in a secant iteration on log L. Against the
 //     closed forms (alpha in {0, 0.2, 0.45, 0.7}, k in {0, 0.5, 2}): L, b, C_f, load and pressure to
 //     a few 1e-15 relative; independent residual of (8) <= 6e-14.
 //   * Wedge, alpha + beta/2 >= 1/2: closed-form structure (nu = 0, b = apex), L and pressure to 1e-14.
@@ -55,21 +60,23 @@
 //     dip below 0): error_estimate then is large and says so.
 //   * Flat punch below the boundary: nu = +1, spectral, 1e-15; above/on the boundary a line load.
 //   * Several indentors: block Gauss-Seidel on system 41 (each interval re-solved with the others'
-//     action, computed by Gauss-Jacobi quadrature, on its right side) until the edges move by less
+//     action on its right side, computed with the graded cross-term nodes and kernel of
+//     abel::solve_union, abel::detail::make_cross_nodes / cross_kernel) until the edges move by less
 //     than 10 tolerance L; residual of (8) on the union checked independently. Far apart the coupling
 //     decays like distance^(alpha - 1); nearly touching contacts make the cross terms nearly singular
 //     (slow, or an error naming the indentor); overlapping contacts throw naming both indentors.
 //   * residual: max over 7 interior points of |A g - F| / max|F| with the two one-sided integrals
-//     computed by Gauss-Jacobi quadrature with the kernel singularity as weight (independent of the
-//     spectral relation); not computed for alpha < 1e-3 (the two integrals cancel like 1/alpha; at
-//     alpha = 0 (8) is a Cauchy integral): residual = 0 there.
+//     computed by abel_operator::apply_by_quadrature (Gauss-Jacobi with the kernel singularity as
+//     weight, independent of the spectral relation), the other indentors by abel_operator::apply;
+//     not computed for alpha < 1e-3 (kept from before the abel port; abel's quadrature would be
+//     uniform to alpha = 0): residual = 0 there.
 //   * Displacement: outside the contact from the slope integral (paper 27, 28) integrated in closed
 //     form in s, then Gauss-Jacobi in t (regular part), tanh-sinh (apex part, datum); inside the own
 //     contact f(x) - f(a) exactly. Elastic flat punch against -(2P/(pi E*)) arccosh(x/c): < 1e-8 for
 //     |x| >= 1.4 c; accuracy degrades next to the edges (log kernel nearly singular there).
 //   * Cost (Release, warm rule cache): single parabola ~0.2 ms; single wedge with 1000 pressure
 //     samples 0.1-0.8 ms (series, degree 16-128), 1-20 ms with the apex split (degree 16-128), 70 ms
-//     at degree 256; coupled scenes with wedges ~1 s. The first solve at a new degree also builds
+//     at degree 256; coupled scenes with wedges 0.1-1 s (examples/default_scene.json: 0.1 s). The first solve at a new degree also builds
 //     Gauss-Jacobi rules (O(n^3) Golub-Welsch, cached per thread).
 //     The 1 ms / 1e-10 target for the wedge is NOT reached (see study_wedge_table).
 //
@@ -146,7 +153,7 @@ struct solve_options {
   double tolerance = 1e-12;     ///< relative tolerance of the root finders and of the expansions
   std::size_t max_degree = 128; ///< largest Jacobi degree of a density expansion (cost ~ degree^2)
   /// Wedge below the boundary with min(eps, 1 - eps) > 5e-3: subtract the apex singularity
-  /// sigma chi(x) psi(x) (detail/interval_density.hpp) before the spectral solve (degree max_degree).
+  /// sigma chi(x) psi(x) (detail/contact_density.hpp) before the spectral solve (degree max_degree).
   /// The pressure then converges like N^-4 instead of N^(alpha-1) pointwise (no Gibbs oscillation at
   /// the apex). L and eps are exact either way. Costs 1-70 ms. false: plain Jacobi series of degree
   /// max_degree (C_f Richardson-extrapolated, ~1e-6; pressure poor next to the apex).

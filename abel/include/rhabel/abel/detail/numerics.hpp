@@ -17,6 +17,10 @@
 //    quadrature::gauss_jacobi on the panels that touch an end, Gauss-Legendre elsewhere. A
 //    singularity at distance d from an end sits 3 panel half-widths from the centre of every
 //    panel, so each panel converges like (3 + sqrt 8)^(-2 n_panel): 16 nodes give ~ 1e-24.
+//  * gauss_jacobi_rule: quadrature::gauss_jacobi, except for hardware floating types with BOTH
+//    exponents within 1e-5 of -1, where quadrature::gauss_jacobi is less accurate (measured
+//    1.6e5 eps at p = q = -1 + 1e-9) and the module's former private rule (Golub-Welsch start,
+//    Newton on the recurrence, endpoint-series Newton) is kept for exactly that case.
 //  * chebyshev_grid / chebyshev_coefficients, exprel, lgamma_difference_over_alpha.
 #pragma once
 
@@ -28,8 +32,11 @@
 #include <boost/math/special_functions/expm1.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 
+#include <Eigen/Eigenvalues>
+
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -76,6 +83,123 @@ Real jacobi_sum_any(const std::vector<Real>& c, const Real& p, const Real& q, co
     b1 = b0;
   }
   return b1;
+}
+
+/// The abel module's former private Gauss-Jacobi rule, kept ONLY for the case where
+/// quadrature::gauss_jacobi is measurably less accurate: Real = double or long double (float
+/// treated alike) with BOTH exponents within 1e-5 of -1 (see gauss_jacobi_rule below). Golub-Welsch in double
+/// for starting values, Newton in Real on the plain recurrence, a series Newton for nodes next
+/// to an end, weights from K_n / ((1 - x^2) P_n'(x)^2) (Szego 15.3.5). Measured against
+/// 50-digit rules, n = 16..80: <= 940 eps there (p = q = -1 + 1e-9: <= 440 eps, where
+/// quadrature::gauss_jacobi<double> and <long double> err by 1.6e5 eps in the weights and
+/// 4e4 eps in the node distances; at p = q = -1 + 1e-5 both are ~120 eps). p, q > -1.
+template <class Real>
+rhabel::quadrature::quadrature_rule<Real> gauss_jacobi_both_ends_near_minus_one(std::size_t n, const Real& p, const Real& q) {
+  using std::pow;
+  // Plain forward recurrence (the rule's Newton iteration was validated with it).
+  auto jacobi_values_any = [](std::size_t m_max, const Real& a, const Real& b, const Real& t) {
+    std::vector<Real> v(m_max + 1);
+    v[0] = 1;
+    if (m_max >= 1) v[1] = (a + b + 2) / 2 * t + (a - b) / 2;
+    for (std::size_t k = 1; k < m_max; ++k) {
+      const auto r = jacobi_recurrence_coefficients(k, a, b);
+      v[k + 1] = (r.A * t + r.B) * v[k] - r.C * v[k - 1];
+    }
+    return v;
+  };
+  Eigen::VectorXd diagonal(static_cast<Eigen::Index>(n));
+  Eigen::VectorXd off(static_cast<Eigen::Index>(n > 1 ? n - 1 : 0));
+  const double pd = static_cast<double>(p), qd = static_cast<double>(q);
+  for (std::size_t k = 0; k < n; ++k) {
+    const double s = 2.0 * static_cast<double>(k) + pd + qd;
+    diagonal[static_cast<Eigen::Index>(k)] = k == 0 ? (qd - pd) / (pd + qd + 2) : (qd * qd - pd * pd) / (s * (s + 2));
+  }
+  for (std::size_t k = 1; k < n; ++k) {
+    const double m = static_cast<double>(k), s = 2 * m + pd + qd;
+    const double b2 = k == 1 ? 4 * (1 + pd) * (1 + qd) / ((2 + pd + qd) * (2 + pd + qd) * (3 + pd + qd))
+                             : 4 * m * (m + pd) * (m + qd) * (m + pd + qd) / (s * s * (s + 1) * (s - 1));
+    off[static_cast<Eigen::Index>(k - 1)] = std::sqrt(b2);
+  }
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen;
+  eigen.computeFromTridiagonal(diagonal, off, Eigen::EigenvaluesOnly);
+  rhabel::quadrature::quadrature_rule<Real> r;
+  r.x.resize(n);
+  r.hi_minus_x.resize(n);
+  r.x_minus_lo.resize(n);
+  r.weight.resize(n);
+  const Real m = Real(n);
+  // K_n = 2^(p+q+1) Gamma(n+p+1) Gamma(n+q+1) / (Gamma(n+p+q+1) n!) by gamma ratios (a few ulps).
+  const Real K = pow(Real(2), p + q + 1) * boost::math::tgamma_delta_ratio(m + q + 1, p) /
+                 boost::math::tgamma_delta_ratio(m + 1, p);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double guess = eigen.eigenvalues()[static_cast<Eigen::Index>(i)];
+    const bool near_left = guess < 0;
+    // Distance to the nearer end in the variable z = (1 -+ x)/2.
+    const double z_guess = near_left ? (1 + guess) / 2 : (1 - guess) / 2;
+    if (static_cast<double>(n * n) * z_guess <= 2) {
+      // Nodes very close to an end: Newton in z on the terminating series
+      //   P_n^(p,q)(x) = (-1)^n (q+1)_n/n! 2F1(-n, n+p+q+1; q+1; (1+x)/2)   (near x = -1),
+      //   P_n^(p,q)(x) =        (p+1)_n/n! 2F1(-n, n+p+q+1; p+1; (1-x)/2)   (near x = +1),
+      // well conditioned for n^2 z <= 2 (largest term < e^3), relative accuracy in z.
+      const Real c = near_left ? q : p;
+      Real z = Real(z_guess);
+      Real f = 0, df = 0;
+      auto series = [&](const Real& zz) {
+        Real term = 1;
+        f = 1;
+        df = 0;
+        for (std::size_t k = 0; k < n; ++k) {
+          const Real kk = Real(k);
+          term *= (kk - m) * (kk + m + p + q + 1) * zz / ((kk + c + 1) * (kk + 1));
+          f += term;
+          df += (kk + 1) * term;
+        }
+        df /= zz;
+      };
+      for (int it = 0; it < 8; ++it) {
+        series(z);
+        z -= f / df;
+      }
+      series(z);
+      Real lead = 1;  // (c+1)_n / n!
+      for (std::size_t k = 0; k < n; ++k) lead *= (Real(k) + c + 1) / (Real(k) + 1);
+      const Real dP = lead * df / 2;  // |P_n'(x)|
+      const Real u = 2 * z, v = 2 - 2 * z;
+      r.x[i] = near_left ? u - 1 : 1 - u;
+      r.x_minus_lo[i] = near_left ? u : v;
+      r.hi_minus_x[i] = near_left ? v : u;
+      r.weight[i] = K / (u * v * dP * dP);
+      continue;
+    }
+    Real x = Real(guess);
+    for (int it = 0; it < 4; ++it) {
+      const auto v = jacobi_values_any(n, p, q, x);
+      const Real slope = (m + p + q + 1) / 2 * jacobi_values_any(n - 1, p + 1, q + 1, x)[n - 1];
+      x -= v[n] / slope;
+    }
+    const Real slope = (m + p + q + 1) / 2 * jacobi_values_any(n - 1, p + 1, q + 1, x)[n - 1];
+    r.x[i] = x;
+    r.hi_minus_x[i] = 1 - x;
+    r.x_minus_lo[i] = 1 + x;
+    r.weight[i] = K / ((1 - x) * (1 + x) * slope * slope);
+  }
+  return r;
+}
+
+/// n-point Gauss-Jacobi rule for the weight (1-x)^p (1+x)^q on [-1, 1] (p, q > -1, n >= 1):
+/// quadrature::gauss_jacobi, except for Real = float, double or long double with both p and q
+/// within 1e-5 of -1, where quadrature::gauss_jacobi loses accuracy (3.5e-11 relative at
+/// p = q = -1 + 1e-9, n = 16..80) and the former private rule above is used instead. Reached
+/// in abel only at the corner alpha -> 1, beta -> -1 of the class nu = +1 (del, gam -> -1) and
+/// in step enrichment for alpha -> 0, 2 alpha + beta -> 1 (gam, alpha - 1 -> -1).
+template <class Real>
+rhabel::quadrature::quadrature_rule<Real> gauss_jacobi_rule(std::size_t n, const Real& p, const Real& q) {
+  if constexpr (std::is_floating_point_v<Real>) {
+    const Real near = Real(1e-5);
+    if (p > -1 && q > -1 && p + 1 <= near && q + 1 <= near && n >= 1)
+      return gauss_jacobi_both_ends_near_minus_one(n, p, q);
+  }
+  return rhabel::quadrature::gauss_jacobi<Real>(n, p, q);
 }
 
 /// Chebyshev points of the first kind x_j = cos(pi (j + 1/2)/m), j = 0..m-1, with 1 -+ x_j
@@ -165,7 +289,7 @@ class panel_integrator {
         legendre_(rhabel::quadrature::gauss_jacobi<Real>(nodes, Real(0), Real(0))),
         left_(rhabel::quadrature::gauss_jacobi<Real>(nodes, Real(0), q)),
         right_(rhabel::quadrature::gauss_jacobi<Real>(nodes, p, Real(0))),
-        both_(rhabel::quadrature::gauss_jacobi<Real>(nodes, p, q)) {}
+        both_(gauss_jacobi_rule<Real>(nodes, p, q)) {}
 
   template <class F>
   Real integrate(const Real& len, const Real& d_left, const Real& d_right, F&& f) const {

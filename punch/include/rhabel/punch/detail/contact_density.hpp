@@ -1,14 +1,24 @@
-// rhabel/punch/detail/interval_density.hpp: the spectral density on one contact interval
+// rhabel/punch/detail/contact_density.hpp: the density on one contact interval
 // (internal to rhabel::punch; compiled in double in punch/src).
 //
-// On [a, b], x = -1 + 2 (t - a)/L, the density of eq. (8) is represented as
-//     g(t) = w(x) sum_n c_n P_n^(del, gam)(x),   w(x) = (1 - x)^del (1 + x)^gam,
-// so gam is the exponent at the leading edge a (x = -1) and del at the trailing edge b (x = +1).
-// Spectral relation (math.md section 4), with nu = -(gam + del + alpha) in {-1, 0, 1}:
-//     A[w P_n](y) = (L/2)^alpha lambda_n P_(n-nu)^(gam+nu, del+nu)(y),
-//     lambda_n = -2^(-nu) pi (1-alpha)_n / (n! sin(pi del)).
-// The image family has its exponent gam+nu at y = +1 and del+nu at y = -1 (the ends swap).
+// The mathematics lives in rhabel::abel (abel_operator.hpp, abel_solver.hpp); this header only adds
+// what is physical or not (yet) in abel:
+//   * contact_density: the Jacobi series abel::jacobi_density<double>
+//         g(t) = w(x) sum_n c_n P_n^(del, gam)(x),   w(x) = (1 - x)^del (1 + x)^gam,  x = -1 + 2 (t - a)/L,
+//     (gam at the leading edge a, del at the trailing edge b; its coefficients come from
+//     abel::solve_image_series, i.e. the spectral relation of abel_operator.hpp), plus the apex part
+//     of the wedge below the boundary, or a line load;
+//   * apex_part: the wedge's apex singularity, split off before the spectral solve. It is kept here
+//     rather than replaced by abel::solve_step, which (as of this writing) fails when the apex is one
+//     of its Chebyshev interpolation nodes: the symmetric elastic wedge (alpha = 0, S1 = S2, apex at
+//     the centre, every odd node count) gives int_apex^b g / int g = 0.396 instead of 1/2 and a
+//     solvability defect 5e-2; with the apex moved by 1e-9 L it is right. It also diverges for the
+//     apex near an edge (alpha = 0.4, S2/S1 = 3, 1 - eps = 3e-6: defect 7e3 at 65 points).
+//   * forcing: the right side of (8) as smooth part + steps (projected in contact.cpp with the steps'
+//     coefficients in closed form).
 #pragma once
+
+#include "rhabel/abel.hpp"
 
 #include <cstddef>
 #include <optional>
@@ -19,11 +29,7 @@
 namespace rhabel::punch::detail {
 
 /// Edge exponents of one contact interval and the index nu = -(gam + del + alpha).
-struct edge_exponents {
-  double gam = 0;  ///< exponent at the leading edge a
-  double del = 0;  ///< exponent at the trailing edge b
-  int nu = -1;
-};
+using edge_exponents = abel::edge_exponents<double>;
 
 /// Right side of (8) on one interval: F(s) = smooth(s) + sum_k jump_k H(s - position_k).
 struct forcing {
@@ -56,28 +62,28 @@ struct apex_part {
   double jump() const;
 };
 
-/// The density on one interval (or a line load when line_load is true: g = load delta(t - a)).
-struct interval_density {
-  double a = 0, b = 0;
-  double alpha = 0;
-  edge_exponents e;
-  std::vector<double> c;       ///< Jacobi coefficients of g / w
-  double d0 = 0;               ///< coefficient of the missing image polynomial (nu = -1 only)
+/// The density of one contact: the Jacobi series of rhabel::abel (abel::jacobi_density: weight,
+/// coefficients, evaluation, integrals, intensities), plus the apex part of the wedge below the
+/// boundary, or a line load (g = line_weight delta(t - a), flat punch on/above the boundary).
+struct contact_density {
+  abel::jacobi_density<double> jacobi;  ///< g / (apex part) on [lo, hi] = [a, b]
+  int nu = -1;                 ///< index of the class of jacobi (gam = jacobi.gam, del = jacobi.del)
   double tail = 0;             ///< size of the last coefficients relative to the largest (estimate)
   bool line_load = false;
   double line_weight = 0;      ///< int g for a line load
   bool has_apex = false;       ///< g additionally holds apex.sigma * h(x) (wedge below the boundary)
   apex_part apex;
 
-  double length() const { return b - a; }
+  double a() const { return jacobi.lo; }
+  double b() const { return jacobi.hi; }
+  double length() const { return jacobi.hi - jacobi.lo; }
+  edge_exponents exponents() const { return {jacobi.gam, jacobi.del, nu}; }
   /// g(t) for a < t < b (0 outside).
   double value(double t) const;
   /// int_a^b g.
   double integral() const;
-  /// int_s^b g for a <= s <= b (Rodrigues formula term by term).
+  /// int_s^b g for a <= s <= b.
   double integral_from(double s) const;
-  /// g(t) / w(x(t)): the smooth factor.
-  double smooth_factor(double x) const;
 };
 
 }  // namespace rhabel::punch::detail
