@@ -48,13 +48,10 @@ namespace rhabel::abel::detail {
 using rhabel::quadrature::detail::jacobi_recurrence_coefficients;
 using rhabel::quadrature::detail::throw_bad_parameter;
 
-/// P_0(x), ..., P_n(x) of P^(p,q) for ANY real p, q with p + q != -2, -3, ... For p, q > -1
-/// this is quadrature::jacobi_p_all; the plain forward recurrence below runs only for p <= -1
-/// or q <= -1 (rejected by quadrature). The abel headers themselves call jacobi_p_all directly;
-/// this entry point remains because studies/abel_convergence.cpp uses it.
+/// P_0(x), ..., P_n(x) of P^(p,q) by the plain forward three-term recurrence, for ANY real p, q
+/// with p + q != -2, -3, ... (no difference forms near the ends, no exponent check).
 template <class Real>
-std::vector<Real> jacobi_values_any(std::size_t n, const Real& p, const Real& q, const Real& x) {
-  if (p > -1 && q > -1) return rhabel::quadrature::jacobi_p_all(n, p, q, x);
+std::vector<Real> plain_jacobi_values(std::size_t n, const Real& p, const Real& q, const Real& x) {
   std::vector<Real> v(n + 1);
   v[0] = 1;
   if (n >= 1) v[1] = (p + q + 2) / 2 * x + (p - q) / 2;
@@ -63,6 +60,16 @@ std::vector<Real> jacobi_values_any(std::size_t n, const Real& p, const Real& q,
     v[k + 1] = (r.A * x + r.B) * v[k] - r.C * v[k - 1];
   }
   return v;
+}
+
+/// P_0(x), ..., P_n(x) of P^(p,q) for ANY real p, q with p + q != -2, -3, ... For p, q > -1
+/// this is quadrature::jacobi_p_all; the plain recurrence runs only for p <= -1 or q <= -1
+/// (rejected by quadrature). The abel headers themselves call jacobi_p_all directly;
+/// this entry point remains because studies/abel_convergence.cpp uses it.
+template <class Real>
+std::vector<Real> jacobi_values_any(std::size_t n, const Real& p, const Real& q, const Real& x) {
+  if (p > -1 && q > -1) return rhabel::quadrature::jacobi_p_all(n, p, q, x);
+  return plain_jacobi_values(n, p, q, x);
 }
 
 /// Clenshaw sum_k c_k P_k^(p,q)(x) for ANY real p, q with p + q != -2, -3, ... For p, q > -1
@@ -96,17 +103,7 @@ Real jacobi_sum_any(const std::vector<Real>& c, const Real& p, const Real& q, co
 template <class Real>
 rhabel::quadrature::quadrature_rule<Real> gauss_jacobi_both_ends_near_minus_one(std::size_t n, const Real& p, const Real& q) {
   using std::pow;
-  // Plain forward recurrence (the rule's Newton iteration was validated with it).
-  auto jacobi_values_any = [](std::size_t m_max, const Real& a, const Real& b, const Real& t) {
-    std::vector<Real> v(m_max + 1);
-    v[0] = 1;
-    if (m_max >= 1) v[1] = (a + b + 2) / 2 * t + (a - b) / 2;
-    for (std::size_t k = 1; k < m_max; ++k) {
-      const auto r = jacobi_recurrence_coefficients(k, a, b);
-      v[k + 1] = (r.A * t + r.B) * v[k] - r.C * v[k - 1];
-    }
-    return v;
-  };
+  // Newton below runs on the plain forward recurrence (the rule was validated with it).
   Eigen::VectorXd diagonal(static_cast<Eigen::Index>(n));
   Eigen::VectorXd off(static_cast<Eigen::Index>(n > 1 ? n - 1 : 0));
   const double pd = static_cast<double>(p), qd = static_cast<double>(q);
@@ -173,11 +170,11 @@ rhabel::quadrature::quadrature_rule<Real> gauss_jacobi_both_ends_near_minus_one(
     }
     Real x = Real(guess);
     for (int it = 0; it < 4; ++it) {
-      const auto v = jacobi_values_any(n, p, q, x);
-      const Real slope = (m + p + q + 1) / 2 * jacobi_values_any(n - 1, p + 1, q + 1, x)[n - 1];
+      const auto v = plain_jacobi_values(n, p, q, x);
+      const Real slope = (m + p + q + 1) / 2 * plain_jacobi_values(n - 1, p + 1, q + 1, x)[n - 1];
       x -= v[n] / slope;
     }
-    const Real slope = (m + p + q + 1) / 2 * jacobi_values_any(n - 1, p + 1, q + 1, x)[n - 1];
+    const Real slope = (m + p + q + 1) / 2 * plain_jacobi_values(n - 1, p + 1, q + 1, x)[n - 1];
     r.x[i] = x;
     r.hi_minus_x[i] = 1 - x;
     r.x_minus_lo[i] = 1 + x;
