@@ -11,6 +11,15 @@ int main(int argc, char** argv) {
   rhabel::cli::command_action action;
   rhabel::cli::add_rule_command(app, action);
   rhabel::cli::add_solve_command(app, action);
+  // CLI11 would report an unknown first word as "a subcommand is required": name it instead.
+  if (argc > 1 && argv[1][0] != '-') {
+    try {
+      app.get_subcommand(argv[1]);
+    } catch (const CLI::OptionNotFound&) {
+      std::cerr << "rhabel: unknown command '" << argv[1] << "' (valid: rule, solve; see rhabel --help)\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::Success& e) {  // --help, --version

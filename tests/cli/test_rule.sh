@@ -62,6 +62,11 @@ check_bad B rule gauss-jacobi 3 0 nan
 check_bad B rule gauss-jacobi 3 0 -2
 check_bad B rule gauss-jacobi 3 0 inf
 
+# an unknown command is named, exit code 2
+err="$("$rhabel" frobnicate 2>&1 >/dev/null)"; rc=$?
+[ "$rc" -eq 2 ] || fail "'frobnicate' exit code $rc (expected 2)"
+printf '%s\n' "$err" | grep -q "unknown command 'frobnicate'" || fail "'frobnicate' message: $err"
+
 if [ "$failures" -ne 0 ]; then
   echo "$failures check(s) failed"
   exit 1
