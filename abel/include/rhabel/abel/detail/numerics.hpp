@@ -300,28 +300,19 @@ class panel_integrator {
   template <class Visit>
   void for_each_node(const Real& len, const Real& d_left, const Real& d_right, Visit&& visit) const {
     using std::pow;
-    // Breakpoints as pairs (distance from 0, distance from len).
-    std::vector<Real> from_left{Real(0)};
+    // Breakpoints as pairs (distance from 0, distance from len): 0, then d, 3d, 7d, ... (panel
+    // widths doubling) up to the middle, graded toward a singularity at distance d from that end.
     const Real half = len / 2;
-    if (d_left > 0 && d_left < half) {
-      Real w = d_left;
-      Real pos = d_left;
-      while (pos < half) {
-        from_left.push_back(pos);
-        w *= 2;
-        pos += w;
+    const auto graded_breaks = [&half](const Real& d) {
+      std::vector<Real> breaks{Real(0)};
+      if (d > 0 && d < half) {
+        Real w = d;
+        for (Real pos = d; pos < half; w *= 2, pos += w) breaks.push_back(pos);
       }
-    }
-    std::vector<Real> from_right{Real(0)};
-    if (d_right > 0 && d_right < half) {
-      Real w = d_right;
-      Real pos = d_right;
-      while (pos < half) {
-        from_right.push_back(pos);
-        w *= 2;
-        pos += w;
-      }
-    }
+      return breaks;
+    };
+    const std::vector<Real> from_left = graded_breaks(d_left);
+    const std::vector<Real> from_right = graded_breaks(d_right);
     // Assemble panels [u_k, u_{k+1}] with both distances.
     struct point {
       Real left, right;
