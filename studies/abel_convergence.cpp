@@ -14,6 +14,11 @@
 //  * step_enriched (solve_step, singular enrichment at the apex): int_a^t0 g against the
 //    degree-257 enriched solution (spectral self-reference; the extrapolated plain series and the
 //    exact int g are printed to stderr as independent cross-checks); int g against Rodrigues.
+//  * step_adaptive_total / _partial: adaptive solve_step (default options, the punch layer's call)
+//    for alpha in {0, 1e-3, 0.01, 0.049, 0.05, 0.25, 0.5, 0.9}: int g against Rodrigues, int_a^t0 g
+//    against the degree-257 enriched solution; n = points the adaptive loop used.
+//  * step_apex_eps_<eps>: adaptive solve_step with the apex at eps = (t0 - a)/L, 1e-6 .. 1 - 1e-6
+//    (alpha = 0.3, beta = 0.2): int g against Rodrigues, residual (with points next to the apex).
 //  * kink (F = |s - t0|): int_a^t0 g against the degree-2048 solution (algebraic reference).
 // Timing: median of repeated solves (residual switched off), steady_clock.
 #include "rhabel/abel.hpp"
@@ -30,6 +35,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace rhabel::abel;
@@ -47,6 +53,28 @@ double median_seconds(Fn&& fn, int repeats) {
   }
   std::sort(times.begin(), times.end());
   return times[times.size() / 2];
+}
+
+// int g for step data with one breakpoint t0: the plain solver's image coefficients by
+// Gauss-Jacobi per piece, for piecewise constant F the exact Rodrigues values (c_0 only needed).
+template <class F>
+double rodrigues_total(const abel_operator<double>& op, edge trailing, F&& f, double t0) {
+  solve_options<double> plain;
+  plain.degree = 4;
+  plain.residual_points = 0;
+  return solve_piecewise(op, edge::bounded, trailing, f, {t0}, plain).density.integral();
+}
+
+// solve_step with default options (adaptive, residual computed) and the median time of the same
+// solve without the residual.
+template <class F>
+std::pair<enriched_solution<double>, double> default_step(const abel_operator<double>& op, edge trailing, F&& f,
+                                                          double t0, int repeats) {
+  solve_options<double> options;
+  auto sol = solve_step(op, edge::bounded, trailing, f, t0, options);
+  options.residual_points = 0;
+  const double seconds = median_seconds([&] { (void)solve_step(op, edge::bounded, trailing, f, t0, options); }, repeats);
+  return {std::move(sol), seconds};
 }
 
 // int_{-1}^{y0} g for the left-step solution, exact coefficients summed to N (O(N)).
@@ -179,12 +207,7 @@ int main(int argc, char** argv) {
       // Independent cross-checks: int g against the exact Rodrigues c_0 (plain solver), and
       // int_a^t0 g against the extrapolated exact-coefficient series (when 2 alpha + beta < 1).
       double exact_total = std::nan("");
-      if (2 * alpha + beta < 1 || e.nu == 0) {
-        solve_options<double> plain;
-        plain.degree = 4;
-        plain.residual_points = 0;
-        exact_total = solve_piecewise(op, edge::bounded, trailing, F, {t0}, plain).density.integral();
-      }
+      if (2 * alpha + beta < 1 || e.nu == 0) exact_total = rodrigues_total(op, trailing, F, t0);
       const double y0 = -1 + (t0 - lo) / op.half_length();
       double series_reference = std::nan("");
       if (2 * alpha + beta < 1 || e.nu == 0) {
@@ -210,6 +233,52 @@ int main(int argc, char** argv) {
               << std::abs(sol.density.integral() - exact_total) / std::abs(exact_total) << "," << sol.residual << ","
               << seconds << "\n";
       }
+    }
+  }
+
+  // ---- step data, adaptive solve_step as the punch layer calls it: cost and accuracy per alpha ----
+  // Default options (adaptive degree, tolerance 16 eps), residual off for the timing. Errors:
+  // int g against the exact Rodrigues value (plain solver, c_0 only), int_a^t0 g against the
+  // degree-257 enriched solution ("step_adaptive_partial"; spectral self-reference).
+  for (double alpha : {0.0, 1e-3, 0.01, 0.049, 0.05, 0.25, 0.5, 0.9}) {
+    const double beta = 0.2, lo = -1.0, hi = 1.0, t0 = 0.1;
+    abel_operator<double> op(alpha, beta, lo, hi);
+    for (edge trailing : {edge::unbounded, edge::bounded}) {
+      if (2 * alpha + beta >= 1 && trailing == edge::bounded) continue;  // nu = -1: no interior apex there
+      const auto e = op.exponents(edge::bounded, trailing);
+      auto F = [&](double s) { return s < t0 ? 1.0 : 0.0; };
+      solve_options<double> ref_options;
+      ref_options.degree = 257;
+      ref_options.residual_points = 0;
+      const double reference = solve_step(op, edge::bounded, trailing, F, t0, ref_options).density.integral_to(t0);
+      const double exact_total = rodrigues_total(op, trailing, F, t0);
+      const auto [sol, seconds] = default_step(op, trailing, F, t0, 9);
+      out << "step_adaptive_total," << alpha << "," << beta << "," << e.nu << "," << sol.degree << ","
+          << std::abs(sol.density.integral() - exact_total) / std::abs(exact_total) << "," << sol.residual << ","
+          << seconds << "\n";
+      out << "step_adaptive_partial," << alpha << "," << beta << "," << e.nu << "," << sol.degree << ","
+          << std::abs(sol.density.integral_to(t0) - reference) / std::abs(reference) << "," << sol.residual << ","
+          << seconds << "\n";
+    }
+  }
+
+  // ---- apex position: eps = (t0 - a)/L from 1e-6 to 1 - 1e-6 (alpha = 0.3, beta = 0.2) ----
+  // Adaptive solve_step with default options; error of int g against Rodrigues; the residual
+  // includes the points next to the apex. Case name carries eps; n = points used; status to stderr.
+  for (double eps_apex : {1e-6, 1e-3, 1e-2, 0.1, 0.3, 0.5, 0.7, 0.9, 0.99, 0.999, 1 - 1e-6}) {
+    const double alpha = 0.3, beta = 0.2;
+    abel_operator<double> op(alpha, beta, 0.0, 1.0);
+    for (edge trailing : {edge::unbounded, edge::bounded}) {
+      const auto e = op.exponents(edge::bounded, trailing);
+      auto F = [&](double s) { return s < eps_apex ? 1.0 : -1.0; };
+      const double exact_total = rodrigues_total(op, trailing, F, eps_apex);
+      const auto [sol, seconds] = default_step(op, trailing, F, eps_apex, 3);
+      std::cerr << "step_apex eps=" << eps_apex << " nu=" << e.nu << " K=" << sol.taylor_degree << " n=" << sol.degree
+                << " status=" << (sol.status == solve_status::converged ? "converged" : "not_converged")
+                << " tail=" << sol.coefficient_tail << " floor=" << sol.rounding_floor << "\n";
+      out << "step_apex_eps_" << eps_apex << "," << alpha << "," << beta << "," << e.nu << "," << sol.degree << ","
+          << std::abs(sol.density.integral() - exact_total) / std::abs(exact_total) << "," << sol.residual << ","
+          << seconds << "\n";
     }
   }
 

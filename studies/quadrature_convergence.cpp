@@ -60,12 +60,14 @@
 //   summed as power series at 50 digits. The study prints the largest R1 - R2 disagreement
 //   (measured: 2.2e-49; a value above 1e-30 aborts the study).
 //
-// Timing: steady_clock; a batch of calls long enough to resolve (>= 0.2 ms) is repeated for a time
-// budget (default 30 ms per measurement, --quick 2 ms) and the MINIMUM per-call time is reported.
-// The value and error are computed once, outside the timed loop.
+// Timing (support/study_support.hpp, min_time_per_call): steady_clock; a batch of calls long enough
+// to resolve (>= 0.2 ms) is repeated for a time budget (default 30 ms per measurement, --quick 2 ms)
+// and the MINIMUM per-call wall time is reported. The value and error are computed once, outside
+// the timed loop.
 //
-// Output: CSV on stdout (columns documented in studies/README.md), progress and markdown summary
-// tables on stderr. Options: --quick (< 20 s), --budget-ms X, --nmax N, --help.
+// Output: CSV on stdout (columns documented in studies/README.md; an empty cell = no value), progress,
+// the machine and its load, markdown summary tables and the run's wall and CPU time on stderr.
+// Options: --quick (< 20 s), --budget-ms X, --nmax N, --help.
 #include <rhabel/quadrature.hpp>
 
 #include <boost/math/constants/constants.hpp>
@@ -76,11 +78,10 @@
 #include <gsl/gsl_integration.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <iostream>
+#include <iterator>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
@@ -88,35 +89,20 @@
 #include <utility>
 #include <vector>
 
+#include "support/study_support.hpp"
+
 namespace {
 
 using R50 = boost::multiprecision::cpp_bin_float_50;
+using rhabel_study::format_duration;
+using rhabel_study::format_number;
 constexpr double eps = std::numeric_limits<double>::epsilon();
+constexpr double nan = std::numeric_limits<double>::quiet_NaN();
 
-// ---------------------------------------------------------------------------------------------
-// Timing: minimum per-call time over repeated batches.
-volatile double timing_sink = 0;
-
+// Minimum wall time per call (support/study_support.hpp).
 template <class F>
 double min_seconds_per_call(F&& call, double budget_seconds) {
-  using clock = std::chrono::steady_clock;
-  const auto start = clock::now();
-  std::size_t batch = 1;
-  double best = std::numeric_limits<double>::infinity();
-  for (int repetition = 0; repetition < 100000; ++repetition) {
-    const auto t0 = clock::now();
-    double sum = 0;
-    for (std::size_t i = 0; i < batch; ++i) sum += call();
-    const double dt = std::chrono::duration<double>(clock::now() - t0).count();
-    timing_sink = timing_sink + sum;
-    if (dt < 2e-4 && batch < (std::size_t{1} << 24)) {  // too short to resolve: grow the batch
-      batch *= 2;
-      continue;
-    }
-    best = std::min(best, dt / static_cast<double>(batch));
-    if (std::chrono::duration<double>(clock::now() - start).count() > budget_seconds) break;
-  }
-  return best;
+  return rhabel_study::min_time_per_call(std::forward<F>(call), budget_seconds).seconds;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -346,46 +332,29 @@ reference_value compute_reference(const weight_case& w, function_kind kind) {
 
 // ---------------------------------------------------------------------------------------------
 // Output.
+// NaN marks "no value" (an empty CSV cell): no error estimate (fixed rules), no reuse time
+// (adaptive methods), no value or error (a run that threw).
 struct row {
   std::string case_id, f_name, method, setting;
   double p = 0, q = 0;
   std::size_t n_or_evaluations = 0;
-  double value = 0, reference = 0, rel_error = 0, rel_error_estimate = -1;
+  double value = 0, reference = 0, rel_error = 0, rel_error_estimate = nan;
   std::string status = "ok";
-  double seconds = 0, seconds_reuse = -1;
+  double seconds = 0, seconds_reuse = nan;
 };
 
-std::string format_double(double v, int digits = 17) {
-  if (std::isnan(v)) return "nan";
-  char buffer[64];
-  std::snprintf(buffer, sizeof buffer, "%.*g", digits, v);
-  return buffer;
-}
-
-std::string csv_quote(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"') out += '"';
-    out += c;
-  }
-  return out + "\"";
-}
-
-void print_header() {
-  std::cout << "case,p,q,f,method,setting,n_or_evaluations,value,reference,rel_error,"
-               "rel_error_estimate,status,seconds,seconds_reuse\n";
+rhabel_study::csv_writer& csv() {
+  static rhabel_study::csv_writer writer(
+      std::cout, {"case", "p", "q", "f", "method", "setting", "n_or_evaluations", "value", "reference", "rel_error",
+                  "rel_error_estimate", "status", "seconds", "seconds_reuse"});
+  return writer;
 }
 
 void print_row(const row& r) {
-  std::cout << csv_quote(r.case_id) << ',' << format_double(r.p, 6) << ',' << format_double(r.q, 6) << ','
-            << csv_quote(r.f_name) << ',' << r.method << ',' << r.setting << ',' << r.n_or_evaluations << ','
-            << format_double(r.value) << ',' << format_double(r.reference) << ','
-            << format_double(r.rel_error, 4) << ','
-            << (r.rel_error_estimate >= 0 ? format_double(r.rel_error_estimate, 4) : std::string()) << ','
-            << csv_quote(r.status) << ',' << format_double(r.seconds, 4) << ','
-            << (r.seconds_reuse >= 0 ? format_double(r.seconds_reuse, 4) : std::string()) << '\n';
-  std::cout.flush();
+  csv().row({r.case_id, format_number(r.p, 6), format_number(r.q, 6), r.f_name, r.method, r.setting,
+             std::to_string(r.n_or_evaluations), format_number(r.value), format_number(r.reference),
+             format_number(r.rel_error, 4), format_number(r.rel_error_estimate, 4), r.status,
+             format_number(r.seconds, 4), format_number(r.seconds_reuse, 4)});
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -408,11 +377,9 @@ struct gsl_counted {
 };
 
 // |value - reference| / |reference| in 50 digits, so that rounding the reference to double adds
-// nothing (errors of ~1e-16 are reported).
+// nothing (errors of ~1e-16 are reported); NaN for a non-finite value.
 double rel_error_of(double value, const R50& reference) {
-  using boost::multiprecision::abs;
-  if (!std::isfinite(value)) return std::numeric_limits<double>::quiet_NaN();
-  return R50(abs(R50(value) - reference) / abs(reference)).convert_to<double>();
+  return std::isfinite(value) ? rhabel_study::relative_error<R50>(value, reference) : nan;
 }
 
 std::string tolerance_label(double tol) {
@@ -455,7 +422,7 @@ void run_case(const weight_case& w, const char* f_name, const R50& reference, co
         r.rel_error = rel_error_of(r.value, reference);
       } catch (const std::exception& e) {
         r.status = std::string("exception: ") + e.what();
-        r.value = r.rel_error = std::numeric_limits<double>::quiet_NaN();
+        r.value = r.rel_error = nan;
       }
       emit(r);
       if (at_floor) break;
@@ -477,7 +444,7 @@ void run_case(const weight_case& w, const char* f_name, const R50& reference, co
     auto once = [&] {
       gsl_integration_fixed_workspace* work = gsl_integration_fixed_alloc(gsl_integration_fixed_jacobi, n, -1, 1, p, q);
       if (work == nullptr) throw std::runtime_error("gsl_integration_fixed_alloc failed");
-      double result = std::numeric_limits<double>::quiet_NaN();
+      double result = nan;
       const int status = gsl_integration_fixed(&F, &result, work);
       gsl_integration_fixed_free(work);
       if (status != GSL_SUCCESS) throw std::runtime_error(gsl_strerror(status));
@@ -560,7 +527,7 @@ void run_case(const weight_case& w, const char* f_name, const R50& reference, co
           r.seconds = min_seconds_per_call([&] { return integrator.integrate(functor, tol); }, opt.budget_seconds);
         } catch (const std::exception& e) {
           r.status = std::string("exception: ") + e.what();
-          r.value = r.rel_error = std::numeric_limits<double>::quiet_NaN();
+          r.value = r.rel_error = nan;
         }
         emit(r);
       }
@@ -600,75 +567,67 @@ void check_gsl_parameterisation() {
             << fixed << ", qaws " << qaws << " (ok)\n";
 }
 
-// Markdown summary: per method, the cheapest run reaching `target` and the most accurate run.
+// ---------------------------------------------------------------------------------------------
+// Markdown summaries on stderr.
+const char* const all_methods[] = {"rhabel_gauss_jacobi", "gsl_fixed_jacobi", "gsl_qaws", "boost_tanh_sinh_naive",
+                                   "boost_tanh_sinh_complement"};
+
+// Of the runs of one method on one case with a finite error: the cheapest (least time) that reached
+// `target`, and the most accurate (ties: the faster); either may be null.
+struct chosen_runs {
+  const row* cheapest = nullptr;
+  const row* best = nullptr;
+};
+
+chosen_runs choose_runs(const std::vector<row>& rows, const std::string& case_id, const char* method, double target) {
+  chosen_runs c;
+  for (const row& r : rows) {
+    if (r.case_id != case_id || r.method != method || !std::isfinite(r.rel_error)) continue;
+    if (r.rel_error <= target && (c.cheapest == nullptr || r.seconds < c.cheapest->seconds)) c.cheapest = &r;
+    if (c.best == nullptr || r.rel_error < c.best->rel_error ||
+        (r.rel_error == c.best->rel_error && r.seconds < c.best->seconds))
+      c.best = &r;
+  }
+  return c;
+}
+
+// Per method, the cheapest run reaching `target` and the most accurate run.
 void print_summary(const std::vector<row>& rows, const std::string& case_id, double target) {
   std::cerr << "\n#### " << case_id << "\n\n"
             << "| method | setting | evaluations | rel. error | time per integral |\n"
             << "| --- | --- | ---: | ---: | ---: |\n";
-  const char* methods[] = {"rhabel_gauss_jacobi", "gsl_fixed_jacobi", "gsl_qaws", "boost_tanh_sinh_naive",
-                           "boost_tanh_sinh_complement"};
-  auto time_label = [](double s) {
-    char buffer[32];
-    if (s < 1e-3)
-      std::snprintf(buffer, sizeof buffer, "%.3g us", s * 1e6);
-    else
-      std::snprintf(buffer, sizeof buffer, "%.3g ms", s * 1e3);
-    return std::string(buffer);
-  };
-  for (const char* method : methods) {
-    const row* cheapest = nullptr;
-    const row* best = nullptr;
-    for (const row& r : rows) {
-      if (r.case_id != case_id || r.method != method || !std::isfinite(r.rel_error)) continue;
-      if (r.rel_error <= target && (cheapest == nullptr || r.seconds < cheapest->seconds)) cheapest = &r;
-      if (best == nullptr || r.rel_error < best->rel_error ||
-          (r.rel_error == best->rel_error && r.seconds < best->seconds))
-        best = &r;
-    }
+  for (const char* method : all_methods) {
+    const chosen_runs c = choose_runs(rows, case_id, method, target);
     auto line = [&](const row* r, const char* note) {
       std::cerr << "| " << method << note << " | " << r->setting << " | " << r->n_or_evaluations << " | "
-                << format_double(r->rel_error, 2) << " | " << time_label(r->seconds) << " |\n";
+                << format_number(r->rel_error, 2) << " | " << format_duration(r->seconds) << " |\n";
     };
-    if (cheapest != nullptr) line(cheapest, " (cheapest to 1e-10)");
+    if (c.cheapest != nullptr) line(c.cheapest, " (cheapest to 1e-10)");
     else std::cerr << "| " << method << " (cheapest to 1e-10) | never reached | | | |\n";
-    if (best != nullptr && best != cheapest) line(best, " (most accurate)");
+    if (c.best != nullptr && c.best != c.cheapest) line(c.best, " (most accurate)");
   }
 }
 
-// Markdown overview, one line per case: for each method the time of the cheapest run that reached
-// `target`, with its n or evaluation count, or "never" and the best error reached.
+// One line per case: for each method the time of the cheapest run that reached `target`, with its
+// n or evaluation count, or "never" and the best error reached.
 void print_overview(const std::vector<row>& rows, const std::vector<std::string>& case_ids, double target) {
-  const char* methods[] = {"rhabel_gauss_jacobi", "gsl_fixed_jacobi", "gsl_qaws", "boost_tanh_sinh_naive",
-                           "boost_tanh_sinh_complement"};
   std::cerr << "\n| f | p | q |";
-  for (const char* m : methods) std::cerr << ' ' << m << " |";
+  for (const char* m : all_methods) std::cerr << ' ' << m << " |";
   std::cerr << "\n| --- | ---: | ---: |";
-  for (std::size_t i = 0; i < std::size(methods); ++i) std::cerr << " ---: |";
+  for (std::size_t i = 0; i < std::size(all_methods); ++i) std::cerr << " ---: |";
   std::cerr << '\n';
   for (const std::string& id : case_ids) {
-    const row* any = nullptr;
-    for (const row& r : rows)
-      if (r.case_id == id) {
-        any = &r;
-        break;
-      }
-    if (any == nullptr) continue;
+    const auto any = std::find_if(rows.begin(), rows.end(), [&](const row& r) { return r.case_id == id; });
+    if (any == rows.end()) continue;
     std::cerr << "| " << any->f_name << " | " << any->p << " | " << any->q << " |";
-    for (const char* method : methods) {
-      const row* cheapest = nullptr;
-      const row* best = nullptr;
-      for (const row& r : rows) {
-        if (r.case_id != id || r.method != method || !std::isfinite(r.rel_error)) continue;
-        if (r.rel_error <= target && (cheapest == nullptr || r.seconds < cheapest->seconds)) cheapest = &r;
-        if (best == nullptr || r.rel_error < best->rel_error) best = &r;
-      }
+    for (const char* method : all_methods) {
+      const chosen_runs c = choose_runs(rows, id, method, target);
       char cell[96];
-      if (cheapest != nullptr) {
-        const double s = cheapest->seconds;
-        std::snprintf(cell, sizeof cell, "%.3g %s (%zu)", s < 1e-3 ? s * 1e6 : s * 1e3, s < 1e-3 ? "us" : "ms",
-                      cheapest->n_or_evaluations);
-      } else if (best != nullptr) {
-        std::snprintf(cell, sizeof cell, "never; best %.1e", best->rel_error);
+      if (c.cheapest != nullptr) {
+        std::snprintf(cell, sizeof cell, "%s (%zu)", format_duration(c.cheapest->seconds).c_str(),
+                      c.cheapest->n_or_evaluations);
+      } else if (c.best != nullptr) {
+        std::snprintf(cell, sizeof cell, "never; best %.1e", c.best->rel_error);
       } else {
         std::snprintf(cell, sizeof cell, "failed");
       }
@@ -682,54 +641,30 @@ void print_overview(const std::vector<row>& rows, const std::vector<std::string>
 // (or, if none did, the most accurate run), side by side.
 void print_headline(const std::vector<row>& rows, const std::string& case_a, const std::string& case_b,
                     double target) {
-  const char* methods[] = {"rhabel_gauss_jacobi", "gsl_fixed_jacobi", "gsl_qaws", "boost_tanh_sinh_naive",
-                           "boost_tanh_sinh_complement"};
-  auto time_label = [](double s) {
-    char buffer[32];
-    if (s < 1e-3)
-      std::snprintf(buffer, sizeof buffer, "%.3g us", s * 1e6);
-    else
-      std::snprintf(buffer, sizeof buffer, "%.3g ms", s * 1e3);
-    return std::string(buffer);
-  };
   auto cells = [&](const std::string& id, const char* method) {
-    const row* cheapest = nullptr;
-    const row* best = nullptr;
-    for (const row& r : rows) {
-      if (r.case_id != id || r.method != method || !std::isfinite(r.rel_error)) continue;
-      if (r.rel_error <= target && (cheapest == nullptr || r.seconds < cheapest->seconds)) cheapest = &r;
-      if (best == nullptr || r.rel_error < best->rel_error) best = &r;
-    }
-    const row* shown = cheapest != nullptr ? cheapest : best;
+    const chosen_runs c = choose_runs(rows, id, method, target);
+    const row* shown = c.cheapest != nullptr ? c.cheapest : c.best;
     if (shown == nullptr) return std::string("| failed | | | ");
-    std::string time = time_label(shown->seconds);
-    if (shown->seconds_reuse >= 0) time += " (" + time_label(shown->seconds_reuse) + " reused)";
-    return "| " + shown->setting + (cheapest == nullptr ? " (never reached; most accurate)" : "") + " | " +
-           std::to_string(shown->n_or_evaluations) + " | " + format_double(shown->rel_error, 2) + " | " + time + " ";
+    std::string time = format_duration(shown->seconds);
+    if (!std::isnan(shown->seconds_reuse)) time += " (" + format_duration(shown->seconds_reuse) + " reused)";
+    return "| " + shown->setting + (c.cheapest == nullptr ? " (never reached; most accurate)" : "") + " | " +
+           std::to_string(shown->n_or_evaluations) + " | " + format_number(shown->rel_error, 2) + " | " + time + " ";
   };
   std::cerr << "\n| method | " << case_a << ": setting | evals | rel. error | time | " << case_b
             << ": setting | evals | rel. error | time |\n| --- | --- | ---: | ---: | ---: | --- | ---: | ---: | ---: |\n";
-  for (const char* method : methods)
+  for (const char* method : all_methods)
     std::cerr << "| " << method << ' ' << cells(case_a, method) << cells(case_b, method) << "|\n";
 }
 
-// Markdown sweep table of one case (the README's headline): every n >= 4 of the fixed rules and
-// the tolerances 1e-3, 1e-6, 1e-9, 1e-12 and the smallest one of the adaptive methods.
+// Sweep table of one case (the README's headline): every n >= 4 of the fixed rules and the
+// tolerances 1e-3, 1e-6, 1e-9, 1e-12 and the smallest one of the adaptive methods.
 void print_sweep(const std::vector<row>& rows, const std::string& case_id) {
-  auto time_label = [](double s) {
-    if (s < 0) return std::string("-");
-    char buffer[32];
-    if (s < 1e-3)
-      std::snprintf(buffer, sizeof buffer, "%.3g us", s * 1e6);
-    else
-      std::snprintf(buffer, sizeof buffer, "%.3g ms", s * 1e3);
-    return std::string(buffer);
-  };
   std::cerr << "\n#### " << case_id << "\n\n"
             << "| method | n or tol | evaluations | rel. error | error estimate | time | time, rule reused |\n"
             << "| --- | --- | ---: | ---: | ---: | ---: | ---: |\n";
   const char* shown_tolerances[] = {"tol=1.0e-03", "tol=1.0e-06", "tol=1.0e-09", "tol=1.0e-12", "tol=1.2e-14",
                                     "tol=1.0e-15"};
+  auto or_dash = [](const std::string& cell) { return cell.empty() ? std::string("-") : cell; };
   for (const row& r : rows) {
     if (r.case_id != case_id) continue;
     const bool fixed = r.setting.rfind("n=", 0) == 0;
@@ -738,9 +673,9 @@ void print_sweep(const std::vector<row>& rows, const std::string& case_id) {
                       std::end(shown_tolerances))
       continue;
     std::cerr << "| " << r.method << " | " << r.setting << " | " << r.n_or_evaluations << " | "
-              << format_double(r.rel_error, 2) << (r.status == "ok" ? "" : " (" + r.status + ")") << " | "
-              << (r.rel_error_estimate >= 0 ? format_double(r.rel_error_estimate, 2) : std::string("-")) << " | "
-              << time_label(r.seconds) << " | " << time_label(r.seconds_reuse) << " |\n";
+              << or_dash(format_number(r.rel_error, 2)) << (r.status == "ok" ? "" : " (" + r.status + ")") << " | "
+              << or_dash(format_number(r.rel_error_estimate, 2)) << " | " << format_duration(r.seconds) << " | "
+              << format_duration(r.seconds_reuse) << " |\n";
   }
 }
 
@@ -748,29 +683,20 @@ void print_sweep(const std::vector<row>& rows, const std::string& case_id) {
 
 int main(int argc, char** argv) {
   options opt;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    if (arg == "--quick") {
-      opt.budget_seconds = 0.002;
-      opt.n_max = 512;
-    } else if (arg == "--budget-ms" && i + 1 < argc) {
-      opt.budget_seconds = std::atof(argv[++i]) / 1000;
-    } else if (arg == "--nmax" && i + 1 < argc) {
-      opt.n_max = static_cast<std::size_t>(std::atol(argv[++i]));
-    } else {
-      std::cerr << "usage: study_quadrature_convergence [--quick] [--budget-ms X] [--nmax N]\n"
-                   "  CSV on stdout; progress and markdown summaries on stderr.\n"
-                   "  --quick       2 ms timing budget per measurement, n <= 512 (runs in < 20 s)\n"
-                   "  --budget-ms X timing budget per measurement (default 30)\n"
-                   "  --nmax N      largest n for the fixed rules (default 1024)\n";
-      return arg == "--help" ? 0 : 2;
-    }
-  }
+  const int exit_code = rhabel_study::parse_command_line(
+      argc, argv, "study_quadrature_convergence", "CSV on stdout; progress and markdown summaries on stderr.",
+      {rhabel_study::switch_option("--quick", "2 ms timing budget per measurement, n <= 512 (runs in < 20 s)",
+                                   [&] { opt.budget_seconds = 0.002; opt.n_max = 512; }),
+       rhabel_study::budget_ms_option(opt.budget_seconds, "timing budget per measurement"),
+       rhabel_study::size_option("--nmax", opt.n_max, "largest n for the fixed rules")});
+  if (exit_code >= 0) return exit_code;
+  const rhabel_study::run_record run;
+  std::cerr << rhabel_study::run_record::machine_and_load() << '\n';
   gsl_set_error_handler_off();  // statuses are recorded in the CSV, never abort
   check_gsl_parameterisation();
 
   const weight_case weights[] = {{-0.5, 0}, {-0.9, 0}, {-0.99, 0}, {-0.99, -0.5}};
-  print_header();
+  csv();  // the CSV header
   std::vector<row> rows;
   double worst_cross_check = 0;
   for (const weight_case& w : weights) {
@@ -808,5 +734,6 @@ int main(int argc, char** argv) {
   std::cerr << "\n### Headline sweeps\n";
   print_sweep(rows, "cos(3x) @ p=-0.9 q=0");
   print_sweep(rows, "1/(1.01-x) @ p=-0.99 q=0");
+  std::cerr << '\n' << run.totals() << '\n';
   return 0;
 }

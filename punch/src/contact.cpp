@@ -6,6 +6,7 @@
 
 #include "rhabel/quadrature/gauss_jacobi.hpp"
 #include "rhabel/quadrature/jacobi_polynomial.hpp"
+#include "rhabel/riemann/abel_solver.hpp"
 
 #include <Eigen/Dense>
 #include <boost/math/constants/constants.hpp>
@@ -31,6 +32,14 @@ namespace {
 
 constexpr double pi = boost::math::constants::pi<double>();
 constexpr double boundary_width = 1e-12;  // |alpha + beta/2 - 1/2| below this is "boundary"
+// Wedge below the boundary, apex at distance min(eps, 1 - eps) L from an edge. abel::solve_step's
+// accuracy degrades as the apex approaches an edge (its Taylor factor q has radius 1 - |x0|).
+// Measured (alpha = 0.2, beta = 0, tolerance 1e-14, C_f against the Riemann-Hilbert route):
+// 1.6e-13 at min(eps, 1 - eps) = 0.25, 4e-9 (degree 129) at 0.042, 2e-3 at 5e-4; alpha = 0: 1e-4
+// at 0.02. So: at or below near_edge the isolated wedge takes C_f from the Riemann-Hilbert route;
+// at or below enrich_limit the density is the plain Jacobi series instead of the enriched one.
+constexpr double near_edge = 0.1;
+constexpr double enrich_limit = 1e-3;
 
 using detail::edge_exponents;
 using detail::forcing;
@@ -107,10 +116,10 @@ mapped map_to_reference(double s, double a, double b) {
 // ---------------------------------------------------------------------------------------------
 // Image coefficients: F(s) = sum_m d_m P_m^(p, q)(y) on [a, b], p = gam + nu (at y = +1),
 // q = del + nu (at y = -1). Returns d_0 .. d_M. Kept here (not abel::solve_piecewise) for forcings
-// with steps and for d_0 alone: the steps' coefficients in closed form (Rodrigues), M + 8 Gauss-Jacobi
-// nodes for the smooth part (the wedge's apex-split remainder is only C^3: solve_piecewise's
-// M/2 + 24 nodes per piece failed the split tests, 3e-6 load defect instead of < 1e-6), and the
-// Chebyshev fallback for a non-integrable image weight (nu = -1 above the boundary).
+// with steps and for d_0 alone (the orthogonality root of coupled wedges and general profiles with
+// corners, the plain series of a wedge whose apex is next to an edge): the steps' coefficients in
+// closed form (Rodrigues), M + 8 Gauss-Jacobi nodes for the smooth part, and the Chebyshev fallback
+// for a non-integrable image weight (nu = -1 above the boundary), which solve_piecewise rejects.
 struct image_expansion {
   std::vector<double> d;
   double tail = 0;
@@ -236,30 +245,31 @@ double apply_outside(const contact_density& g, double s, const abel::abel_parame
   }
   const abel::abel_operator<double> op(par, g.a(), g.b());
   double result = op.apply(g.jacobi, s);
-  if (g.has_apex) {
-    const double L = g.length();
-    const double y = s < g.a() ? -1 - 2 * (g.a() - s) / L : 1 + 2 * (s - g.b()) / L;
-    result += g.apex.sigma * std::pow(L / 2, alpha) * g.apex.apply(y);
-  }
+  if (g.has_apex) result += abel::apply(op, g.apex, s);
   return result;
 }
 
 // (8) evaluated at points s inside the support by an independent quadrature of the two one-sided
 // integrals (abel_operator::quadrature_evaluator, built once per density; it does not use the
-// spectral relation, so it checks it), plus the apex part.
+// spectral relation, so it checks it), plus the apex enrichment by abel::apply (its direct graded
+// quadrature of A[phi]: the same quadrature abel::solve_step used to build the data, so for that
+// part the residual checks the smooth remainder only; s must not be the apex).
 class inside_action {
  public:
   inside_action(const contact_density& g, const abel::abel_parameters<double>& par)
-      : g_(g), op_(par, g.a(), g.b()), evaluate_(op_, g.jacobi.gam, g.jacobi.del, g.jacobi.coefficients.size() + 32) {}
+      : g_(g), op_(par, g.a(), g.b()), evaluate_(op_, g.jacobi.gam, g.jacobi.del, g.jacobi.coefficients.size() + 32),
+        split_(g.apex.q.size() / 2 + 12) {}
   inside_action(const inside_action&) = delete;
   inside_action& operator=(const inside_action&) = delete;
   double operator()(double s) const {
     const auto& jd = g_.jacobi;
     double result = evaluate_([&](double x) { return jd.series(x); }, s);
     if (g_.has_apex) {
-      const double L = g_.length();
-      result += g_.apex.sigma * std::pow(L / 2, op_.parameters().alpha()) *
-                g_.apex.apply(map_to_reference(s, g_.a(), g_.b()).x);
+      // A[C phi] as abel::apply computes it inside the interval, with the split rules built once
+      // for all check points (abel::apply builds them per call).
+      const double h = op_.half_length(), y = map_to_reference(s, g_.a(), g_.b()).x;
+      result += std::pow(h, op_.parameters().alpha()) * g_.apex.enrichment *
+                abel::detail::enrichment_image_any(g_.apex, op_.parameters(), split_, y);
     }
     return result;
   }
@@ -268,6 +278,7 @@ class inside_action {
   const contact_density& g_;
   abel::abel_operator<double> op_;
   abel::abel_operator<double>::quadrature_evaluator evaluate_;
+  abel::detail::split_integrator<double> split_;  // node count as in abel::apply
 };
 
 // The action A g (s) of another indentor's density at points s of an interval [lo, hi] outside its
@@ -293,11 +304,7 @@ class cross_action {
       const double t_minus_s = right_of_ ? nodes_.t_minus_lo[q] + (g_.a() - s) : -(nodes_.hi_minus_t[q] + (s - g_.b()));
       sum += series_[q] * abel::detail::cross_kernel(par_, t_minus_s);
     }
-    if (g_.has_apex) {
-      const double L = g_.length();
-      const double y = right_of_ ? -1 - 2 * (g_.a() - s) / L : 1 + 2 * (s - g_.b()) / L;
-      sum += g_.apex.sigma * std::pow(L / 2, par_.alpha()) * g_.apex.apply(y);
-    }
+    if (g_.has_apex) sum += abel::apply(abel::abel_operator<double>(par_, g_.a(), g_.b()), g_.apex, s);
     return sum;
   }
 
@@ -322,13 +329,14 @@ struct indentor_state {
   contact_density g;
   std::string status = "ok";
   std::optional<double> epsilon;
+  std::optional<double> friction;  // C_f when it does not come from g (wedge, apex next to an edge)
+  double friction_error = 0;       // its error estimate
   bool solved = false;
 };
 
 struct context {
   double alpha = 0, beta = 0, kappa = 0, offset = 0;
   double gamma_factor = 1;  // Gamma(1 - alpha)
-  double one_minus_kappa_over_alpha = 0;  // (1 - kappa)/alpha, -> pi tan(beta pi/2) at alpha = 0
   double pressure_scale = 1;  // (pi/2) E_U
   solve_options options;
   // The operator's parameters for rhabel::abel; on the boundary (kappa = 0 above) kappa is exactly 0.
@@ -341,6 +349,69 @@ struct context {
   /// Edge exponents of the class of index nu (see leading_edge, trailing_edge).
   edge_exponents exponents(int nu) const { return par.exponents(leading_edge(nu), trailing_edge(nu)); }
 };
+
+context make_context(const material& m, double speed, const solve_options& options) {
+  context cx;
+  cx.alpha = m.alpha;
+  cx.beta = material_beta(m);
+  cx.kappa = material_kappa(m);
+  cx.offset = regime_offset(m);
+  if (std::abs(cx.offset) <= boundary_width) cx.offset = 0;
+  cx.gamma_factor = boost::math::tgamma(1 - cx.alpha);
+  cx.pressure_scale = pi / 2 * m.effective_modulus(speed);
+  cx.options = options;
+  cx.set_parameters();
+  return cx;
+}
+
+// C_f = (S1 int_a^apex g - S2 int_apex^b g) / int g, each part integrated directly (not as the
+// total minus the other), so that C_f keeps its relative accuracy at extreme slope ratios, where
+// one part is tiny and multiplied by the large slope.
+// The smaller part is integrated directly, the larger one is the total minus it (no cancellation:
+// it is at least about half the total).
+double wedge_friction(const contact_density& g, const wedge& w, double apex) {
+  const double total = g.integral();
+  double ahead, behind;
+  if (apex - g.a() <= g.b() - apex) {
+    ahead = g.integral_to(apex);
+    behind = total - ahead;
+  } else {
+    behind = g.integral_from(apex);
+    ahead = total - behind;
+  }
+  return (w.slope_leading * ahead - w.slope_trailing * behind) / total;
+}
+
+// Sets c_0 of the series so that int g = load: int g = (L/2) c_0 h_0 + int (apex part), and c_0
+// enters nothing else. For the isolated wedge the exact load is known in closed form while the
+// projection's c_0 (through the image coefficient d_1) cancels at extreme slope ratios.
+void set_load(contact_density& g, double load) {
+  if (g.jacobi.coefficients.empty()) return;
+  const double h0 = quadrature::jacobi_norm_squared<double>(0, g.jacobi.del, g.jacobi.gam);
+  g.jacobi.coefficients[0] = (load - g.apex_integral) / (g.length() / 2 * h0);
+}
+
+// C_f of an isolated wedge below the boundary by the Riemann-Hilbert route (riemann::solve_abel_rh,
+// order 16: Riemann problem + Abel inversion, graded toward the apex), on the unit interval
+// [-eps, 1 - eps] (C_f does not depend on the scale). Used when the apex is next to an edge, where
+// abel::solve_step's Taylor factor limits it: int_a^apex g is integrated directly, so C_f keeps its
+// accuracy for eps -> 0; for eps -> 1, int_apex^b g = total - int_a^apex g loses ~1e-16 of the
+// total, i.e. ~1e-16 (S1 + S2) absolute in C_f (and riemann's int_a^y loses accuracy for y within
+// 1e-9 of b: riemann/abel_solver.hpp). Returns (C_f, estimate of its error).
+std::pair<double, double> wedge_friction_rh(const context& cx, double S1, double S2, double eps, double one_minus_eps) {
+  const double gf = cx.gamma_factor;
+  riemann::piecewise_function<double> F{[S1, gf](double) { return S1 / gf; }, {{0.0, -(S1 + S2) / gf}}};
+  riemann::abel_rh_options<double> o;
+  o.order = 16;
+  const auto sol = riemann::solve_abel_rh(cx.alpha, cx.beta, -eps, one_minus_eps, F, riemann::edge::bounded,
+                                          riemann::edge::bounded, o);
+  const auto total = sol.total(), ahead = sol.integral(0.0);
+  const double behind = total.value - ahead.value;
+  const double cf = (S1 * ahead.value - S2 * behind) / total.value;
+  const double err = (S1 + S2) * (ahead.error_estimate + total.error_estimate) / std::abs(total.value) +
+                     (S1 + S2) * 4 * std::numeric_limits<double>::epsilon();
+  return {cf, err};
+}
 
 // Own slope f' of an indentor at absolute position s.
 double own_slope(const indentor_state& st, double s) {
@@ -512,33 +583,41 @@ double solve_length(Fn load_of, double L0, double target, double exponent, doubl
 // ---------------------------------------------------------------------------------------------
 // Per-shape contact solvers. Each fills st.g for the current forcing (others held fixed).
 
-// Wedge density on [a, b] with the apex singularity split off (detail::apex_part): the step of F
-// at the apex (jump -(S1+S2)/Gamma(1-alpha)) is carried by sigma h exactly, the rest of F (the
-// faces' constants, the other indentors' smooth action) by the spectral expansion.
-contact_density build_wedge_split(double a, double b, double apex, double S1, double S2, const context& cx,
-                                   const edge_exponents& e, const forcing& F) {
-  const double L = b - a, alpha = cx.alpha, gf = cx.gamma_factor;
-  detail::apex_part ap;
-  ap.alpha = alpha;
-  ap.kappa = cx.kappa;
-  ap.one_minus_kappa_over_alpha = cx.one_minus_kappa_over_alpha;
-  const mapped m0 = map_to_reference(apex, a, b);
-  ap.x0 = m0.x;
-  ap.r = std::min(m0.one_plus, m0.one_minus);
-  const double scale = std::pow(L / 2, alpha);
-  ap.sigma = -(S1 + S2) / (gf * scale) / ap.jump();
-  forcing rest;
+// Wedge density on [a, b] for a forcing with ONE step, at the apex (jump -(S1+S2)/Gamma(1-alpha)):
+// abel::solve_step builds the apex singularity in (g = C phi + w sum c_n P_n, C from the jump in
+// closed form), the rest of F (the faces' constants, the other indentors' smooth action) is solved
+// spectrally with adaptive Chebyshev interpolation. The series is moved to g.jacobi, C phi stays
+// in g.apex (with an empty series of its own).
+contact_density build_wedge_step(double a, double b, double apex, int nu, const context& cx, const forcing& F) {
+  const abel::abel_operator<double> op(cx.par, a, b);
+  abel::solve_options<double> o;
+  o.residual_points = 0;
+  o.tolerance = cx.options.tolerance;
+  // Chebyshev points 17, 33, ..., 2 max_degree + 1: the remainder after the enrichment is smooth, so
+  // the cost is dominated by the quadrature of A[phi] at the points, not by the degree.
+  o.max_degree = 2 * std::max<std::size_t>(cx.options.max_degree, 8) + 1;
   const auto smooth = F.smooth;
   const auto steps = F.steps;
-  rest.smooth = [=](double s) {
-    double f = smooth ? smooth(s) : 0.0;
+  auto f = [&](double s) {
+    double v = smooth ? smooth(s) : 0.0;
     for (const auto& [position, jump] : steps)
-      if (s > position) f += jump;
-    return f - ap.sigma * scale * ap.apply(map_to_reference(s, a, b).x);
+      if (s > position) v += jump;
+    return v;
   };
-  contact_density g = build(a, b, cx, e, rest, false);
+  auto sol = abel::solve_step(op, leading_edge(nu), trailing_edge(nu), f, apex, o);
+  contact_density g;
+  g.nu = nu;
+  g.jacobi = std::move(sol.density.smooth);
+  g.apex = std::move(sol.density);
+  g.apex.smooth.coefficients.clear();
+  g.apex.smooth.lo = g.jacobi.lo;
+  g.apex.smooth.hi = g.jacobi.hi;
+  g.apex.smooth.gam = g.jacobi.gam;
+  g.apex.smooth.del = g.jacobi.del;
   g.has_apex = true;
-  g.apex = ap;
+  g.update_apex_integral();
+  g.tail = sol.coefficient_tail;
+  if (sol.status != abel::solve_status::converged) g.tail = std::max(g.tail, cx.options.tolerance);
   return g;
 }
 
@@ -623,6 +702,16 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
   // complementary equation so that both are accurate at extreme slope ratios.
   const double eps = boost::math::ibeta_inv(e.del, e.gam, S2 / (S1 + S2));
   const double one_minus_eps = boost::math::ibeta_inv(e.gam, e.del, S1 / (S1 + S2));
+  // int g of the isolated wedge on the unit interval, in closed form: the moment formula of the
+  // Riemann-Hilbert route (riemann/abel_solver.hpp: int g = (c/pi) int (t-a)^((beta-1)/2)
+  // (b-t)^((1-beta)/2-alpha) F) gives (c/(pi Gamma(1-alpha))) [(S1 + S2) B_eps(del, gam + 1) -
+  // S2 B(del, gam + 1)] (c = cos(beta pi/2)), which cancels badly at extreme slope ratios; with
+  // B_x(a, b + 1) = (b B_x(a, b) + x^a (1-x)^b)/(a + b) and the eps condition (S1 + S2) B_eps(del, gam)
+  // = S2 B(del, gam) it is (c/(pi Gamma(1-alpha))) (S1 + S2) eps^del (1-eps)^gam / (1 - alpha): no
+  // cancellation (alpha = 0, S1 = S2 = m: load = E* m L/2, Johnson's P = E* m a). int g scales like
+  // L^(1 - alpha).
+  const double unit_load = std::cos(cx.beta * pi / 2) / (pi * cx.gamma_factor) * (S1 + S2) *
+                           std::pow(eps, e.del) * std::pow(one_minus_eps, e.gam) / (1 - alpha);
   if (isolated && one_minus_eps * 1e14 < 1) {
     // The apex is within 1e-14 L of the trailing edge: to double precision the contact ends at the
     // apex, as on the boundary (eps -> 1 exponentially fast as alpha + beta/2 -> 1/2 or S2/S1 -> inf).
@@ -630,22 +719,30 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
     above.offset = 0;
     solve_wedge(st, above, F, isolated);
     st.status = "eps within 1e-14 of 1: solved as a contact ending at the apex";
+    if (one_minus_eps > 1e-30) {
+      // The apex singularity still carries weight (its amplitude grows with S1 + S2): C_f from the
+      // Riemann-Hilbert route on the true interval. Closer still, C_f = S1 to double precision.
+      const auto [cf, cf_err] = wedge_friction_rh(cx, S1, S2, eps, one_minus_eps);
+      st.friction = cf;
+      st.friction_error = cf_err;
+      st.status += "; C_f by the Riemann-Hilbert route";
+    }
     return;
   }
-  // The split needs room around the apex (chi's half-width is 2 min(eps, 1 - eps) on the reference
-  // axis): at 1 - eps = 0.011 it still converges (load defect 4e-8 at degree 512), at 3.5e-4 it does
-  // not; below 0.5% the plain series is used (C_f is then within ~(1 - eps) S2 of S1 anyway).
-  const bool split = cx.options.wedge_apex_split && std::min(eps, one_minus_eps) > 5e-3;
-  if (isolated && !split) {
+  // Near an edge (near_edge, enrich_limit at the top): C_f of the isolated wedge from the
+  // Riemann-Hilbert route; very near, the density is the plain series (pressure unresolved next to
+  // the apex; C_f of a coupled wedge then by Richardson extrapolation of the series).
+  const double edge_distance = std::min(eps, one_minus_eps);
+  const bool enrich = cx.options.wedge_apex_split && edge_distance > enrich_limit;
+  if (isolated && !enrich) {
     auto load_of = [&](double L) {
       const double a = st.apex - eps * L, b = st.apex + one_minus_eps * L;
       st.g = build(a, b, cx, e, F, false);
       return st.g.integral();
     };
-    // int g is exactly proportional to L^(1 - alpha), and int g = (L/2) c_0 int w with c_0 from the
-    // closed-form image coefficient d_1 of the step (Rodrigues): one evaluation fixes L exactly.
-    const double v = load_of(1.0);
-    const double L = std::pow(st.target_load / v, 1 / (1 - alpha));
+    load_of(1.0);
+    set_load(st.g, unit_load);
+    const double L = std::pow(st.target_load / unit_load, 1 / (1 - alpha));
     // The step makes the density's coefficients decay only like n^(alpha - 1/2): report the size of
     // their tail (the last quarter relative to the largest), which flags the unresolved apex.
     {
@@ -656,36 +753,44 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
         if (4 * n >= 3 * N) tail = std::max(tail, std::abs(st.g.jacobi.coefficients[n]));
       }
       st.g.tail = largest > 0 ? tail / largest : 0;
-      st.status = "apex within 0.5% of an edge (or split disabled): plain Jacobi series, pressure "
-                  "unresolved next to the apex, C_f by Richardson extrapolation";
+      st.status = "apex next to an edge (or wedge_apex_split disabled): plain Jacobi series, pressure "
+                  "unresolved next to the apex; C_f by the Riemann-Hilbert route";
     }
-    const double shrink = std::pow(L, -alpha);
-    for (double& c : st.g.jacobi.coefficients) c *= shrink;
-    st.g.jacobi.lo = st.apex - eps * L;
-    st.g.jacobi.hi = st.apex + one_minus_eps * L;
+    const auto [cf, cf_err] = wedge_friction_rh(cx, S1, S2, eps, one_minus_eps);
+    st.friction = cf;
+    st.friction_error = cf_err;
+    st.g.scale(std::pow(L, -alpha));
+    st.g.set_interval(st.apex - eps * L, st.apex + one_minus_eps * L);
     st.epsilon = eps;
     return;
   }
   if (isolated) {
-    // Exact L first: the load only needs c_0, i.e. the closed-form image coefficient d_1 of the step.
-    double L_exact = 0;
-    {
-      const double a1 = st.apex - eps, b1 = st.apex + one_minus_eps;
-      const auto img = image_coefficients(a1, b1, e, F, 1);
-      const contact_density g1 = density_from_image(a1, b1, cx.par, e, img);
-      L_exact = std::pow(st.target_load / g1.integral(), 1 / (1 - alpha));
+    // Solved at L = 1 with the apex at 0 (no rounding of apex +- eps), then scaled: g_L(t) =
+    // L^-alpha g_1((t - apex)/L), int g_L = L^(1 - alpha) int g_1.
+    forcing F0;
+    if (F.smooth) {
+      const auto smooth = F.smooth;
+      const double apex = st.apex;
+      F0.smooth = [smooth, apex](double s) { return smooth(s + apex); };
     }
-    const double a1 = st.apex - eps, b1 = st.apex + one_minus_eps;  // solved at L = 1, then rescaled
-    st.g = build_wedge_split(a1, b1, st.apex, S1, S2, cx, e, F);
-    const double L = L_exact;
-    // The split density must carry the exact load: its defect is the error estimate.
-    st.g.tail = std::abs(st.g.integral() * std::pow(L, 1 - alpha) / st.target_load - 1);
-    const double shrink = std::pow(L, -alpha);
-    for (double& c : st.g.jacobi.coefficients) c *= shrink;
-    st.g.apex.sigma *= shrink;
-    st.g.jacobi.lo = st.apex - eps * L;
-    st.g.jacobi.hi = st.apex + one_minus_eps * L;
+    for (const auto& [position, jump] : F.steps) F0.steps.push_back({position - st.apex, jump});
+    const double exact_unit_load = unit_load;
+    const double L = std::pow(st.target_load / unit_load, 1 / (1 - alpha));
+    st.g = build_wedge_step(-eps, one_minus_eps, 0.0, -1, cx, F0);
+    // The enriched density must carry the exact load: its defect joins the error estimate, then c_0
+    // is set to the exact value.
+    st.g.tail = std::max(st.g.tail, std::abs(st.g.integral() / exact_unit_load - 1));
+    set_load(st.g, exact_unit_load);
+    st.g.scale(std::pow(L, -alpha));
+    st.g.set_interval(st.apex - eps * L, st.apex + one_minus_eps * L);
     st.epsilon = eps;
+    if (edge_distance <= near_edge) {
+      const auto [cf, cf_err] = wedge_friction_rh(cx, S1, S2, eps, one_minus_eps);
+      st.friction = cf;
+      st.friction_error = cf_err;
+      st.status = "apex within 0.1 L of an edge: C_f by the Riemann-Hilbert route; pressure from the "
+                  "enriched density (error_estimate)";
+    }
     return;
   }
   // Coupled: generic orthogonality root (the step part of d_0 is exact, the smooth part by quadrature).
@@ -693,10 +798,10 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
   solve_smooth_edges(st, cx, F, L_guess, st.apex + one_minus_eps * L_guess, 1 - alpha);
   const double e_now = (st.apex - st.g.jacobi.lo) / st.g.length();
   st.epsilon = e_now;
-  if (cx.options.wedge_apex_split && std::min(e_now, 1 - e_now) > 5e-3) {
+  if (cx.options.wedge_apex_split && std::min(e_now, 1 - e_now) > enrich_limit) {
     const double load = st.g.integral();  // exact: c_0 needs only d_1 (closed form for the step)
-    st.g = build_wedge_split(st.g.jacobi.lo, st.g.jacobi.hi, st.apex, S1, S2, cx, e, F);
-    st.g.tail = std::abs(st.g.integral() / load - 1);
+    st.g = build_wedge_step(st.g.jacobi.lo, st.g.jacobi.hi, st.apex, -1, cx, F);
+    st.g.tail = std::max(st.g.tail, std::abs(st.g.integral() / load - 1));
   }
 }
 
@@ -758,6 +863,14 @@ void validate(const scene& s) {
 std::string indentor_name(std::size_t i, const indentor& ind) {
   static const char* names[] = {"parabolic", "wedge", "flat", "general_profile"};
   return "indentors[" + std::to_string(i) + "] (" + names[ind.shape.index()] + ")";
+}
+
+// C phi of an enriched density at the point with reference distances 1 + x, 1 - x and offset
+// dx0 = x - x0 from the apex, whichever is exact (phi is singular at x0: x - x0 must not be rounded).
+double enrichment_at(const abel::enriched_density<double>& e, double one_plus, double one_minus, double dx0) {
+  const double x = one_plus <= one_minus ? one_plus - 1 : 1 - one_minus;
+  return e.enrichment * std::pow(one_minus, e.smooth.del) * std::pow(one_plus, e.smooth.gam) * e.q_at(x) *
+         e.E_full(std::abs(dx0), dx0 > 0);
 }
 
 // Non-const: Boost 1.74 defines tanh_sinh::integrate(f, a, b) without the const of its declaration.
@@ -833,18 +946,7 @@ trial_result trial_interval(const material& m, double speed, const indentor& ind
                                 ", b = " + std::to_string(b));
   if (std::holds_alternative<flat>(ind.shape))
     throw std::invalid_argument("rhabel::punch::trial_interval: a flat punch has no trial family (its interval is fixed)");
-  context cx;
-  cx.alpha = m.alpha;
-  cx.beta = material_beta(m);
-  cx.kappa = material_kappa(m);
-  cx.offset = regime_offset(m);
-  cx.gamma_factor = boost::math::tgamma(1 - cx.alpha);
-  cx.one_minus_kappa_over_alpha = cx.alpha == 0 ? pi * std::tan(cx.beta * pi / 2)
-                                                : 2 * std::sin((cx.alpha + cx.beta) * pi / 2) *
-                                                      std::sin(cx.alpha * pi / 2) / (std::cos(cx.beta * pi / 2) * cx.alpha);
-  cx.pressure_scale = pi / 2 * m.effective_modulus(speed);
-  cx.options = options;
-  cx.set_parameters();
+  const context cx = make_context(m, speed, options);
   std::vector<indentor_state> st(1);
   st[0].source = &sc.indentors[0];
   st[0].k = static_cast<kind>(ind.shape.index());
@@ -853,8 +955,7 @@ trial_result trial_interval(const material& m, double speed, const indentor& ind
   const edge_exponents e = cx.exponents(0);
   contact_density g;
   if (st[0].k == kind::wedge && ind.apex > a && ind.apex < b && options.wedge_apex_split) {
-    const auto& w = std::get<wedge>(ind.shape);
-    g = build_wedge_split(a, b, ind.apex, w.slope_leading, w.slope_trailing, cx, e, F);
+    g = build_wedge_step(a, b, ind.apex, 0, cx, F);
   } else {
     g = build(a, b, cx, e, F, F.steps.empty());
   }
@@ -863,9 +964,7 @@ trial_result trial_interval(const material& m, double speed, const indentor& ind
   out.load = cx.pressure_scale * total;
   out.error_estimate = g.tail;
   if (st[0].k == kind::wedge) {
-    const auto& w = std::get<wedge>(ind.shape);
-    const double behind = ind.apex <= a ? total : g.integral_from(ind.apex);
-    out.hysteretic_friction = (w.slope_leading * (total - behind) - w.slope_trailing * behind) / total;
+    out.hysteretic_friction = wedge_friction(g, std::get<wedge>(ind.shape), ind.apex);
   } else {
     out.hysteretic_friction = mean_slope(st[0], g);
   }
@@ -882,21 +981,7 @@ scene_result solve(const scene& s, const solve_options& options) {
   validate(s);
   if (!(options.tolerance > 0) || !(options.tolerance < 1))
     throw std::invalid_argument("rhabel::punch::solve: options.tolerance must be in (0, 1)");
-  context cx;
-  cx.alpha = s.material.alpha;
-  cx.beta = material_beta(s.material);
-  cx.kappa = material_kappa(s.material);
-  cx.offset = regime_offset(s.material);
-  if (std::abs(cx.offset) <= boundary_width) cx.offset = 0;
-  cx.gamma_factor = boost::math::tgamma(1 - cx.alpha);
-  // 1 - kappa = 2 sin((alpha+beta) pi/2) sin(alpha pi/2)/cos(beta pi/2): no cancellation near alpha = 0.
-  cx.one_minus_kappa_over_alpha = cx.alpha == 0 ? pi * std::tan(cx.beta * pi / 2)
-                                                : 2 * std::sin((cx.alpha + cx.beta) * pi / 2) *
-                                                      std::sin(cx.alpha * pi / 2) / (std::cos(cx.beta * pi / 2) * cx.alpha);
-  if (cx.offset == 0) cx.one_minus_kappa_over_alpha = 1 / cx.alpha;
-  cx.pressure_scale = pi / 2 * s.material.effective_modulus(s.speed);
-  cx.options = options;
-  cx.set_parameters();
+  const context cx = make_context(s.material, s.speed, options);
 
   // Indentors sorted by apex (leading first).
   std::vector<std::size_t> order(s.indentors.size());
@@ -976,9 +1061,7 @@ scene_result solve(const scene& s, const solve_options& options) {
   out.regime = regime(s.material);
   out.indentors.resize(st.size());
   const double ps = cx.pressure_scale;
-  const double omk_over_alpha = cx.alpha == 0 ? pi * std::tan(cx.beta * pi / 2)
-                                              : 2 * std::sin((cx.alpha + cx.beta) * pi / 2) *
-                                                    std::sin(cx.alpha * pi / 2) / (std::cos(cx.beta * pi / 2) * cx.alpha);
+  const double omk_over_alpha = cx.par.one_minus_kappa_over_alpha();
   double worst_residual = 0;
   for (std::size_t i = 0; i < st.size(); ++i) {
     const auto& g = st[i].g;
@@ -994,9 +1077,14 @@ scene_result solve(const scene& s, const solve_options& options) {
     // Hysteretic friction C_f = int f' g / int g with the indentor's own f'.
     if (g.line_load) {
       r.hysteretic_friction = 0;
+    } else if (st[i].friction) {
+      r.hysteretic_friction = *st[i].friction;
+      r.error_estimate = std::max(r.error_estimate, st[i].friction_error);
+    } else if (st[i].k == kind::wedge && (g.has_apex || cx.offset >= 0)) {
+      r.hysteretic_friction = wedge_friction(g, std::get<wedge>(st[i].source->shape), st[i].apex);
     } else if (st[i].k == kind::wedge) {
       const auto& w = std::get<wedge>(st[i].source->shape);
-      // C_f = S1 - (S1 + S2) int_apex^b g / int g. The Jacobi series of int_apex^b g converges only
+      // Plain series (apex next to an edge): C_f = S1 - (S1 + S2) int_apex^b g / int g. The Jacobi series of int_apex^b g converges only
       // algebraically (the step of F at the apex): its truncation error behaves like
       // N^(alpha-1) (1 + O(1/N)), so the partial sums at N/4, N/2, N are Richardson-extrapolated
       // with the exponents alpha - 1 and alpha - 2; the spread of the extrapolants is the estimate.
@@ -1007,7 +1095,7 @@ scene_result solve(const scene& s, const solve_options& options) {
       };
       const std::size_t N = g.jacobi.coefficients.size();
       double behind = fraction_behind(N);
-      if (cx.offset < 0 && N >= 32 && !g.has_apex) {
+      if (N >= 32) {
         const double s1 = fraction_behind(N / 4), s2 = fraction_behind(N / 2), s3 = behind;
         const double r1 = std::pow(2.0, 1 - cx.alpha), r2 = std::pow(2.0, 2 - cx.alpha);
         const double e12 = s2 + (s2 - s1) / (r1 - 1), e23 = s3 + (s3 - s2) / (r1 - 1);
@@ -1048,8 +1136,10 @@ scene_result solve(const scene& s, const solve_options& options) {
       r.peak_pressure = std::numeric_limits<double>::infinity();
       r.peak_pressure_at = g.jacobi.lo;
     }
-    // Residual of (8) at interior check points, by an independent quadrature (alpha > 0).
-    if (!g.line_load && cx.alpha >= 1e-3) {
+    // Residual of (8) at interior check points, by an independent quadrature.
+    // abel's quadrature_evaluator and enrichment image are uniform down to alpha = 0 (kernel
+    // singularity subtracted for small alpha), so the elastic limit is checked too.
+    if (!g.line_load) {
       double worst = 0, scale = 0;
       const inside_action apply_inside(g, cx.par);
       for (int k = 1; k <= 7; ++k) {
@@ -1120,17 +1210,9 @@ scene_result solve(const scene& s, const solve_options& options) {
           sum += rule.weight[q] * d.jacobi.series(rule.x[q]) * psi(t, x, cx.alpha, omk_over_alpha, cx.kappa);
         }
         sum *= d.length() / 2;
-        if (d.has_apex) {
-          // In the offset from the apex (h is singular there; x0 + offset would round onto x0).
-          auto f = [&](double dx0) {
-            const double t = d.jacobi.lo + d.length() * (1 + d.apex.x0 + dx0) / 2;
-            return d.apex.h_of(dx0) * psi(t, x, cx.alpha, omk_over_alpha, cx.kappa);
-          };
-          auto f_left = [&](double o) { return f(-o); };
-          const double left = std::min(d.apex.r, 1 + d.apex.x0), right = std::min(d.apex.r, 1 - d.apex.x0);
-          sum += d.apex.sigma * d.length() / 2 * (tanh_sinh_rule().integrate(f_left, 0.0, left, 1e-12) +
-                                                  tanh_sinh_rule().integrate(f, 0.0, right, 1e-12));
-        }
+        // Apex enrichment: abel's composite Gauss-Jacobi, cut and graded at the apex (psi is smooth
+        // in t on the interval when x is outside it).
+        if (d.has_apex) sum += d.apex.integrate([&](double t) { return psi(t, x, cx.alpha, omk_over_alpha, cx.kappa); });
         return sum;
       };
       double datum = 0;
@@ -1148,7 +1230,7 @@ scene_result solve(const scene& s, const solve_options& options) {
           const double one_plus = 2 * u / Lg, one_minus = 2 * v / Lg;
           const double xr = one_plus <= one_minus ? one_plus - 1 : 1 - one_minus;
           double val = std::pow(one_minus, g.jacobi.del) * std::pow(one_plus, g.jacobi.gam) * g.jacobi.series(xr);
-          if (g.has_apex) val += g.apex.sigma * g.apex.h_of(dx0);
+          if (g.has_apex) val += enrichment_at(g.apex, one_plus, one_minus, dx0);
           return val;
         };
         auto weight = [&](double u) { return psi_distance(-u, cx.alpha, omk_over_alpha, cx.kappa); };

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include "rhabel/abel.hpp"
+#include "support.hpp"
 
 #include <boost/math/special_functions/beta.hpp>
 
@@ -12,10 +13,7 @@
 #include <vector>
 
 using namespace rhabel::abel;
-
-namespace {
-constexpr double eps = std::numeric_limits<double>::epsilon();
-}
+using namespace abel_test;
 
 TEST_CASE("int g and moments of the bare weight: Beta-function closed forms") {
   // g(t) = (1-x)^del (1+x)^gam on [lo, hi]: int t^k g = (L/2) int ((lo+hi)/2 + (L/2) x)^k w dx; for

@@ -4,17 +4,14 @@
 #include <doctest/doctest.h>
 
 #include "rhabel/abel.hpp"
+#include "support.hpp"
 
 #include <cmath>
 #include <limits>
 #include <stdexcept>
 
 using namespace rhabel::abel;
-
-namespace {
-constexpr double eps = std::numeric_limits<double>::epsilon();
-constexpr double pi = 3.141592653589793238462643383279502884;
-}  // namespace
+using namespace abel_test;
 
 TEST_CASE("F = 1: g = (sin(pi alpha)/pi) (b - t)^(-alpha) (right), (t - a)^(-alpha) (left)") {
   for (double alpha : {1e-3, 0.25, 0.5, 0.75, 0.999}) {

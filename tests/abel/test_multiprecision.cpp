@@ -49,21 +49,24 @@ TEST_CASE("50 digits: parabolic punch closed form (nu = -1)") {
 }
 
 TEST_CASE("regression: double Gauss-Jacobi rule with both exponents at -1 + 1e-9 against 50 digits") {
-  // detail::gauss_jacobi_rule keeps the module's former private rule for this case only, because
-  // quadrature::gauss_jacobi<double> errs by 1.6e5 eps there (weights) and 4e4 eps (node distances).
-  // Oracle: the 50-digit quadrature::gauss_jacobi (shares no code with the private rule).
+  // The abel module reaches this corner (class nu = +1 as alpha -> 1, beta -> -1; step enrichment
+  // as alpha -> 0, 2 alpha + beta -> 1). quadrature::gauss_jacobi<double> erred there by 1.6e5 eps
+  // (weights) until session 2, and abel kept a private rule for it; the quadrature module's own
+  // table test now covers the corner, this pins the case as abel uses it. Oracle: the 50-digit
+  // recurrence path of quadrature::gauss_jacobi (another algorithm: n = 80 takes the asymptotic path in double).
   const double eps = std::numeric_limits<double>::epsilon();
+  // 45 eps: the quadrature module's contract (1e-14 relative) for p, q in (-1, 5].
+  constexpr double contract = 45;
   for (const double p : {-1 + 1e-9, -1 + 1e-6}) {
     const double q = -1 + 1e-9;
     for (const std::size_t n : {std::size_t(16), std::size_t(40), std::size_t(80)}) {
-      const auto rule = detail::gauss_jacobi_rule<double>(n, p, q);
+      const auto rule = detail::cached_gauss_jacobi_rule<double>(n, p, q);
       const auto ref = rhabel::quadrature::gauss_jacobi<real50>(n, real50(p), real50(q));
-      REQUIRE(rule.size() == n);
+      REQUIRE(rule->size() == n);
       for (std::size_t i = 0; i < n; ++i) {
-        // 2048 eps: the private rule's Newton on the plain recurrence; measured <= 940 eps for n <= 80.
-        CHECK(abs(real50(rule.weight[i]) - ref.weight[i]) <= 2048 * eps * ref.weight[i]);
-        CHECK(abs(real50(rule.x_minus_lo[i]) - ref.x_minus_lo[i]) <= 2048 * eps * ref.x_minus_lo[i]);
-        CHECK(abs(real50(rule.hi_minus_x[i]) - ref.hi_minus_x[i]) <= 2048 * eps * ref.hi_minus_x[i]);
+        CHECK(abs(real50(rule->weight[i]) - ref.weight[i]) <= contract * eps * ref.weight[i]);
+        CHECK(abs(real50(rule->x_minus_lo[i]) - ref.x_minus_lo[i]) <= contract * eps * ref.x_minus_lo[i]);
+        CHECK(abs(real50(rule->hi_minus_x[i]) - ref.hi_minus_x[i]) <= contract * eps * ref.hi_minus_x[i]);
       }
     }
   }

@@ -5,6 +5,7 @@
 #include <doctest/doctest.h>
 
 #include "rhabel/abel.hpp"
+#include "support.hpp"
 
 #include <boost/math/special_functions/beta.hpp>
 #include <boost/math/special_functions/gamma.hpp>
@@ -14,9 +15,9 @@
 #include <vector>
 
 using namespace rhabel::abel;
+using namespace abel_test;
 
 namespace {
-constexpr double eps = std::numeric_limits<double>::epsilon();
 
 // P_n^(p,q)(x) = sum_s C(n+p, n-s) C(n+q, s) ((x-1)/2)^s ((x+1)/2)^(n-s)   (DLMF 18.5.8),
 // generalized binomials through Gamma functions; fine for n <= 12 in double.

@@ -4,6 +4,7 @@
 #include <doctest/doctest.h>
 
 #include "rhabel/abel.hpp"
+#include "support.hpp"
 
 #include <boost/math/special_functions/beta.hpp>
 
@@ -12,13 +13,7 @@
 #include <vector>
 
 using namespace rhabel::abel;
-
-namespace {
-constexpr double eps = std::numeric_limits<double>::epsilon();
-constexpr double pi = 3.141592653589793238462643383279502884;
-const std::vector<double> hard_alphas{0.0, 1e-8, 1e-3, 0.25, 0.5 - 1e-9, 0.5, 0.5 + 1e-9, 0.9, 0.999};
-const std::vector<double> betas{0.0, 0.3, 0.9};
-}  // namespace
+using namespace abel_test;
 
 // Parabolic punch (notes section 5): f' = -s/R, nu = -1, b = L (1 - 2 alpha - beta)/(2 (1 - alpha)),
 // g = cos(beta pi/2) (t-a)^gam (b-t)^del / (pi R Gamma(2 - alpha)), C_f = (alpha+beta)(2-alpha) L/((1-alpha)(3-alpha) R).

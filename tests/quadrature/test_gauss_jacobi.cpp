@@ -9,8 +9,11 @@
 //    closed forms with both; symmetry for p = q; the mapped interval; bad input.
 // The table covers n = 1, 2, 3, 100, 101 (the recurrence | asymptotic switch was there; it is
 // now at 40 | 41, where the last test pins the two paths together), 10^4 (node indices
-// on both sides of the boundary/interior switch), 10^6, and the regression cases. Runtime
-// ~8 s in Release, most of it the n = 10^6 rules (2 s for p = 30).
+// on both sides of the boundary/interior switch), 10^6, the regression cases, and a "corner"
+// group with both exponents near -1 (issue #2). Also: the private eigenvalue routine against
+// the Chebyshev closed form and Eigen, and the weight constants on both sides of their
+// product | gamma-ratio switch against 50-digit gamma functions. Runtime ~3.5 s CPU in Release,
+// most of it the n = 10^6 rules.
 #include <doctest/doctest.h>
 
 #include <rhabel/quadrature/gauss_jacobi.hpp>
@@ -21,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <iomanip>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -93,17 +97,25 @@ struct worst_case {
     if (e > error) {
       error = e;
       std::ostringstream text;
-      text << what << " n=" << row.n << " p=" << row.p << " q=" << row.q << " index=" << row.index;
+      text << std::setprecision(10) << what << " n=" << row.n << " p=" << row.p << " q=" << row.q
+           << " index=" << row.index;
       where = text.str();
     }
   }
 };
 
-// Compares every table row with n in [n_min, n_max] against the double rule.
-void check_against_table(std::size_t n_min, std::size_t n_max, gauss_jacobi_method method, bool skip_large_exponents = false) {
+// The rows of the generator's "corner" group: an exponent within 1e-5 of -1 (the main
+// group's smallest exponent is -0.999).
+bool is_corner_row(const reference_row& row) { return std::min(row.p, row.q) + 1 < 1e-4; }
+
+enum class table_rows { main, corner };
+
+// Compares every table row of the group with n in [n_min, n_max] against the double rule.
+void check_against_table(std::size_t n_min, std::size_t n_max, gauss_jacobi_method method,
+                         table_rows group = table_rows::main) {
   std::map<std::tuple<std::size_t, double, double>, std::vector<const reference_row*>> cases;
   for (const auto& row : reference_table()) {
-    if (skip_large_exponents && (row.p > 5 || row.q > 5)) continue;
+    if (is_corner_row(row) != (group == table_rows::corner)) continue;
     if (row.n >= n_min && row.n <= n_max) cases[{row.n, row.p, row.q}].push_back(&row);
   }
   REQUIRE(!cases.empty());
@@ -129,9 +141,11 @@ void check_against_table(std::size_t n_min, std::size_t n_max, gauss_jacobi_meth
   MESSAGE("n in [" << n_min << ", " << n_max << "]: worst node error " << worst_node.error / eps << " eps ("
                    << worst_node.where << "), worst weight error " << worst_weight.error / eps << " eps ("
                    << worst_weight.where << ")");
-  MESSAGE("  p or q = 30: worst node error " << worst_node_large.error / eps << " eps (" << worst_node_large.where
-                                             << "), worst weight error " << worst_weight_large.error / eps
-                                             << " eps (" << worst_weight_large.where << ")");
+  if (!worst_node_large.where.empty()) {
+    MESSAGE("  p or q = 30: worst node error " << worst_node_large.error / eps << " eps (" << worst_node_large.where
+                                               << "), worst weight error " << worst_weight_large.error / eps
+                                               << " eps (" << worst_weight_large.where << ")");
+  }
   CHECK(worst_node.error <= contract_tolerance);
   CHECK(worst_weight.error <= contract_tolerance);
   CHECK(worst_node_large.error <= large_exponent_tolerance);
@@ -154,6 +168,37 @@ TEST_CASE("gauss_jacobi: reference table, forced recurrence path at n = 101 agre
 
 TEST_CASE("gauss_jacobi: reference table, n = 10^6 (0.3 s per rule, 2 s for p = 30)") {
   check_against_table(1000000, 1000000, gauss_jacobi_method::automatic);
+}
+
+// Issue #2 regression: with both exponents near -1 the recurrence path erred by up to 1.6e5 eps
+// in the weights and 4e4 eps in the node distances (p = q = -1 + 1e-9, n = 2 ... 40 and n = 101
+// after a fallback): the expanded constant c0 = (p+q+1)(p+1)(p+q) of the difference-form
+// recurrence cancelled from O(1) terms to O(p + 1) in long double. Rows: p, q in
+// {-1 + 1e-9, -1 + 1e-5, -0.999} (one at least within 1e-5 of -1), n = 1, 2, 3, 16, 40 ... 10^4.
+TEST_CASE("gauss_jacobi: both exponents near -1, recurrence path (n <= 40; issue #2: 1.6e5 eps before)") {
+  check_against_table(1, 40, gauss_jacobi_method::automatic, table_rows::corner);
+}
+
+TEST_CASE("gauss_jacobi: both exponents near -1, asymptotic path (n = 41 ... 10^4, p + q + 2 down to 2e-9)") {
+  check_against_table(41, 10000, gauss_jacobi_method::automatic, table_rows::corner);
+}
+
+TEST_CASE("gauss_jacobi: both exponents near -1, forced recurrence path at n = 41 ... 101") {
+  check_against_table(41, 101, gauss_jacobi_method::recurrence, table_rows::corner);
+}
+
+TEST_CASE("gauss_jacobi: regression p = q = -1 + 1e-9, odd n = 101 (the middle node's guess fell above pi/2)") {
+  // The asymptotic path split the symmetric rule at the rounded guess of the middle node and
+  // failed, silently falling back to the O(n^2) path; now the split is n/2 by symmetry.
+  const double p = -1 + 1e-9;
+  const auto asymptotic = rhabel::quadrature::detail::gauss_jacobi_asymptotic(101, p, p);
+  REQUIRE(asymptotic.size() == 101);
+  const auto recurrence = gauss_jacobi<double>(101, p, p, gauss_jacobi_options{gauss_jacobi_method::recurrence});
+  for (std::size_t i = 0; i < 101; ++i) {
+    CHECK(std::fabs(asymptotic.weight[i] / recurrence.weight[i] - 1) <= contract_tolerance);
+    CHECK(std::fabs(asymptotic.hi_minus_x[i] / recurrence.hi_minus_x[i] - 1) <= contract_tolerance);
+    CHECK(std::fabs(asymptotic.x_minus_lo[i] / recurrence.x_minus_lo[i] - 1) <= contract_tolerance);
+  }
 }
 
 namespace {
@@ -413,6 +458,71 @@ TEST_CASE("gauss_jacobi: the two paths agree across the n = 40 / 41 switch (recu
           const auto& chosen = n <= 40 ? a : b;
           CHECK(automatic.weight[i] == chosen.weight[i]);
           CHECK(automatic.hi_minus_x[i] == chosen.hi_minus_x[i]);
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("gauss_jacobi: detail::tridiagonal_eigenvalues (Golub-Welsch starting values)") {
+  // Chebyshev first kind (p = q = -1/2): Jacobi matrix with zero diagonal, off-diagonal
+  // 1/sqrt(2), 1/2, 1/2, ...; eigenvalues cos((2k - 1) pi / (2n)) exactly.
+  constexpr double eigenvalue_tolerance = 8 * eps;  // absolute, backward-stable O(eps |T|)
+  for (std::size_t n : {1, 2, 3, 8, 40, 101}) {
+    std::vector<double> diagonal(n, 0.0), off(n - 1, 0.5);
+    if (n > 1) off[0] = std::sqrt(0.5);
+    REQUIRE(rhabel::quadrature::detail::tridiagonal_eigenvalues(diagonal, off));
+    for (std::size_t k = 0; k < n; ++k) {
+      const double angle = (2.0 * static_cast<double>(k) + 1) * 3.141592653589793 / (2.0 * static_cast<double>(n));
+      const double exact = -std::cos(angle);
+      CHECK(std::fabs(diagonal[k] - exact) <= eigenvalue_tolerance);
+    }
+  }
+  // A matrix with a graded diagonal and tiny couplings (it splits during the iteration),
+  // against Eigen's SelfAdjointEigenSolver.
+  const std::size_t n = 30;
+  std::vector<double> diagonal(n), off(n - 1);
+  for (std::size_t i = 0; i < n; ++i) diagonal[i] = std::sin(1.0 + 3.0 * static_cast<double>(i));
+  for (std::size_t i = 0; i + 1 < n; ++i) off[i] = (i % 7 == 3) ? 1e-300 : 0.3 * std::cos(static_cast<double>(i));
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen;
+  const Eigen::Map<const Eigen::VectorXd> eigen_diagonal(diagonal.data(), static_cast<Eigen::Index>(n));
+  const Eigen::Map<const Eigen::VectorXd> eigen_off(off.data(), static_cast<Eigen::Index>(n - 1));
+  eigen.computeFromTridiagonal(eigen_diagonal, eigen_off, Eigen::EigenvaluesOnly);
+  REQUIRE(rhabel::quadrature::detail::tridiagonal_eigenvalues(diagonal, off));
+  for (std::size_t i = 0; i < n; ++i) {
+    CHECK(std::fabs(diagonal[i] - eigen.eigenvalues()[static_cast<Eigen::Index>(i)]) <= 16 * eps);
+  }
+}
+
+TEST_CASE("gauss_jacobi: weight constants K_n / P_n(1)^2 on both sides of the product switch (n = 128 | 129)") {
+  // Oracle: 2^(p+q+1) Gamma(p+1)^2 n! Gamma(n+q+1) / (Gamma(n+p+1) Gamma(n+p+q+1)) from
+  // Boost's tgamma at 50 digits, each factor separately (the constants use products, glibc's
+  // tgammal and gamma ratios instead). Long double results: the products are within a few
+  // ulps of long double; the gamma ratios of n > 128 lose up to ~400 ulps of long double
+  // for delta = p = 30 (measured 2.2e-17 at n = 1000), still a tenth of eps of double: eps/4.
+  using mp = boost::multiprecision::cpp_bin_float_50;
+  static_assert(rhabel::quadrature::detail::gauss_jacobi_product_max_n == 128);
+  constexpr double constant_tolerance = eps / 4;
+  for (std::size_t n : {1, 2, 3, 40, 128, 129, 1000}) {
+    for (double p : {-1 + 1e-9, -0.999, -0.5, 0.25, 5.0, 30.0}) {
+      for (double q : {-1 + 1e-9, -0.9, 0.0, 5.0}) {
+        const mp P(p), Q(q), N(static_cast<double>(n));
+        using boost::multiprecision::pow;
+        const mp exact = pow(mp(2), P + Q + 1) * boost::math::tgamma(P + 1) * boost::math::tgamma(P + 1) *
+                         boost::math::tgamma(N + 1) * boost::math::tgamma(N + Q + 1) /
+                         (boost::math::tgamma(N + P + 1) * boost::math::tgamma(N + P + Q + 1));
+        const mp exact_left = pow(mp(2), P + Q + 1) * boost::math::tgamma(Q + 1) * boost::math::tgamma(Q + 1) *
+                              boost::math::tgamma(N + 1) * boost::math::tgamma(N + P + 1) /
+                              (boost::math::tgamma(N + Q + 1) * boost::math::tgamma(N + P + Q + 1));
+        const auto constants = rhabel::quadrature::detail::gauss_jacobi_weight_constants<long double>(n, p, q);
+        const double right_error = std::fabs(static_cast<double>(mp(constants.right) / exact - 1));
+        const double left_error = std::fabs(static_cast<double>(mp(constants.left) / exact_left - 1));
+        if (right_error > constant_tolerance || left_error > constant_tolerance) {
+          CAPTURE(n);
+          CAPTURE(p);
+          CAPTURE(q);
+          CHECK(right_error <= constant_tolerance);
+          CHECK(left_error <= constant_tolerance);
         }
       }
     }

@@ -8,11 +8,15 @@
 //        int_s0^s1 F = [J_B(s0) - J_B(s1)] - kappa [J_A(s1) - J_A(s0)],
 //        J_A(s) = int_a^s G(t) (s-t)^(alpha-1) dt,  J_B(s) = int_s^b (G(b) - G(t)) (t-s)^(alpha-1) dt
 //    (integrate eq. (8) over [s0, s1] and integrate by parts once: no derivative of G needed);
-//  * the spectral solver rhabel::abel (a different method: Jacobi expansion + spectral relation).
+//  * the spectral solvers rhabel::abel::solve and solve_step (a different method: Jacobi
+//    expansion + spectral relation, with singular enrichment at a step);
+//  * the wedge with an interior apex: int g in closed form by Boost's incomplete beta function.
+// The 50-digit table of densities is checked in test_density_table.cpp.
 #include <doctest/doctest.h>
 
 #include "rhabel/abel.hpp"
 #include "rhabel/riemann/abel_solver.hpp"
+#include "riemann/support.hpp"
 
 #include <boost/math/constants/constants.hpp>
 #include <boost/math/quadrature/tanh_sinh.hpp>
@@ -20,7 +24,9 @@
 #include <boost/math/special_functions/gamma.hpp>
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <initializer_list>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -95,9 +101,7 @@ abel_status status_of(const abel_rh_solution<double>& s) { return s.status(); }
 }  // namespace
 
 TEST_CASE("parabolic punch (nu = -1): closed form on both sides of alpha + beta/2 = 1/2") {
-  // total and int_a^y g: a few eps (product integration + Gauss-Jacobi panels, two orders);
-  // g(y): the Abel-inversion derivative form amplifies rounding of A~ near y by ~ d^(-alpha)
-  // (d: distance of the nearest Gauss node to y), hence the alpha-dependent tolerance.
+  // total and int_a^y g: a few eps (product integration + Gauss-Jacobi panels, two orders).
   constexpr double integral_tolerance = 32 * eps;
   for (double alpha : {0.0, 0.2, 0.45, 0.6, 0.8})
     for (double beta : {0.0, 0.3, 0.7}) {
@@ -115,14 +119,32 @@ TEST_CASE("parabolic punch (nu = -1): closed form on both sides of alpha + beta/
         const double y = P.a() + f * P.L;
         CHECK(std::abs(sol.integral(y).value - P.G(y)) <= integral_tolerance * total);
       }
-      // within 1e-7 of the trailing edge A~ mixes (b-x)^(n+alpha) terms whose rounding grows
-      // like (b - y)^(n+alpha-1) eps: ~3 digits at alpha = 0.8 (documented weakness).
+      // 1e-7 L from the trailing edge: the Abel panels take y - x from the exact node offsets
+      // (before this session the rounded nodes cost ~3 digits at alpha = 0.8)
       CHECK(std::abs(sol.integral(P.a() + (1 - 1e-7) * P.L).value - P.G(P.a() + (1 - 1e-7) * P.L)) <=
-            2e3 * eps * loss * total);
-      const double density_tolerance = 2e3 * eps * loss * loss;
+            integral_tolerance * total);
+      // g(y) (issue #3): relative to max(|g(y)|, int g / L). Inside: the windowed Chebyshev form
+      // of Abel's inversion amplifies the rounding of A~ by ~ (n/H)^alpha, H = 1/3 of the
+      // distance to the nearest end: measured <= 250 eps (alpha = 0.8).
+      constexpr double density_tolerance = 1e-13;  // issue #3 target (~450 eps)
       for (double f : {0.05, 0.5, 0.9}) {
         const double y = P.a() + f * P.L;
         CHECK(std::abs(sol.density(y).value - P.g(y)) <= density_tolerance * std::max(std::abs(P.g(y)), total / P.L));
+      }
+      // 1e-6 L from a, H ~ 3e-7 L: measured <= 1.9e3 eps (alpha = 0.8, beta = 0.3)
+      constexpr double near_a_density_tolerance = 4096 * eps;
+      {
+        const double y = P.a() + 1e-6 * P.L;
+        CHECK(std::abs(sol.density(y).value - P.g(y)) <=
+              near_a_density_tolerance * std::max(std::abs(P.g(y)), total / P.L));
+      }
+      // 1e-6 L from b: the DOCUMENTED LIMIT of the route (abel_solver.hpp): A~ = O(1) next to b
+      // while g -> 0, and its rounding is amplified by ~ (n/H)^alpha; pinned at
+      // 64 eps (L/(b-y))^alpha (measured 4.7e5 eps at alpha = 0.8 against 7e6 allowed, 9 eps at alpha = 0).
+      {
+        const double y = P.a() + (1 - 1e-6) * P.L;
+        const double near_b_limit = 64 * eps * std::pow(P.L / (P.b() - y), alpha);
+        CHECK(std::abs(sol.density(y).value - P.g(y)) <= near_b_limit * std::max(std::abs(P.g(y)), total / P.L));
       }
     }
 }
@@ -166,51 +188,131 @@ TEST_CASE("wedge, alpha + beta/2 >= 1/2 (nu = 0, contact ends at the apex b = 0)
         const double Gy = K * std::pow(L, gam + del + 1) * boost::math::beta(gam + 1, del + 1, f);
         CHECK(std::abs(sol.integral(y).value - Gy) <= 32 * eps * total);
         const double gy = K * std::pow(y - a, gam) * std::pow(b - y, del);
-        CHECK(std::abs(sol.density(y).value - gy) <= 1e5 * eps / ((1 - alpha) * (1 - alpha)) * std::abs(gy));
+        // A~ = (sin(pi alpha)/pi) A loses ~1/(1 - alpha) (hard alphas below); measured <= 3.7e3 eps
+        // at alpha = 0.9 (f = 0.999, 1.5e-3 from the singular end b)
+        CHECK(std::abs(sol.density(y).value - gy) <= 512 * eps / (1 - alpha) * std::abs(gy));
       }
     }
 }
 
-TEST_CASE("wedge with an interior apex (nu = -1, step data): orthogonality condition and int_a^0 g") {
-  // alpha + beta/2 < 1/2: a < 0 < b, F = S1/Gamma(1-alpha) for s < 0, -S2/Gamma(1-alpha) for s > 0.
-  // With eps = -a/L the condition is I_eps((1+beta)/2, (1-2alpha-beta)/2) = S2/(S1+S2) (notes 5).
-  for (double alpha : {0.05, 0.3})
-    for (double beta : {0.0, 0.3}) {
-      CAPTURE(alpha);
-      CAPTURE(beta);
-      const double e = 0.4, L = 1.0, a = -e * L, b = a + L;
-      const double I = boost::math::ibeta((1 + beta) / 2, (1 - 2 * alpha - beta) / 2, e);
-      const double S1 = 1.0, S2 = S1 * I / (1 - I), G1 = std::tgamma(1 - alpha);
-      const piecewise_function<double> F{[=](double) { return S1 / G1; }, {step<double>{0.0, -(S1 + S2) / G1}}};
-      const auto sol = solve_abel_rh(alpha, beta, a, b, F, edge::bounded, edge::bounded);
-      CHECK(std::abs(sol.orthogonality_defect().value) <= 64 * eps);
-      CHECK(status_of(sol) == abel_status::converged);
-      // a different S2 violates the condition and is reported
-      const piecewise_function<double> F2{[=](double) { return S1 / G1; }, {step<double>{0.0, -(S1 + 2 * S2) / G1}}};
-      const auto sol2 = solve_abel_rh(alpha, beta, a, b, F2, edge::bounded, edge::bounded);
-      CHECK(std::abs(sol2.orthogonality_defect().value) > 1e-3);
-      CHECK(status_of(sol2) == abel_status::orthogonality_not_satisfied);
-      // int_a^0 g: the two orders agree to rounding (the log singularity of A~ at the apex is
-      // integrated exactly), and the result solves eq. (8) (independent residual)
-      const auto apex = sol.integral(0.0);
-      CHECK(apex.error_estimate <= 16 * eps * apex.value);
-      if (alpha == 0.3 && beta == 0.0) {  // one case: the residual costs ~2 s
-        // order 16 is already converged for this data (studies/riemann_convergence.cpp)
-        abel_rh_options<double> options;
-        options.order = 16;
-        const auto cheap = solve_abel_rh(alpha, beta, a, b, F, edge::bounded, edge::bounded, options);
-        CHECK(std::abs(cheap.integral(0.0).value - apex.value) <= 16 * eps * apex.value);
-        auto G = [&](double y) { return cheap.integral(y).value; };
-        CHECK(integrated_residual(alpha, beta, a, b, F, G, -0.05, 0.1) <= 1e-12);  // spans the apex
+namespace {
+// The wedge with an interior apex (nu = -1, step data), alpha + beta/2 < 1/2: a = -e L < 0 < b,
+// F = S1/Gamma(1-alpha) for s < 0, -S2/Gamma(1-alpha) for s > 0. The orthogonality condition
+// is I_e((1+beta)/2, (1-2alpha-beta)/2) = S2/(S1+S2) (notes 5): S2 from Boost's ibeta/ibetac
+// (the complement keeps S2 accurate when e -> 1).
+struct wedge_apex {
+  double alpha, beta, e, L = 1.0;
+  double a() const { return -e * L; }
+  double b() const { return a() + L; }
+  double I() const { return boost::math::ibeta((1 + beta) / 2, (1 - 2 * alpha - beta) / 2, e); }
+  double Ic() const { return boost::math::ibetac((1 + beta) / 2, (1 - 2 * alpha - beta) / 2, e); }
+  double S1() const { return 1.0; }
+  double S2() const { return S1() * I() / Ic(); }
+  piecewise_function<double> F(double s2_factor = 1) const {
+    const double G1 = std::tgamma(1 - alpha), s1 = S1(), s2 = s2_factor * S2();
+    return {[=](double) { return s1 / G1; }, {step<double>{0.0, -(s1 + s2) / G1}}};
+  }
+  // int g = (c_beta/pi) int_a^b (t-a)^(-m) (b-t)^(-alpha-n) F dt (first-row moment formula, file
+  // header of abel_solver.hpp; m = (1-beta)/2, n = (beta-1)/2) in closed form by the
+  // incomplete beta function: (c_beta/pi) L^(1-alpha) B(P, Q) [S1 I_e(P, Q) - S2 I^c_e(P, Q)]/Gamma(1-alpha),
+  // P = (1+beta)/2, Q = (3-beta)/2 - alpha.
+  double total() const {
+    const double P = (1 + beta) / 2, Q = (3 - beta) / 2 - alpha;
+    return std::cos(beta * pi / 2) / pi * std::pow(L, 1 - alpha) * boost::math::beta(P, Q) *
+           (S1() * boost::math::ibeta(P, Q, e) - S2() * boost::math::ibetac(P, Q, e)) / std::tgamma(1 - alpha);
+  }
+  // max|F| int_a^b w*: the scale of the rounding of int g, which the solver forms as
+  // S1 int_a^b w* - (S1 + S2) int_0^b w* (the terms cancel to ~1e-4 of their size when the apex
+  // is 1e-6 L from a).
+  double total_scale() const {
+    const double P = (1 + beta) / 2, Q = (3 - beta) / 2 - alpha;
+    return std::cos(beta * pi / 2) / pi * std::pow(L, 1 - alpha) * boost::math::beta(P, Q) * std::max(S1(), S2()) /
+           std::tgamma(1 - alpha);
+  }
+};
+
+// Solves the wedges with the apex at e L from a (e in `positions`), alpha in {0.05, 0.3}, beta in
+// {0, 0.3}, checks the orthogonality defect (relative to max|F| ~ max(S1, S2), S2 large when
+// e -> 1) and int g against the incomplete-beta closed form, and hands each solution to `more`.
+template <class More>
+void for_each_wedge(std::initializer_list<double> positions, More&& more) {
+  for (double e : positions)
+    for (double alpha : {0.05, 0.3})
+      for (double beta : {0.0, 0.3}) {
+        CAPTURE(e);
+        CAPTURE(alpha);
+        CAPTURE(beta);
+        const wedge_apex W{alpha, beta, e};
+        const auto sol = solve_abel_rh(alpha, beta, W.a(), W.b(), W.F(), edge::bounded, edge::bounded);
+        CHECK(std::abs(sol.orthogonality_defect().value) <= 64 * eps * std::max(1.0, W.S2()));
+        CHECK(status_of(sol) != abel_status::orthogonality_not_satisfied);
+        CHECK(std::abs(sol.total().value - W.total()) <= 64 * eps * W.total_scale());
+        CHECK(sol.total().error_estimate <= 32 * eps * W.total_scale());
+        more(W, sol);
       }
-      // the spectral solver converges algebraically for step data: agreement to its accuracy
-      rhabel::abel::abel_operator<double> op(alpha, beta, a, b);
-      const auto spectral = rhabel::abel::solve_piecewise(op, rhabel::abel::edge::bounded, rhabel::abel::edge::bounded,
-                                                          [&](double s) { return F(s); }, std::vector<double>{0.0});
-      CHECK(std::abs(spectral.density.integral() - sol.total().value) <= 1e-12 * sol.total().value);
-      // (its int_a^0 g converges like a power of the degree: ~1e-2 at its default degree 256)
-      CHECK(std::abs(spectral.density.integral_to(0.0) - apex.value) <= 2e-2 * apex.value);
+}
+
+}  // namespace
+
+TEST_CASE("wedge with an interior apex (nu = -1, step data): orthogonality, int g, int_a^0 g against solve_step") {
+  // e = 0.5 puts the apex exactly at the interval centre (the breakpoint that defeated
+  // rhabel::abel::solve_step before its fix 1: regression, README "Known defects").
+  for_each_wedge({0.4, 0.5}, [](const wedge_apex& W, const abel_rh_solution<double>& sol) {
+    const double alpha = W.alpha, beta = W.beta;
+    const auto F = W.F();
+    CHECK(status_of(sol) == abel_status::converged);
+    // a different S2 violates the condition and is reported
+    const auto sol2 = solve_abel_rh(alpha, beta, W.a(), W.b(), W.F(2), edge::bounded, edge::bounded);
+    CHECK(std::abs(sol2.orthogonality_defect().value) > 1e-3);
+    CHECK(status_of(sol2) == abel_status::orthogonality_not_satisfied);
+    // int_a^0 g: the two orders agree to rounding (the log singularity of A~ at the apex is
+    // integrated exactly)
+    const auto apex = sol.integral(0.0);
+    CHECK(apex.error_estimate <= 32 * eps * sol.total().value);
+    if (alpha == 0.3 && beta == 0.0 && W.e == 0.4) {  // one case: the residual costs ~2 s
+      // order 16 is already converged for this data (studies/riemann_convergence.cpp)
+      abel_rh_options<double> options;
+      options.order = 16;
+      const auto cheap = solve_abel_rh(alpha, beta, W.a(), W.b(), F, edge::bounded, edge::bounded, options);
+      CHECK(std::abs(cheap.integral(0.0).value - apex.value) <= 16 * eps * apex.value);
+      auto G = [&](double y) { return cheap.integral(y).value; };
+      CHECK(integrated_residual(alpha, beta, W.a(), W.b(), F, G, -0.05, 0.1) <= 1e-12);  // spans the apex
     }
+    // the spectral solver with the apex singularity built in (rhabel::abel::solve_step,
+    // a different method: singular enrichment + Jacobi expansion) converges to ~1e-13 for an
+    // apex in [0.1 L, 0.9 L] from the ends (its header)
+    constexpr double step_agreement = 1e-12;  // issue #3 target for int g and int_a^0 g
+    rhabel::abel::abel_operator<double> op(alpha, beta, W.a(), W.b());
+    const auto spectral = rhabel::abel::solve_step(op, rhabel::abel::edge::bounded, rhabel::abel::edge::bounded,
+                                                   [&](double s) { return F(s); }, 0.0);
+    CHECK(spectral.status == rhabel::abel::solve_status::converged);
+    CHECK(std::abs(spectral.density.integral() - sol.total().value) <= step_agreement * sol.total().value);
+    CHECK(std::abs(spectral.density.integral_to(0.0) - apex.value) <= step_agreement * sol.total().value);
+  });
+}
+
+TEST_CASE("wedge apex within 1e-3 and 1e-6 of an end (extreme slope ratios)") {
+  // e -> 0: apex next to the leading edge (S2/S1 ~ e^((1+beta)/2)); e -> 1: next to the trailing
+  // edge (S2/S1 ~ (1-e)^(-(1-2alpha-beta)/2)). int g against the incomplete-beta closed form;
+  // int_a^0 g: two orders agree to rounding; for one case the independent residual of eq. (8)
+  // over a window around the apex (rhabel::abel::solve_step does not converge this close to an end).
+  // With the apex 1e-6 L from a, int g = S1 int_a^b w* - (S1 + S2) int_0^b w* cancels to 1e-4 of
+  // its terms: status() may then say not_converged (relative estimate ~1e-11 > 1000 eps), which
+  // is true to the relative accuracy; the absolute estimate is checked instead.
+  for_each_wedge({1e-3, 1e-6, 1 - 1e-3, 1 - 1e-6}, [](const wedge_apex& W, const abel_rh_solution<double>& sol) {
+    const auto apex = sol.integral(0.0);
+    CHECK(apex.value > 0);
+    CHECK(apex.value < sol.total().value);
+    CHECK(apex.error_estimate <= 32 * eps * W.total_scale());
+  });
+  // the residual for the apex 1e-3 from the leading edge (order 16, ~1 s)
+  const wedge_apex W{0.3, 0.0, 1e-3};
+  abel_rh_options<double> options;
+  options.order = 16;
+  const auto F = W.F();
+  const auto cheap = solve_abel_rh(W.alpha, W.beta, W.a(), W.b(), F, edge::bounded, edge::bounded, options);
+  auto G = [&](double y) { return cheap.integral(y).value; };
+  CHECK(integrated_residual(W.alpha, W.beta, W.a(), W.b(), F, G, W.a() / 2, -W.a()) <= 1e-12);
 }
 
 TEST_CASE("flat punch (nu = +1): F = 0 gives C g_h with int g = load") {
@@ -268,11 +370,11 @@ TEST_CASE("smooth data, every index class: agreement with rhabel::abel and the i
         CHECK(std::abs(rh.total().value - g.integral()) <= 1e-14 * total);
         for (double y : {-0.79, -0.5, 0.1, 0.9, 1.25, 1.299})
           CHECK(std::abs(rh.integral(y).value - g.integral_to(y)) <= 1e-13 * total);
-        for (double y : {-0.5, 0.1, 0.9}) {
-          // density: see the parabola test for the alpha-dependent loss of the derivative form
-          const double tolerance = alpha < 0.5 ? 2e-13 : 2e-11;
-          CHECK(std::abs(rh.density(y).value - g(y)) <= tolerance * std::max(std::abs(g(y)), total / (b - a)));
-        }
+        // issue #3 target; both sides reach a few 1e-15 here (the RH density through the
+        // windowed Chebyshev form of Abel's inversion, abel_solver.hpp)
+        constexpr double density_agreement = 1e-13;
+        for (double y : {-0.79, -0.5, 0.1, 0.9, 1.25})
+          CHECK(std::abs(rh.density(y).value - g(y)) <= density_agreement * std::max(std::abs(g(y)), total / (b - a)));
         if (alpha == 0.45) {
           auto G = [&](double y) { return rh.integral(y).value; };
           CHECK(integrated_residual(alpha, beta, a, b, F, G, -0.7, -0.2) <= 1e-12);
@@ -301,14 +403,7 @@ TEST_CASE("parabolic punch at 50 digits") {
 
 TEST_CASE("solve_abel_rh rejects bad input, naming parameter, value and range") {
   const piecewise_function<double> F{[](double s) { return s; }, {}};
-  auto message = [](auto&& f) {
-    try {
-      f();
-    } catch (const std::domain_error& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
+  auto message = [](auto&& f) { return rhabel::riemann::test::domain_error_message(f); };
   CHECK(message([&] { solve_abel_rh(1.0, 0.0, -1.0, 1.0, F, edge::bounded, edge::bounded); }).find("alpha = 1") !=
         std::string::npos);
   CHECK(message([&] { solve_abel_rh(0.3, -0.1, -1.0, 1.0, F, edge::bounded, edge::bounded); }).find("beta") !=

@@ -7,6 +7,7 @@
 
 #include "rhabel/quadrature/cauchy_transform.hpp"
 #include "rhabel/riemann/cauchy_integral.hpp"
+#include "riemann/support.hpp"
 
 #include <boost/math/constants/constants.hpp>
 #include <boost/multiprecision/cpp_bin_float.hpp>
@@ -106,6 +107,20 @@ TEST_CASE("jacobi_cauchy_integral: p + q = -1, h polynomial, against the closed 
   }
 }
 
+TEST_CASE("jacobi_cauchy_integral 1e-7 and 1e-10 from an end: PV to full precision (regression)") {
+  // p = q = -1/2, h = 1 + 2t: PV = pi cot(-pi/2) w h + 2 pi = 2 pi exactly (closed form above),
+  // while w(x) ~ 2e3..7e4 there. Regression: the piece touching the OTHER end used to take the
+  // singularity subtraction, evaluating its phi (which carries that end's factor (x - lo)^q or
+  // (hi - x)^p) at x, and lost ~eps w(x); and K(-1/2, rho) cancelled two rho^(-1/2) terms.
+  constexpr double tolerance = 64 * eps;  // sums of ~n O(1) terms (measured 24 eps at 1 - 1e-10)
+  piecewise_function<double> h{[](double t) { return 1 + 2 * t; }, {}};
+  jacobi_cauchy_integral<double> C(-1.0, 1.0, -0.5, -0.5, h);
+  for (double x : {-1 + 1e-7, -1 + 1e-10, 1 - 1e-7, 1 - 1e-10}) {
+    CAPTURE(x);
+    CHECK(std::abs(C.principal_value(x) - 2 * pi) <= tolerance * 2 * pi);
+  }
+}
+
 TEST_CASE("jacobi_cauchy_integral: step data on [lo, hi] against elementary antiderivatives") {
   // p = -1/2 at hi, q = 0: PV int_c^hi (hi-t)^(-1/2)/(t - x) dt with u = sqrt(hi - t):
   //   = (1/r) log| (r + U)/(r - U) |,  r = sqrt(hi - x), U = sqrt(hi - c).
@@ -158,14 +173,7 @@ TEST_CASE("jacobi_cauchy_integral at 50 digits: p + q = -1 closed form") {
 
 TEST_CASE("jacobi_cauchy_integral rejects bad input, naming the parameter") {
   piecewise_function<double> h{[](double t) { return t; }, {}};
-  auto message = [](auto&& f) {
-    try {
-      f();
-    } catch (const std::domain_error& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
+  auto message = [](auto&& f) { return rhabel::riemann::test::domain_error_message(f); };
   CHECK(message([&] { jacobi_cauchy_integral<double>(1.0, 0.0, 0.0, 0.0, h); }).find("hi") != std::string::npos);
   CHECK(message([&] { jacobi_cauchy_integral<double>(0.0, 1.0, -1.0, 0.0, h); }).find("p = -1") != std::string::npos);
   CHECK(message([&] { jacobi_cauchy_integral<double>(0.0, 1.0, 0.0, std::nan(""), h); }).find("q") != std::string::npos);

@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include "rhabel/riemann/riemann_problem.hpp"
+#include "riemann/support.hpp"
 
 #include <boost/math/constants/constants.hpp>
 
@@ -140,14 +141,7 @@ TEST_CASE("index -1: the solution vanishes at infinity exactly when the orthogon
 }
 
 TEST_CASE("riemann problem: bad input names the parameter") {
-  auto message = [](auto&& f) {
-    try {
-      f();
-    } catch (const std::domain_error& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
+  auto message = [](auto&& f) { return rhabel::riemann::test::domain_error_message(f); };
   auto problem = closed_form_problem();
   CHECK(message([&] { solve_riemann_problem(problem, 2); }).find("index") != std::string::npos);
   problem.theta = 1.0;

@@ -27,8 +27,11 @@
 //   (builds build/bin/gauss_jacobi_reference; the tools are off in the default build)
 //   build/bin/gauss_jacobi_reference small > /tmp/small.csv    # n <= 65536
 //   build/bin/gauss_jacobi_reference large > /tmp/large.csv    # n = 10^6
-//   cat /tmp/small.csv /tmp/large.csv > tests/data/gauss_jacobi_reference.csv
-// (the CSV header line is printed by the "small" group only).
+//   build/bin/gauss_jacobi_reference corner > /tmp/corner.csv  # both exponents near -1
+//   cat /tmp/small.csv /tmp/large.csv /tmp/corner.csv > tests/data/gauss_jacobi_reference.csv
+// (the CSV header line is printed by the "small" group only). The "corner" group (issue #2:
+// p and q both within 1e-5 of -1, where p + q + 2 ~ 0 made the former expanded recurrence
+// coefficients cancel) takes about a minute.
 #include <rhabel/quadrature/gauss_jacobi.hpp>
 
 #include <boost/math/special_functions/gamma.hpp>
@@ -153,8 +156,9 @@ void run_case(const reference_case& c) {
 int main(int argc, char** argv) {
   const bool small = argc > 1 && std::strcmp(argv[1], "small") == 0;
   const bool large = argc > 1 && std::strcmp(argv[1], "large") == 0;
-  if (!small && !large) {
-    std::fprintf(stderr, "usage: gauss_jacobi_reference small|large\n");
+  const bool corner = argc > 1 && std::strcmp(argv[1], "corner") == 0;
+  if (!small && !large && !corner) {
+    std::fprintf(stderr, "usage: gauss_jacobi_reference small|large|corner\n");
     return 2;
   }
   const std::vector<double> exponents = {-0.999, -0.9, -0.5, 0.0, 0.25, 0.5, 5.0, 30.0};
@@ -176,6 +180,20 @@ int main(int argc, char** argv) {
     // Published regression values (weight at the node nearest +1).
     cases.push_back({1024, 0.25, 0.0, select(1024, {0, 1, 2}, {0.5})});
     cases.push_back({65536, -0.9, 0.0, select(65536, {0, 1, 2}, {0.5})});
+  } else if (corner) {
+    // Both exponents near -1 (p + q + 2 in [2e-9, 1e-3]): every pair from {-1 + 1e-9,
+    // -1 + 1e-5 (= -0.99999 in double), -0.999} with at least one exponent within 1e-5 of -1,
+    // on both sides of the recurrence | asymptotic switch (40 | 41) and at 10^4.
+    const std::vector<double> near_minus_one = {-1 + 1e-9, -1 + 1e-5, -0.999};
+    const std::vector<std::size_t> ends = {0, 1, 2, 3, 4, 5, 6, 7, 9, 12, 16, 20, 25, 30, 40, 59, 99, 149};
+    for (double p : near_minus_one) {
+      for (double q : near_minus_one) {
+        if (p == -0.999 && q == -0.999) continue;  // in the "small" group
+        for (std::size_t n : {1, 2, 3, 16, 40, 41, 80, 101, 10000}) {
+          cases.push_back({n, p, q, select(n, ends, {0.25, 0.5})});
+        }
+      }
+    }
   } else {
     // Across the boundary/interior switch (index ~6 from each end for p <= 5, ~190 for 30).
     const std::vector<std::size_t> ends = {0, 1, 2, 3, 5, 9, 19, 59, 189, 199};

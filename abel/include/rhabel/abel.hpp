@@ -21,7 +21,8 @@
 //                      coefficient_tail, degree, status, with_load(P)}
 //   solve_step(op, leading, trailing, F, t0)                  jump at t0 with singular enrichment
 //     -> enriched_solution{density: enriched_density (g(t), integral(), integral_to(t), integrate(f, bps)),
-//                          exponents, solvability_defect, residual, degree, status};  apply(op, g, s)
+//                          exponents, solvability_defect, residual, coefficient_tail, degree, status,
+//                          taylor_degree, rounding_floor};  apply(op, g, s)
 //   solve_union(parameters, intervals, F per interval, multi_solve_options)   paper 41
 //     -> multi_solution{densities, exponents, solvability_defects, homogeneous, homogeneous_defects,
 //                       residual, condition, degree, status};  apply_union(parameters, densities, s)

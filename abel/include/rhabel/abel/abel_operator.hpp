@@ -218,7 +218,7 @@ struct jacobi_density {
     using std::pow;
     if (coefficients.empty()) return Real(0);
     const std::size_t nodes = (coefficients.size() + k) / 2 + 2;
-    const auto rule = detail::gauss_jacobi_rule<Real>(nodes, del, gam);  // quadrature::gauss_jacobi but for del, gam -> -1
+    const auto rule = quadrature::gauss_jacobi<Real>(nodes, del, gam);
     const Real h = half_length();
     Real sum = 0;
     for (std::size_t i = 0; i < rule.size(); ++i) {

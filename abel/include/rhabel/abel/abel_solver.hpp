@@ -22,7 +22,8 @@
 //    alpha = 0); int g is nevertheless exact (c_0 only) but int_lo^t0 g converges like
 //    degree^-(1 - alpha) (kink data: degree^-(2 - alpha)). For a jump at ONE point use
 //    solve_step (step_enrichment.hpp): the local solution is built in and int_lo^t0 g reaches
-//    1e-13 at 33 points (all alpha in [0, 1), alpha = 0 with the log singularity included).
+//    ~1e-13 at 65 points for an apex away from the edges (all alpha in [0, 1), alpha = 0 with the
+//    log singularity included; an apex within ~1e-2 L of an edge is reported not_converged).
 //
 // Evidence returned (abel_solution):
 //  * nu = -1: solvability_defect = d_0, the image-P_0 coefficient of F~ (a weighted mean of F~;
@@ -32,7 +33,9 @@
 //    c_0 = 0 unless options.load is set (then int g = load).
 //  * residual: max_j |A g(s_j) - F(s_j) (+ defect)| / max_j |F(s_j)| at residual_points interior
 //    Chebyshev points, A g computed by DIRECT QUADRATURE of the two one-sided integrals
-//    (apply_by_quadrature), never through the spectral relation. An estimate, not a bound.
+//    (apply_by_quadrature), never through the spectral relation. The residual grid never shares
+//    a node with the interpolation grid (detail::residual_grid_size: residual_points or one more).
+//    An estimate, not a bound.
 //  * coefficient_tail: size of the discarded Chebyshev tail relative to max|F~| (smooth F),
 //    an estimate of the relative error of the image expansion; degree; status.
 #pragma once
@@ -128,14 +131,33 @@ abel_solution<Real> solution_from_image(const abel_operator<Real>& op, const edg
   return sol;
 }
 
-/// Independent residual: direct quadrature of A g at interior Chebyshev points.
+/// Size r' >= r of a first-kind Chebyshev grid that shares no node with the first-kind grid of
+/// size m (m = 0: no constraint). Nodes cos(pi (2j+1)/(2r')) and cos(pi (2k+1)/(2m)) coincide
+/// iff (2j+1) m = (2k+1) r' has a solution, i.e. iff m and r' contain the same power of 2; r and
+/// r + 1 never do both. A residual sampled at the collocation points themselves is ~ rounding
+/// whatever the error (measured: 1e-15 for a solution wrong by 1e-3), so it must avoid them.
+inline bool same_power_of_two(std::size_t a, std::size_t b) {
+  while (a % 2 == 0 && b % 2 == 0 && a > 0 && b > 0) {
+    a /= 2;
+    b /= 2;
+  }
+  return a % 2 == 1 && b % 2 == 1;
+}
+inline std::size_t residual_grid_size(std::size_t r, std::size_t m) {
+  if (m == 0 || r == 0) return r;
+  return same_power_of_two(r, m) ? r + 1 : r;
+}
+
+/// Independent residual: direct quadrature of A g at interior Chebyshev points (never at the
+/// collocation points of a grid of size collocation_size, see residual_grid_size).
 template <class Real, class F>
 Real independent_residual(const abel_operator<Real>& op, const abel_solution<Real>& sol, F&& f,
-                          std::size_t points) {
+                          std::size_t points, std::size_t collocation_size = 0) {
   using std::abs;
   using std::max;
   using std::pow;
-  const chebyshev_grid<Real> grid(points);
+  const chebyshev_grid<Real> grid(residual_grid_size(points, collocation_size));
+  points = grid.x.size();
   const Real h = op.half_length();
   const Real defect = sol.exponents.nu == -1 ? pow(h, op.parameters().alpha()) * sol.solvability_defect : Real(0);
   const typename abel_operator<Real>::quadrature_evaluator evaluate(op, sol.density.gam, sol.density.del,
@@ -220,7 +242,7 @@ abel_solution<Real> solve(const abel_operator<Real>& op, edge leading, edge trai
   sol.coefficient_tail = tail;
   sol.status = status;
   sol.degree = m;
-  if (options.residual_points > 0) sol.residual = detail::independent_residual(op, sol, f, options.residual_points);
+  if (options.residual_points > 0) sol.residual = detail::independent_residual(op, sol, f, options.residual_points, m);
   return sol;
 }
 

@@ -23,27 +23,61 @@
 // interpolation points is computed by composite Gauss-Jacobi quadrature, split at x0, at the
 // evaluation point and graded toward every singular point (each factor's exponent is the
 // Gauss-Jacobi weight of the pieces it ends).
-// Small alpha (< 0.05, down to alpha = 0 included). J_E = O(alpha) and the local solution becomes
-// a log, so E is replaced by (E - 1)/alpha = -log|x - x0| exprel(..) - ((1-kappa)/alpha) [x > x0] |x-x0|^-alpha
+// Small alpha (< 0.01 = normalized_enrichment_threshold(), down to alpha = 0 included).
+// J_E = O(alpha) and the local solution becomes a log, so E is replaced by
+//     (E - 1)/alpha = -log|x - x0| exprel(..) - ((1-kappa)/alpha) [x > x0] |x-x0|^-alpha
 // (the removed w q/alpha is a smooth density), with jump
 //     J_E/alpha = (pi alpha/sin(pi alpha)) [((1-kappa)/alpha)^2 + 4 kappa (sin(pi alpha/2)/alpha)^2]
 // (pi^2/cos^2(beta pi/2) at alpha = 0); the kernel singularity at the evaluation point is
-// subtracted on a neighbourhood (closed form f(y) eps^alpha (1-kappa)/alpha), and x0 is graded
-// toward down to a gap of 1e-18 (omitted part O(1e-18 log)). This path costs ~20-40 ms.
+// subtracted on a neighbourhood (closed form f(y) eps^alpha (1-kappa)/alpha), and the log-type
+// singularity at x0 is integrated by a Gauss-Laguerre end rule after u = delta e^-t (exact for
+// the log; see detail::enrichment_piece). Above the threshold the plain E loses ~ eps/alpha^2 to
+// cancellation (measured 1.3e-13 at alpha = 0.01).
 // F may also have higher-order jumps at t0 (kinks); then only the step is removed and the
 // convergence is algebraic, of order (2 - alpha) faster than without enrichment.
 //
-// Accuracy (studies/abel_convergence.cpp, "step_enriched"; Taylor degree K = 12): int_a^t0 g
-// and int g to ~1e-13 at 33 Chebyshev points and ~1e-15 at 65 (alpha = 0.25, beta = 0.2,
-// t0 in the middle), in ~0.6 ms; alpha = 0 and 1e-3: agreement with the independent extrapolated
-// series to 1e-12 at 65 points (~40 ms); the error decays like n^-(2K + 2 - 2 alpha) until rounding. The residual is
-// computed by the direct quadrature of the one-sided integrals at interior Chebyshev points (for
-// the phi part this is the same quadrature that built the data, so the residual checks the
-// smooth part; the phi part is checked by the tests against the jump formula and the exact
-// int g). Cost ~ 1-3 ms (dominated by the quadrature of A[phi] at the interpolation points).
-// Breakpoints close to an end (|x0| -> 1) make q grow like ((1 + |x0|)/(1 - |x0|))^K on the far
-// side: taylor_degree = 0 (default) picks K = 12 reduced to keep that growth below 1e4 (K >= 2);
-// the convergence is then n^-(2K + 2 - 2 alpha) (measured: see tests, apex near the edge).
+// Sampling grid. The remainder F~ - C A[phi] is continuous at x0 but its two terms are not: F is
+// evaluated on one side and A[phi](x0) is a principal value, not the mean of its one-sided limits.
+// So x0 must never be a sampling point; the odd first-kind grids (17, 33, 65, ...) always contain
+// the centre x = 0. solve_step uses m or m + 1 points (detail::grid_size_avoiding: the two grids
+// interlace, so x0 is about half a spacing from every node of one of them); `degree` reports the
+// size used (even sizes occur). Before this, a symmetric wedge gave 0.396 instead of 0.5 for the
+// trailing share of the load (tests: "apex on a Chebyshev node").
+//
+// Taylor degree and rounding floor. q has radius of convergence 1 - |x0| and max|q| on [-1, 1]
+// grows like ((1 + |x0|)/(1 - |x0|))^K. The smooth part of g cancels C phi far from the apex, so
+// the Chebyshev tail of the remainder stalls at rounding_floor = max|q| eps (measured 1-5 x).
+// taylor_degree = 0 (default) picks the largest K <= 12 with max|q| <= 1e4
+// (max_taylor_amplification), at least 1; the adaptive loop stops as converged once the tail is
+// below 4 rounding_floor (before, asymmetric cases ran to max_degree and reported not_converged).
+//
+// Accuracy and cost (build-abel3/bin/study_abel_convergence, CSV rows step_adaptive_* and
+// step_apex_eps_*; default options, as the punch layer calls it; 2 shared cores, so times are
+// +-30%). Step at t0 = 0.1 on [-1, 1], beta = 0.2, relative error of int g against the exact
+// Rodrigues value:
+//     alpha = 0, 1e-3 (normalized path):   65 points, <= 7e-16,           1.8-2.2 ms (7 ms loaded)
+//     alpha = 0.01:                         65-129 points, <= 1.3e-13,    0.5-1.0 ms
+//     alpha = 0.049, 0.05, 0.25, 0.5, 0.9:  65-129 points, <= 1.2e-14,    0.5-1.0 ms (1.7 loaded)
+// (the target, 1e-12 in under 1 ms, is met for alpha >= 0.01 at 65 points; the
+// normalized path below 0.01 costs ~4x the plain one)
+// and int_a^t0 g agrees with the degree-257 solution to the same level (<= 2e-13). The error
+// decays like n^-(2K + 2 - 2 alpha) until the rounding floor.
+// Apex position eps = (t0 - a)/L (alpha = 0.3, beta = 0.2, both classes), error of int g:
+//     eps in [0.3, 0.7]:       converged, 65-129 points, <= 2.5e-12, ~0.5-2 ms
+//     eps = 0.1, 0.9:          converged at the rounding floor, 129-513 points, <= 7e-12, 1-15 ms
+//     eps = 0.01, 0.99:        not_converged at 513 points, error 4e-11 .. 3e-8, residual 3e-7 .. 3e-6
+//     eps = 1e-3, 0.999:       not_converged, error 8e-8 .. 2.5e-5, residual 6e-5 .. 5e-4
+//     eps = 1e-6, 1 - 1e-6:    not_converged, error up to O(1), residual ~ 0.2 .. 2
+// LIMIT (apex within ~1e-2 L of an edge): the solution then has a boundary layer of width
+// d = min(eps, 1 - eps) L (locally the step solution of a half-line problem, which is not built
+// in); the global interpolation resolves it only algebraically. The solver reports it: status
+// not_converged and a residual sampled next to the apex (x0 -+ d/2 and d/4, 3d/4 of the way to
+// the near edge), measured >= error(int g)/10 in every case above.
+//
+// Residual: direct quadrature of the one-sided integrals at interior Chebyshev points (never at
+// a sampling node nor at x0) plus the four points next to the apex; for the phi part this is the
+// same quadrature that built the data, so the residual checks the smooth part; the phi part is
+// checked by the tests against the jump formula and the exact int g. An estimate.
 #pragma once
 
 #include "rhabel/abel/abel_solver.hpp"
@@ -70,7 +104,7 @@ struct enriched_density {
   Real x0 = 0;                   ///< breakpoint in the reference variable
   Real kappa = 0, alpha = 0;
   std::vector<Real> q;           ///< Taylor coefficients of w(x0)/w(x) in powers of (x - x0)
-  /// alpha < 0.05: E is replaced by (E - 1)/alpha (uniform to alpha = 0, where it is
+  /// alpha < 0.01: E is replaced by (E - 1)/alpha (uniform to alpha = 0, where it is
   /// -log|x - x0| - pi tan(beta pi/2) [x > x0]); the "-1/alpha" part is w q, a smooth density.
   bool normalized = false;
   Real one_minus_kappa_over_alpha = 0;
@@ -93,9 +127,10 @@ struct enriched_density {
     if (!normalized) return right ? kappa : Real(1);
     return E_full(dist, right);
   }
-  /// Gap left around x0 in the normalized mode (pieces graded toward x0 from this distance; the
-  /// omitted |x - x0| < gap contributes O(gap |log gap|) < 1e-16).
-  static Real x0_gap() { return Real(1e-18); }
+  /// Gap left around x0 by the quadratures: 0 since the normalized mode integrates its
+  /// log-type singularity at x0 exactly (Gauss-Laguerre end rule, detail::enrichment_piece);
+  /// formerly 1e-18. Kept for source compatibility.
+  static Real x0_gap() { return Real(0); }
 
   /// phi(x) with distances 1 + x, 1 - x (reference variable).
   Real phi(const Real& one_plus_x, const Real& one_minus_x) const {
@@ -164,7 +199,28 @@ struct enriched_solution {
   Real coefficient_tail = 0;
   std::size_t degree = 0;
   solve_status status = solve_status::converged;
+  std::size_t taylor_degree = 0;  ///< K, the order of the local expansion built into phi
+  /// Estimated relative rounding floor of the Chebyshev tail, max|q| eps (see
+  /// detail::taylor_amplification): the adaptive loop stops (converged) once the tail is at this
+  /// floor even if options.tolerance is smaller. An estimate, not a bound.
+  Real rounding_floor = 0;
 };
+
+/// solve_step uses the normalized enrichment (E - 1)/alpha below this alpha. Above it the plain
+/// enrichment E loses ~ eps/alpha^2 to cancellation (C = O(1/alpha), A[E] = O(1/alpha)): measured
+/// agreement of the two paths 1.3e-13 at alpha = 0.01, 5e-15 at 0.03 (int g, int_a^t0 g), at
+/// ~1-2 ms instead of 3-8 ms. (Formerly 0.05.)
+template <class Real>
+Real normalized_enrichment_threshold() {
+  return Real(1) / 100;
+}
+
+/// Automatic choice of the Taylor degree K in solve_step: largest K <= 12 whose Taylor factor q
+/// stays below this on [-1, 1].
+template <class Real>
+Real max_taylor_amplification() {
+  return Real(10000);
+}
 
 namespace detail {
 
@@ -209,6 +265,26 @@ class split_integrator {
   mutable std::map<std::pair<double, double>, std::shared_ptr<panel_integrator<Real>>> cache_;
 };
 
+/// Number of first-kind Chebyshev points, m or m + 1, such that no node lies within `margin` of
+/// the breakpoint x0. Why: the remainder F~ - C A[phi] is continuous at x0, but its two terms are
+/// not; at a node y == x0 (always the case for x0 = 0 and odd m) F is evaluated on one side only
+/// and A[phi](x0) is a principal-value integral, not the average of the one-sided limits, so the
+/// interpolated remainder is wrong by O(jump) there (regression "apex on a Chebyshev node").
+/// The nodes of the m + 1 grid interlace with those of the m grid, so if x0 is within `margin` of
+/// a node of one grid it is about half a node spacing away from every node of the other. Both
+/// grids are exact interpolation grids; only the size changes (odd or even).
+template <class Real>
+std::size_t grid_size_avoiding(std::size_t m, const Real& x0, const Real& margin) {
+  using std::abs;
+  auto nearest = [&](std::size_t size) {
+    const chebyshev_grid<Real> grid(size);
+    Real best = std::numeric_limits<Real>::infinity();
+    for (const Real& x : grid.x) best = std::min(best, Real(abs(x - x0)));
+    return best;
+  };
+  return nearest(m) >= margin ? m : m + 1;
+}
+
 /// Taylor coefficients (degree K) of w(x0)/w(x), w = (1-x)^del (1+x)^gam, in powers of u = x - x0:
 /// (1 - u/(1-x0))^(-del) (1 + u/(1+x0))^(-gam).
 template <class Real>
@@ -223,6 +299,25 @@ std::vector<Real> inverse_weight_taylor(const Real& gam, const Real& del, const 
   for (std::size_t i = 0; i <= K; ++i)
     for (std::size_t j = 0; i + j <= K; ++j) c[i + j] += a[i] * b[j];
   return c;
+}
+
+/// max |q(x)| over [-1, 1] (q from inverse_weight_taylor, in powers of x - x0), on the ends and
+/// 64 first-kind Chebyshev points: the factor by which C phi exceeds its value at the apex far
+/// from it. The smooth part of g cancels it there, so rounding errors of relative size eps in
+/// A[phi] and in phi become errors of size ~ max|q| eps in g (the measured floor of the
+/// Chebyshev tail is 1-5 x max|q| eps).
+template <class Real>
+Real taylor_amplification(const std::vector<Real>& q, const Real& x0) {
+  using std::abs;
+  auto at = [&](const Real& x) {
+    Real v = 0;
+    for (std::size_t k = q.size(); k-- > 0;) v = v * (x - x0) + q[k];
+    return abs(v);
+  };
+  Real biggest = std::max(at(Real(-1)), at(Real(1)));
+  const chebyshev_grid<Real> grid(64);
+  for (const Real& x : grid.x) biggest = std::max(biggest, at(x));
+  return biggest;
 }
 
 /// A~[phi](y) (reference interval, without (L/2)^alpha) by split composite quadrature.
@@ -285,12 +380,26 @@ namespace detail {
 /// int_a^b w(x) q(x) E(x) k(x) dx over a piece [a, b] lying on one side of x0, for the
 /// enrichment of `d`. a_end / b_end say whether a, b are the ends -1, +1 or x0 (then the end
 /// exponent is the Gauss-Jacobi weight); d_left, d_right are the distances of the nearest other
-/// singular points (grading). k(x, dist_left_end, dist_right_end) is an extra smooth factor.
+/// singular points beyond a and b (grading). k(x, dist_from_a, dist_from_b) is an extra factor,
+/// smooth on the piece.
+/// Normalized mode (alpha < 0.01) with x0 as an end: the factor (|u|^-alpha - 1)/alpha is
+/// log-singular at x0 and not a Gauss-Jacobi weight. The sub-piece [0, delta] next to x0
+/// (delta = 1/16 of the distance to every other singular point) is integrated after the
+/// substitution u = delta e^-t by 32-point Gauss-Laguerre: e^-t times a polynomial in t (the
+/// log) times a function analytic in e^-t with radius >= 16 (terms (e^-t/16)^k, each integrated
+/// to <= 3e-16 relative by 32 nodes; tests: "Gauss-Laguerre end rule"); e^{alpha t} from
+/// |u|^-alpha is entire. The rest is
+/// graded toward x0 from distance delta (a few panels). This replaces the former geometric
+/// grading down to a gap of 1e-18 (~60 panels per piece) and cuts the cost of the small-alpha
+/// path by ~5 (26 -> 5 ms at alpha = 0, measured with the Gauss-Jacobi rule cache; now ~2 ms).
 enum class piece_end { interval_end, x0, interior };
 
+/// Composite Gauss-Jacobi part of enrichment_piece (no log-type end). k is called with the
+/// distances from the ends of the ORIGINAL piece: (u + offset_a, v + offset_b).
 template <class Real, class K>
-Real enrichment_piece(const enriched_density<Real>& d, const Real& a, const Real& b, piece_end a_end, piece_end b_end,
-                      const Real& d_left, const Real& d_right, K&& k) {
+Real enrichment_piece_panels(const enriched_density<Real>& d, const Real& a, const Real& b, piece_end a_end,
+                             piece_end b_end, const Real& d_left, const Real& d_right, const Real& offset_a,
+                             const Real& offset_b, K& k) {
   using std::pow;
   if (!(b > a)) return Real(0);
   const bool right_side = a >= d.x0;
@@ -306,8 +415,40 @@ Real enrichment_piece(const enriched_density<Real>& d, const Real& a, const Real
     const Real dist = right_side ? (a - d.x0) + u : (d.x0 - b) + v;
     const bool at_x0 = right_side ? a_end == piece_end::x0 : b_end == piece_end::x0;
     value *= at_x0 ? d.E_over_weight(dist, right_side) : d.E_full(dist, right_side);
-    return value * d.q_at(x) * k(x, u, v);
+    return value * d.q_at(x) * k(x, u + offset_a, v + offset_b);
   });
+}
+
+template <class Real, class K>
+Real enrichment_piece(const enriched_density<Real>& d, const Real& a, const Real& b, piece_end a_end, piece_end b_end,
+                      const Real& d_left, const Real& d_right, K&& k) {
+  using std::exp;
+  using std::min;
+  using std::pow;
+  if (!(b > a)) return Real(0);
+  const bool x0_at_a = a_end == piece_end::x0, x0_at_b = b_end == piece_end::x0;
+  if (!d.normalized || !(x0_at_a || x0_at_b))
+    return enrichment_piece_panels(d, a, b, a_end, b_end, d_left, d_right, Real(0), Real(0), k);
+  const Real len = b - a;
+  // Other singular points: the far end of the piece (at distance len), whatever lies beyond it,
+  // and the nearest singular point across x0.
+  const Real delta = min(len, x0_at_a ? d_left : d_right) / 16;
+  const auto& lag = gauss_laguerre_rule<Real>(32);
+  // int_0^delta G(u) du = delta int_0^inf e^-t G(delta e^-t) dt (u = delta e^-t: the distance
+  // from x0, exact however small).
+  Real near = 0;
+  for (std::size_t i = 0; i < lag.x.size(); ++i) {
+    const Real dist = delta * exp(-lag.x[i]);
+    const Real u = x0_at_a ? dist : len - dist, v = x0_at_a ? len - dist : dist;
+    const Real one_plus_x = (a + 1) + u, one_minus_x = (1 - b) + v;
+    const Real x = one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x;
+    const Real value = pow(one_plus_x, d.smooth.gam) * pow(one_minus_x, d.smooth.del) * d.E_full(dist, x0_at_a);
+    near += lag.weight[i] * value * d.q_at(x) * k(x, u, v);
+  }
+  near *= delta;
+  if (x0_at_a)
+    return near + enrichment_piece_panels(d, a + delta, b, piece_end::interior, b_end, delta, d_right, delta, Real(0), k);
+  return near + enrichment_piece_panels(d, a, b - delta, a_end, piece_end::interior, d_left, delta, Real(0), delta, k);
 }
 
 }  // namespace detail
@@ -317,22 +458,19 @@ Real enriched_density<Real>::phi_integral_to(const Real& X) const {
   using detail::piece_end;
   if (!(X > -1)) return Real(0);
   const Real inf = std::numeric_limits<Real>::infinity();
-  const Real gap = normalized ? x0_gap() : Real(0);
   auto one = [](const Real&, const Real&, const Real&) { return Real(1); };
   Real total = 0;
-  const piece_end at_x0 = normalized ? piece_end::interior : piece_end::x0;
+  const piece_end at_x0 = piece_end::x0;
   if (X < x0) {
     return detail::enrichment_piece(*this, Real(-1), X, piece_end::interval_end, piece_end::interior, inf,
                                     std::min(x0 - X, 1 - X), one);
   }
   if (X == x0) {
-    return detail::enrichment_piece(*this, Real(-1), x0 - gap, piece_end::interval_end, at_x0, inf,
-                                    normalized ? gap : 1 - x0, one);
+    return detail::enrichment_piece(*this, Real(-1), x0, piece_end::interval_end, at_x0, inf, 1 - x0, one);
   }
-  total = detail::enrichment_piece(*this, Real(-1), x0 - gap, piece_end::interval_end, at_x0, inf,
-                                   normalized ? gap : 1 - x0, one);
-  total += detail::enrichment_piece(*this, x0 + gap, X, at_x0, X == 1 ? piece_end::interval_end : piece_end::interior,
-                                    normalized ? gap : x0 + 1, X == 1 ? inf : 1 - X, one);
+  total = detail::enrichment_piece(*this, Real(-1), x0, piece_end::interval_end, at_x0, inf, 1 - x0, one);
+  total += detail::enrichment_piece(*this, x0, X, at_x0, X == 1 ? piece_end::interval_end : piece_end::interior,
+                                    x0 + 1, X == 1 ? inf : 1 - X, one);
   return total;
 }
 
@@ -342,9 +480,8 @@ Real enriched_density<Real>::integrate(Fn&& f, std::vector<Real> breakpoints) co
   using detail::piece_end;
   const Real h = half_length();
   Real total = smooth.integrate(f, breakpoints);
-  const Real gap = normalized ? x0_gap() : Real(0);
   const Real inf = std::numeric_limits<Real>::infinity();
-  // Cuts: the ends, x0 (two-sided, with the gap in the normalized mode) and the breakpoints.
+  // Cuts: the ends, x0 (two-sided) and the breakpoints.
   std::vector<Real> cuts{Real(-1), Real(1)};
   for (const Real& b : breakpoints)
     if (b > smooth.lo && b < smooth.hi) {
@@ -358,27 +495,27 @@ Real enriched_density<Real>::integrate(Fn&& f, std::vector<Real> breakpoints) co
     if (c < x0) left_cuts.push_back(c);
     if (c > x0) right_cuts.push_back(c);
   }
-  const piece_end at_x0 = normalized ? piece_end::interior : piece_end::x0;
+  const piece_end at_x0 = piece_end::x0;
   auto factor = [&](const Real& x, const Real&, const Real&) {
     const Real t = smooth.lo + h * (x + 1);
     return f(t);
   };
   Real sum = 0;
-  left_cuts.push_back(x0 - gap);
+  left_cuts.push_back(x0);
   for (std::size_t k = 0; k + 1 < left_cuts.size(); ++k) {
     const Real a = left_cuts[k], b = left_cuts[k + 1];
     const bool last = k + 2 == left_cuts.size();
     sum += detail::enrichment_piece(*this, a, b, k == 0 ? piece_end::interval_end : piece_end::interior,
                                     last ? at_x0 : piece_end::interior, k == 0 ? inf : a + 1,
-                                    last ? (normalized ? gap : 1 - x0) : std::min(x0 - b, 1 - b), factor);
+                                    last ? 1 - x0 : std::min(x0 - b, 1 - b), factor);
   }
-  right_cuts.insert(right_cuts.begin(), x0 + gap);
+  right_cuts.insert(right_cuts.begin(), x0);
   for (std::size_t k = 0; k + 1 < right_cuts.size(); ++k) {
     const Real a = right_cuts[k], b = right_cuts[k + 1];
     const bool last = k + 2 == right_cuts.size();
     sum += detail::enrichment_piece(*this, a, b, k == 0 ? at_x0 : piece_end::interior,
                                     last ? piece_end::interval_end : piece_end::interior,
-                                    k == 0 ? (normalized ? gap : x0 + 1) : std::min(a - x0, a + 1), last ? inf : 1 - b,
+                                    k == 0 ? x0 + 1 : std::min(a - x0, a + 1), last ? inf : 1 - b,
                                     factor);
   }
   return total + enrichment * h * sum;
@@ -386,7 +523,7 @@ Real enriched_density<Real>::integrate(Fn&& f, std::vector<Real> breakpoints) co
 
 namespace detail {
 
-/// A~[phi](y) for the normalized enrichment (alpha < 0.05, uniform to alpha = 0). The kernel
+/// A~[phi](y) for the normalized enrichment (alpha < 0.01, uniform to alpha = 0). The kernel
 /// singularity is treated by subtraction on [y - eps, y + eps], eps = half the distance from y
 /// to the nearest of x0, -1, +1:
 ///   int_y^{y+eps} (x-y)^(alpha-1) (f(x) - f(y)) dx - kappa int_{y-eps}^y (y-x)^(alpha-1) (f(x) - f(y)) dx
@@ -398,7 +535,7 @@ Real enrichment_image_uniform(const enriched_density<Real>& d, const abel_parame
   using std::min;
   using std::pow;
   const Real alpha = par.alpha(), kappa = par.kappa();
-  const Real x0 = d.x0, gap = enriched_density<Real>::x0_gap();
+  const Real x0 = d.x0;
   const Real inf = std::numeric_limits<Real>::infinity();
   const Real eps = min(abs(y - x0), min(1 + y, 1 - y)) / 2;
   // f at distances (1+x, 1-x): w q E.
@@ -422,13 +559,11 @@ Real enrichment_image_uniform(const enriched_density<Real>& d, const abel_parame
   };
   if (y < x0) {
     total += enrichment_piece(d, Real(-1), ya, piece_end::interval_end, piece_end::interior, inf, eps, kernel_left_of_y(ya));
-    total += enrichment_piece(d, yb, x0 - gap, piece_end::interior, piece_end::interior, eps, gap, kernel_right_of_y(yb));
-    total += enrichment_piece(d, x0 + gap, Real(1), piece_end::interior, piece_end::interval_end, gap, inf,
-                              kernel_right_of_y(x0 + gap));
+    total += enrichment_piece(d, yb, x0, piece_end::interior, piece_end::x0, eps, 1 - x0, kernel_right_of_y(yb));
+    total += enrichment_piece(d, x0, Real(1), piece_end::x0, piece_end::interval_end, x0 - y, inf, kernel_right_of_y(x0));
   } else {
-    total += enrichment_piece(d, Real(-1), x0 - gap, piece_end::interval_end, piece_end::interior, inf, gap,
-                              kernel_left_of_y(x0 - gap));
-    total += enrichment_piece(d, x0 + gap, ya, piece_end::interior, piece_end::interior, gap, eps, kernel_left_of_y(ya));
+    total += enrichment_piece(d, Real(-1), x0, piece_end::interval_end, piece_end::x0, inf, y - x0, kernel_left_of_y(x0));
+    total += enrichment_piece(d, x0, ya, piece_end::x0, piece_end::interior, x0 + 1, eps, kernel_left_of_y(ya));
     total += enrichment_piece(d, yb, Real(1), piece_end::interior, piece_end::interval_end, eps, inf, kernel_right_of_y(yb));
   }
   return total;
@@ -459,15 +594,12 @@ Real apply(const abel_operator<Real>& op, const enriched_density<Real>& g, const
   const bool below = s <= op.lo();
   const Real d = below ? (op.lo() - s) / h : (s - op.hi()) / h;  // distance of y from the interval
   const Real inf = std::numeric_limits<Real>::infinity();
-  const Real gap = g.normalized ? enriched_density<Real>::x0_gap() : Real(0);
-  const piece_end at_x0 = g.normalized ? piece_end::interior : piece_end::x0;
+  const piece_end at_x0 = piece_end::x0;
   auto kernel = [&](const Real& x, const Real&, const Real&) {
     return below ? pow((x + 1) + d, alpha - 1) : -kappa * pow((1 - x) + d, alpha - 1);
   };
-  Real sum = detail::enrichment_piece(g, Real(-1), g.x0 - gap, piece_end::interval_end, at_x0, below ? d : inf,
-                                      g.normalized ? gap : 1 - g.x0, kernel);
-  sum += detail::enrichment_piece(g, g.x0 + gap, Real(1), at_x0, piece_end::interval_end,
-                                  g.normalized ? gap : g.x0 + 1, below ? inf : d, kernel);
+  Real sum = detail::enrichment_piece(g, Real(-1), g.x0, piece_end::interval_end, at_x0, below ? d : inf, 1 - g.x0, kernel);
+  sum += detail::enrichment_piece(g, g.x0, Real(1), at_x0, piece_end::interval_end, g.x0 + 1, below ? inf : d, kernel);
   return value + pow(h, alpha) * g.enrichment * sum;
 }
 
@@ -501,20 +633,26 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   g.alpha = alpha;
   if (taylor_degree == 0) {
     // q has radius of convergence 1 - |x0| and grows like ((1 + |x0|)/(1 - |x0|))^K on the far
-    // side: K = 12, reduced so that this growth stays below 1e4 (K >= 2).
-    using std::log;
-    const Real ratio = (1 + abs(x0)) / (1 - abs(x0));
-    const double limit = static_cast<double>(4 * log(Real(10)) / log(ratio));
-    taylor_degree = static_cast<std::size_t>(std::clamp(limit, 2.0, 12.0));
+    // side, which sets a rounding floor ~ max|q| eps (taylor_amplification). Largest K <= 12
+    // with max|q| <= max_taylor_amplification (1e4: floor ~ 1e-12), at least K = 1.
+    taylor_degree = 1;
+    for (std::size_t K = 12; K > 1; --K)
+      if (detail::taylor_amplification(detail::inverse_weight_taylor(e.gam, e.del, x0, K), x0) <=
+          max_taylor_amplification<Real>()) {
+        taylor_degree = K;
+        break;
+      }
   }
   g.q = detail::inverse_weight_taylor(e.gam, e.del, x0, taylor_degree);
+  sol.taylor_degree = taylor_degree;
+  sol.rounding_floor = detail::taylor_amplification(g.q, x0) * std::numeric_limits<Real>::epsilon();
   // Jump of F at t0 from one-sided values (F is evaluated on each side only).
   const Real delta = 64 * std::numeric_limits<Real>::epsilon() * max(abs(t0), op.hi() - op.lo());
   const Real left_value = f(t0 - delta), right_value = f(t0 + delta);
   detail::check_finite_value("rhabel::abel::solve_step", left_value, t0 - delta);
   detail::check_finite_value("rhabel::abel::solve_step", right_value, t0 + delta);
   const Real w0 = pow(1 - x0, e.del) * pow(1 + x0, e.gam);
-  g.normalized = alpha < Real(1) / 20;
+  g.normalized = alpha < normalized_enrichment_threshold<Real>();
   g.one_minus_kappa_over_alpha = op.parameters().one_minus_kappa_over_alpha();
   Real J_E;
   if (!g.normalized) {
@@ -534,11 +672,18 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   std::size_t m = options.degree != 0 ? options.degree : 17;
   std::vector<Real> a;
   Real tail = 0, previous_tail = std::numeric_limits<Real>::infinity();
+  // Sampling points stay at least `margin` away from x0 (reference variable): far enough that the
+  // side on which F is evaluated (s < t0 or s > t0 in the physical variable, rounded) is the
+  // side on which A[phi] is evaluated, however large |t0| is compared with the length.
+  using std::sqrt;
+  const Real margin = sqrt(std::numeric_limits<Real>::epsilon()) * (1 + max(abs(op.lo()), abs(op.hi())) / h);
+  std::size_t used = m;
   for (;;) {
-    const detail::chebyshev_grid<Real> grid(m);
-    std::vector<Real> values(m);
+    used = detail::grid_size_avoiding(m, x0, margin);
+    const detail::chebyshev_grid<Real> grid(used);
+    std::vector<Real> values(used);
     Real biggest = 0;
-    for (std::size_t j = 0; j < m; ++j) {
+    for (std::size_t j = 0; j < used; ++j) {
       const Real s = grid.one_plus_x[j] <= grid.one_minus_x[j] ? op.lo() + h * grid.one_plus_x[j]
                                                                : op.hi() - h * grid.one_minus_x[j];
       const Real v = f(s);
@@ -547,11 +692,16 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
       values[j] = scale_F * v - g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, grid.x[j]);
     }
     a = detail::chebyshev_coefficients(values);
-    const std::size_t tail_start = m - std::max<std::size_t>(2, m / 8);
+    const std::size_t tail_start = used - std::max<std::size_t>(2, used / 8);
     tail = 0;
-    for (std::size_t k = tail_start; k < m; ++k) tail = max(tail, abs(a[k]));
+    for (std::size_t k = tail_start; k < used; ++k) tail = max(tail, abs(a[k]));
     if (biggest > 0) tail /= biggest;
     if (options.degree != 0 || tail <= options.tolerance) break;
+    // At the rounding floor of the enrichment (4 max|q| eps; measured 1-5 max|q| eps) more points
+    // cannot help: converged to that floor (reported in rounding_floor). (Also requiring the
+    // tail to stagnate was measured: it doubles the points, 65 -> 513 at eps = 0.1, without
+    // improving int g.)
+    if (tail <= 4 * sol.rounding_floor) break;
     if (tail <= 1024 * std::numeric_limits<Real>::epsilon() && previous_tail <= 10 * tail) break;
     previous_tail = tail;
     if (2 * m - 1 > options.max_degree) {
@@ -572,18 +722,34 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   g.smooth = smooth.density;
   sol.solvability_defect = smooth.solvability_defect;
   sol.coefficient_tail = tail;
-  sol.degree = m;
+  sol.degree = used;
   if (options.residual_points > 0) {
     // Independent residual: direct quadrature of the one-sided integrals of both parts.
     const typename abel_operator<Real>::quadrature_evaluator direct(op, e.gam, e.del, g.smooth.coefficients.size());
-    const detail::chebyshev_grid<Real> grid(options.residual_points);
+    // Residual points: no node of the sampling grid (residual_grid_size) and none within margin of x0.
+    std::size_t r = detail::residual_grid_size(options.residual_points, used);
+    while (detail::grid_size_avoiding(r, x0, margin) != r || detail::same_power_of_two(r, used)) ++r;
+    const detail::chebyshev_grid<Real> grid(r);
+    // Points as (1 + y, 1 - y): the interior Chebyshev points, plus four points that see an apex
+    // close to an edge (where the Chebyshev points are sparse relative to the apex's distance d
+    // to the nearer edge): y = x0 -+ d/2 and the points d/4, 3 d/4 of the way from x0 to that edge.
+    std::vector<std::pair<Real, Real>> points;
+    for (std::size_t j = 0; j < grid.x.size(); ++j) points.emplace_back(grid.one_plus_x[j], grid.one_minus_x[j]);
+    {
+      const Real to_lo = 1 + x0, to_hi = 1 - x0, d = std::min(to_lo, to_hi);
+      for (const Real& shift : {-d / 2, d / 2}) points.emplace_back(to_lo + shift, to_hi - shift);
+      for (const Real& fraction : {Real(1) / 4, Real(3) / 4}) {
+        if (to_lo <= to_hi) points.emplace_back(to_lo * (1 - fraction), to_hi + to_lo * fraction);
+        else points.emplace_back(to_lo + to_hi * fraction, to_hi * (1 - fraction));
+      }
+    }
     const Real defect = e.nu == -1 ? pow(h, alpha) * sol.solvability_defect : Real(0);
     Real worst = 0, scale = 0;
-    for (std::size_t j = 0; j < options.residual_points; ++j) {
-      const Real s = grid.one_plus_x[j] <= grid.one_minus_x[j] ? op.lo() + h * grid.one_plus_x[j]
-                                                               : op.hi() - h * grid.one_minus_x[j];
+    for (const auto& [one_plus_y, one_minus_y] : points) {
+      const Real s = one_plus_y <= one_minus_y ? op.lo() + h * one_plus_y : op.hi() - h * one_minus_y;
+      const Real y = one_plus_y <= one_minus_y ? one_plus_y - 1 : 1 - one_minus_y;
       const Real Ag = direct([&](const Real& x) { return g.smooth.series(x); }, s) +
-                      pow(h, alpha) * g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, grid.x[j]);
+                      pow(h, alpha) * g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, y);
       const Real Fs = f(s);
       worst = max(worst, abs(Ag - (Fs - defect)));
       scale = max(scale, abs(Fs));

@@ -19,9 +19,10 @@
 //   g is expanded in Jacobi polynomials times the exact edge weights (t-a)^gam (b-t)^del, which
 //   diagonalises (8) (math.md section 4). The operator, its spectral relation, the density type and
 //   the independent quadrature of (8) are rhabel::abel's (abel_parameters, abel_operator,
-//   jacobi_density, solve_image_series, apply / apply_by_quadrature); this layer adds the shapes, the
-//   projection of the forcing (steps in closed form), the edge root finding, loads, friction,
-//   displacement, the wedge's apex split (detail/contact_density.hpp) and the coupling of indentors. The edge exponents are
+//   jacobi_density, solve_image_series, apply / apply_by_quadrature, and solve_step with its singular
+//   enrichment for the wedge's apex); this layer adds the shapes, the projection of the forcing (steps
+//   in closed form), the edge root finding, loads, friction, displacement and the coupling of
+//   indentors. The edge exponents are
 //       gam = (1 - 2 alpha - beta)/2 (smooth leading edge) or -(1 + 2 alpha + beta)/2 (corner),
 //       del = (1 + beta)/2 (smooth trailing edge)          or (beta - 1)/2 (corner).
 //   A smooth edge carries zero intensity factor; its position is fixed by the orthogonality
@@ -36,8 +37,9 @@
 //   "above"    alpha + beta/2 > 1/2 (kappa < 0): wedge contact ends at the apex, flat punch contact
 //              collapses to a moving line load at its leading corner (paper 24-25).
 //
-// METHOD AND ACCURACY (measured; commands: build-punch/tests/punch_test_contact,
-//   build-punch/bin/study_wedge_table, build-punch/bin/study_wedge_stationarity)
+// METHOD AND ACCURACY (measured; commands: build-punch3/tests/punch_test_contact,
+//   build-punch3/tests/punch_test_wedge, build-punch3/bin/study_scene_timing,
+//   build-punch3/bin/study_wedge_table, build-punch3/bin/study_wedge_stationarity)
 //   * Parabola, general smooth profile: the forcing is smooth, the Jacobi degree is chosen adaptively
 //     by abel::solve (Chebyshev tail below options.tolerance; with corners: projection with the
 //     jumps in closed form); the edges come from a TOMS 748 root of the orthogonality coefficient
@@ -46,18 +48,31 @@
 //     a few 1e-15 relative; independent residual of (8) <= 6e-14.
 //   * Wedge, alpha + beta/2 >= 1/2: closed-form structure (nu = 0, b = apex), L and pressure to 1e-14.
 //   * Wedge below the boundary: eps = (apex - a)/L by Boost's ibeta_inv (and 1 - eps from the
-//     complementary inversion, so both are accurate at slope ratios 1e-6 .. 1e6); L exact to rounding
-//     (the load needs only the closed-form coefficient d_1 of the step). The density has a weak
-//     |s - apex|^-alpha (log at alpha = 0) singularity at the apex: it is split off exactly
-//     (detail::apex_part, solve_options::wedge_apex_split) when min(eps, 1 - eps) > 5e-3; the rest is
-//     a spectral expansion with algebraic convergence ~N^-4 (the cut-off function is only C^3). At the
-//     default degree 128 (S2/S1 = 3, against degree 512): C_f error 7e-8 (alpha = 0, eps = 0.85) to
-//     1e-5 (alpha = 0.2, k = 0.5, eps = 0.989); max pressure error 1.5e-4 to 1.3e-2 of the peak
-//     sample (9e-6 to 9e-4 at degree 256); error_estimate = relative defect of the split density's
-//     load (an estimate, not a bound).
-//     Otherwise (apex within 0.5% of an edge) the plain Jacobi series is used: C_f by Richardson
-//     extrapolation (~1e-6), pressure with Gibbs oscillations O(N^(alpha-1)) near the apex (can even
-//     dip below 0): error_estimate then is large and says so.
+//     complementary inversion, so both are accurate at slope ratios 1e-6 .. 1e6); L from the load in
+//     closed form, load = E_U cos(beta pi/2) (S1 + S2) eps^del (1 - eps)^gam L^(1-alpha) / (2 Gamma(2 - alpha))
+//     (the moment formula of the Riemann-Hilbert route with the eps condition substituted: no
+//     cancellation; 1e-15 relative at slope ratios 1e-6 .. 1e6 against a 50-digit evaluation).
+//     The density has a |s - apex|^-alpha (log at alpha = 0) singularity at the apex: it is built in
+//     by abel::solve_step (g = C phi + w sum c_n P_n, C from the jump in closed form, the remainder by
+//     adaptive Chebyshev interpolation up to 2 max_degree + 1 points), then c_0 is set to the exact
+//     load. C_f = (S1 int_a^apex g - S2 int_apex^b g)/int g with the smaller share integrated directly.
+//     Measured against the Riemann-Hilbert route (riemann::solve_abel_rh, order 16; tests/punch/
+//     test_wedge.cpp, build-punch3/bin/study_scene_timing) with the apex at least 0.1 L from both
+//     edges (tolerance 1e-12, alpha in {0, 1e-8, 1e-3, 0.05, 0.2, 0.3, 0.45}, k in {0, 0.5}): C_f to
+//     2e-16 .. 8e-13 relative, the 1000 pressure samples to 2e-15 .. 3e-11 of the peak sample
+//     (worst: alpha = 0.2, k = 0.5, eps = 0.84). error_estimate = max(Chebyshev
+//     tail, relative load defect of the enriched density before c_0 is corrected): an estimate.
+//     Apex within 0.1 L of an edge (min(eps, 1 - eps) <= 0.1; slope ratios beyond ~10, or alpha +
+//     beta/2 near 1/2): solve_step's accuracy degrades (~1e-8 .. 1e-10 at 0.01 L, algebraic below),
+//     so an isolated wedge takes C_f from the Riemann-Hilbert route (int_a^apex g directly; ~1e-15
+//     relative for eps -> 0, ~1e-16 (S1 + S2) absolute for eps -> 1) and says so in status; the
+//     pressure still comes from the enriched density (its error_estimate says how good; measured
+//     1e-10 .. 2e-6 of the peak sample for min(eps, 1 - eps) in [0.02, 0.1]). Within
+//     1e-3 L the density is the plain Jacobi series (pressure unresolved next to the apex, Gibbs
+//     oscillations O(N^(alpha-1))); within 1e-14 L of the trailing edge the contact is solved as
+//     ending at the apex (C_f from the Riemann-Hilbert route while 1 - eps > 1e-30, else S1).
+//     A coupled wedge (other indentors present) finds eps by the orthogonality root and takes C_f
+//     from its enriched density (Richardson-extrapolated series within 1e-3 L of an edge).
 //   * Flat punch below the boundary: nu = +1, spectral, 1e-15; above/on the boundary a line load.
 //   * Several indentors: block Gauss-Seidel on system 41 (each interval re-solved with the others'
 //     action on its right side, computed with the graded cross-term nodes and kernel of
@@ -67,18 +82,30 @@
 //     (slow, or an error naming the indentor); overlapping contacts throw naming both indentors.
 //   * residual: max over 7 interior points of |A g - F| / max|F| with the two one-sided integrals
 //     computed by abel_operator::apply_by_quadrature (Gauss-Jacobi with the kernel singularity as
-//     weight, independent of the spectral relation), the other indentors by abel_operator::apply;
-//     not computed for alpha < 1e-3 (kept from before the abel port; abel's quadrature would be
-//     uniform to alpha = 0): residual = 0 there.
+//     weight, independent of the spectral relation; uniform down to alpha = 0), the apex enrichment
+//     by abel's direct quadrature of A[phi] (the one solve_step used to build the data: for that part
+//     only the smooth remainder is checked), the other indentors by abel_operator::apply / abel::apply.
+//     Measured: <= 7e-13 for single indentors at alpha in {0, 1e-8, 5e-4} (tests/punch/
+//     test_contact.cpp); 3e-11 for examples/default_scene.json (coupled wedge + parabola; it was 7e-6
+//     with the former apex split and 2e-10 with solve_step capped at 129 points).
 //   * Displacement: outside the contact from the slope integral (paper 27, 28) integrated in closed
-//     form in s, then Gauss-Jacobi in t (regular part), tanh-sinh (apex part, datum); inside the own
+//     form in s, then Gauss-Jacobi in t (series part), abel's composite quadrature of the apex enrichment;
+//     the datum (log-singular at t = a) by tanh-sinh in offsets from a, the apex and b; inside the own
 //     contact f(x) - f(a) exactly. Elastic flat punch against -(2P/(pi E*)) arccosh(x/c): < 1e-8 for
 //     |x| >= 1.4 c; accuracy degrades next to the edges (log kernel nearly singular there).
-//   * Cost (Release, warm rule cache): single parabola ~0.2 ms; single wedge with 1000 pressure
-//     samples 0.1-0.8 ms (series, degree 16-128), 1-20 ms with the apex split (degree 16-128), 70 ms
-//     at degree 256; coupled scenes with wedges 0.1-1 s (examples/default_scene.json: 0.1 s). The first solve at a new degree also builds
-//     Gauss-Jacobi rules (O(n^3) Golub-Welsch, cached per thread).
-//     The 1 ms / 1e-10 target for the wedge is NOT reached (see study_wedge_table).
+//   * Cost (Release, warm caches, 2-core machine shared with other builds, so medians vary 2x;
+//     build-punch3/bin/study_scene_timing and a 21-run median): single parabola ~0.2 ms. Single wedge
+//     below the boundary, apex >= 0.1 L from the edges, tolerance 1e-12: 0.8-1.3 ms without samples
+//     and 1.3-1.8 ms with 1000 pressure samples for alpha in [0.05, 0.45] (perf: abel::solve_step
+//     ~35%, the independent residual ~35%, the 1000 samples ~25%: quadrature::jacobi_clenshaw
+//     recomputes the recurrence coefficients at every call); 2.5-15 ms for alpha < 0.05 (solve_step's
+//     logarithmic branch); 10-40 ms with the apex within 0.1 L of an edge (Riemann-Hilbert C_f,
+//     enrichment at up to 257 points). Coupled scenes with wedges 0.05-0.3 s
+//     (examples/default_scene.json: ~0.05-0.08 s). The target of issue #4 (1e-10 in < 1 ms for eps,
+//     L, C_f and 1000 samples) is met at tolerance 1e-8 in 0.7 ms for alpha = 0.05 (S1 = S2, k in
+//     {0, 0.5}) and alpha = 0.45 (S2/S1 = 0.1): C_f <= 4e-13, pressure <= 2.4e-11 of the peak; NOT
+//     at alpha = 0.2 (0.7 ms gives pressure 1.2e-9; 1e-12 needs 1.3 ms), nor below alpha = 0.05
+//     (>= 1.5 ms), nor with the apex within 0.1 L of an edge (10-90 ms).
 //
 // UNITS: any consistent set; the comments use SI: lengths in m, E1 in Pa s^alpha, speed in m/s,
 //   load per unit length in N/m, pressure in Pa. Slopes and friction coefficients are dimensionless.
@@ -151,12 +178,13 @@ struct solve_options {
   std::size_t grid_points = 0;  ///< pressure and displacement samples per indentor (0 = none)
   bool displacement = true;     ///< with grid_points > 0: also the displacement grid (the costlier one)
   double tolerance = 1e-12;     ///< relative tolerance of the root finders and of the expansions
-  std::size_t max_degree = 128; ///< largest Jacobi degree of a density expansion (cost ~ degree^2)
-  /// Wedge below the boundary with min(eps, 1 - eps) > 5e-3: subtract the apex singularity
-  /// sigma chi(x) psi(x) (detail/contact_density.hpp) before the spectral solve (degree max_degree).
-  /// The pressure then converges like N^-4 instead of N^(alpha-1) pointwise (no Gibbs oscillation at
-  /// the apex). L and eps are exact either way. Costs 1-70 ms. false: plain Jacobi series of degree
-  /// max_degree (C_f Richardson-extrapolated, ~1e-6; pressure poor next to the apex).
+  std::size_t max_degree = 128; ///< largest Jacobi degree of a density expansion (cost ~ degree^2);
+                                ///< the wedge's enriched solve may use up to 2 max_degree + 1 points
+  /// Wedge below the boundary with min(eps, 1 - eps) > 1e-3: build the apex singularity into the
+  /// density (abel::solve_step's singular enrichment; spectral convergence, no Gibbs oscillation at
+  /// the apex). L and eps are exact either way. false: plain Jacobi series of degree max_degree
+  /// (pressure poor next to the apex; C_f of an isolated wedge then from the Riemann-Hilbert route,
+  /// of a coupled one by Richardson extrapolation, ~1e-6). The name is kept from the former apex split.
   bool wedge_apex_split = true;
 };
 
@@ -219,7 +247,7 @@ indentor_result solve_single(const material& m, double speed, const indentor& in
 /// (index nu = 0, exponents gam = (1-2alpha-beta)/2, del = (beta-1)/2), scaled by nothing (the load
 /// is whatever (8) gives). Returns the load int p [N/m] and C_f = int f' p / int p of that field.
 /// Used to test the conjecture that C_f, at fixed load, is stationary at the true contact interval.
-/// Parabolic, wedge (apex split as in solve) and general profiles; throws std::invalid_argument for
+/// Parabolic, wedge (apex enrichment as in solve) and general profiles; throws std::invalid_argument for
 /// a flat punch or a < b violated.
 struct trial_result {
   double load = 0;

@@ -139,6 +139,20 @@ std::size_t series_degree(const std::vector<Real>& c) {
   return c.empty() ? 0 : c.size() - 1;
 }
 
+/// The common body of the *_series variants: validates p, q under the public name `function`
+/// (before anything reads them), then returns routine(h, n) with
+///   h = sum_k c[k] P_k^(p,q) as a callable (jacobi_series_callable: Clenshaw at each point; it
+///       refers to c, which outlives the call), and
+///   n = the panel order raised for the series degree (cauchy_panel_order), or `order` if the
+///       caller fixed it.
+/// `routine` forwards h and n to the callable-h routine; the evaluation point stays in its capture.
+template <class Real, class Routine>
+auto with_jacobi_series(const char* function, const std::vector<Real>& c, const Real& p, const Real& q,
+                        std::size_t order, Routine&& routine) {
+  check_jacobi_exponents(function, p, q);
+  return routine(jacobi_series_callable(c, p, q), cauchy_panel_order(series_degree(c), p, q, order));
+}
+
 }  // namespace detail
 
 /// (1/pi) PV int_{-1}^{1} (1-t)^p (1+t)^q h(t) / (t - x) dt for -1 < x < 1.
@@ -184,6 +198,16 @@ integral_result<Real> cauchy_principal_value(const H& h, Real p, Real q, Real x,
   return {(left.value + right.value + middle.value) / pi,
           (left.error_estimate + right.error_estimate + middle.error_estimate) / pi,
           left.evaluations + right.evaluations + 2 * middle.evaluations};
+}
+
+/// (1/pi) PV int w(t) h(t)/(t - x) dt for h = sum_k c[k] P_k^(p,q) (the weight's own family).
+/// `order` = 0 raises the automatic panel order by deg/2 for a series of degree deg.
+template <class Real>
+integral_result<Real> cauchy_principal_value_series(const std::vector<Real>& c, Real p, Real q, Real x,
+                                                    std::size_t order = 0) {
+  return detail::with_jacobi_series("cauchy_principal_value_series", c, p, q, order, [&](const auto& h, std::size_t n) {
+    return cauchy_principal_value(h, p, q, x, n);
+  });
 }
 
 /// Phi(z) = (1/(2 pi i)) int_{-1}^{1} (1-t)^p (1+t)^q h(t) / (t - z) dt for z in C \ [-1, 1].
@@ -244,6 +268,15 @@ complex_integral_result<Real> cauchy_transform(const H& h, Real p, Real q, std::
   return {factor * total.value, total.error_estimate / two_pi, total.evaluations};
 }
 
+/// Phi(z) for h = sum_k c[k] P_k^(p,q) (panel order as cauchy_principal_value_series).
+template <class Real>
+complex_integral_result<Real> cauchy_transform_series(const std::vector<Real>& c, Real p, Real q,
+                                                      std::complex<Real> z, std::size_t order = 0) {
+  return detail::with_jacobi_series("cauchy_transform_series", c, p, q, order, [&](const auto& h, std::size_t n) {
+    return cauchy_transform(h, p, q, z, n);
+  });
+}
+
 /// Boundary values Phi_+(x), Phi_-(x) of Phi (see cauchy_transform) at -1 < x < 1:
 /// Phi_+- = +- w(x) h(x) / 2 + (1/(2 pi i)) PV int w h/(t - x) dt  (so Phi_+ - Phi_- = w h).
 template <class Real, class H>
@@ -259,43 +292,24 @@ plemelj_result<Real> cauchy_plemelj(const H& h, Real p, Real q, Real x, std::siz
   return {complex(rho / 2) + principal, complex(-rho / 2) + principal, pv.error_estimate / 2, pv.evaluations + 1};
 }
 
-/// (1/pi) PV int w(t) h(t)/(t - x) dt for h = sum_k c[k] P_k^(p,q) (the weight's own family).
-template <class Real>
-integral_result<Real> cauchy_principal_value_series(const std::vector<Real>& c, Real p, Real q, Real x,
-                                                    std::size_t order = 0) {
-  detail::check_jacobi_exponents("cauchy_principal_value_series", p, q);
-  return cauchy_principal_value(detail::jacobi_series_callable(c, p, q), p, q, x,
-                                detail::cauchy_panel_order(detail::series_degree(c), p, q, order));
-}
-
-/// Phi(z) for h = sum_k c[k] P_k^(p,q).
-template <class Real>
-complex_integral_result<Real> cauchy_transform_series(const std::vector<Real>& c, Real p, Real q,
-                                                      std::complex<Real> z, std::size_t order = 0) {
-  detail::check_jacobi_exponents("cauchy_transform_series", p, q);
-  return cauchy_transform(detail::jacobi_series_callable(c, p, q), p, q, z,
-                          detail::cauchy_panel_order(detail::series_degree(c), p, q, order));
-}
-
-/// Phi_+-(x) for h = sum_k c[k] P_k^(p,q).
+/// Phi_+-(x) for h = sum_k c[k] P_k^(p,q) (panel order as cauchy_principal_value_series).
 template <class Real>
 plemelj_result<Real> cauchy_plemelj_series(const std::vector<Real>& c, Real p, Real q, Real x,
                                            std::size_t order = 0) {
-  detail::check_jacobi_exponents("cauchy_plemelj_series", p, q);
-  return cauchy_plemelj(detail::jacobi_series_callable(c, p, q), p, q, x,
-                        detail::cauchy_panel_order(detail::series_degree(c), p, q, order));
+  return detail::with_jacobi_series("cauchy_plemelj_series", c, p, q, order, [&](const auto& h, std::size_t n) {
+    return cauchy_plemelj(h, p, q, x, n);
+  });
 }
 
 /// Q_k(z) = int_{-1}^{1} (1-t)^p (1+t)^q P_k^(p,q)(t) / (z - t) dt for k = 0..n_max, z off [-1, 1].
 template <class Real>
 std::vector<std::complex<Real>> jacobi_q_all(std::size_t n_max, Real p, Real q, std::complex<Real> z) {
+  detail::check_jacobi_exponents("jacobi_q_all", p, q);
   using std::abs;
   using std::ceil;
   using std::log;
   using std::sqrt;
   using complex = std::complex<Real>;
-  constexpr const char* name = "jacobi_q_all";
-  detail::check_jacobi_exponents(name, p, q);
   const Real two_pi = 2 * boost::math::constants::pi<Real>();
   // Q_0 = -2 pi i Phi[1](z) (cauchy_transform validates z).
   const complex q0 = complex(0, -two_pi) * cauchy_transform([](const Real&) { return Real(1); }, p, q, z).value;

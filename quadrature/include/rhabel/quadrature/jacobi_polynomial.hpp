@@ -428,6 +428,11 @@ Real jacobi_integral_below(std::size_t m, const Real& p, const Real& q, const Re
 template <class Real>
 std::vector<Real> jacobi_step_coefficients(std::size_t n, const Real& p, const Real& q, const Real& one_minus_x0,
                                            const Real& one_plus_x0) {
+  // Validated here so that a bad argument is reported under this function's own name.
+  constexpr const char* name = "jacobi_step_coefficients";
+  detail::check_jacobi_exponents(name, p, q);
+  if (!(one_minus_x0 >= 0) || !(one_minus_x0 <= 2)) detail::throw_bad_parameter(name, "one_minus_x0", one_minus_x0, "[0, 2]");
+  if (!(one_plus_x0 >= 0) || !(one_plus_x0 <= 2)) detail::throw_bad_parameter(name, "one_plus_x0", one_plus_x0, "[0, 2]");
   std::vector<Real> c(n);
   for (std::size_t m = 0; m < n; ++m)
     c[m] = jacobi_integral_below(m, p, q, one_minus_x0, one_plus_x0) / jacobi_norm_squared(m, p, q);
@@ -463,6 +468,11 @@ Real jacobi_ramp_moment(std::size_t m, const Real& p, const Real& q, const Real&
 template <class Real>
 std::vector<Real> jacobi_ramp_coefficients(std::size_t n, const Real& p, const Real& q, const Real& one_minus_x0,
                                            const Real& one_plus_x0) {
+  // Validated here so that a bad argument is reported under this function's own name.
+  constexpr const char* name = "jacobi_step_coefficients";
+  detail::check_jacobi_exponents(name, p, q);
+  if (!(one_minus_x0 >= 0) || !(one_minus_x0 <= 2)) detail::throw_bad_parameter(name, "one_minus_x0", one_minus_x0, "[0, 2]");
+  if (!(one_plus_x0 >= 0) || !(one_plus_x0 <= 2)) detail::throw_bad_parameter(name, "one_plus_x0", one_plus_x0, "[0, 2]");
   std::vector<Real> c(n);
   for (std::size_t m = 0; m < n; ++m)
     c[m] = jacobi_ramp_moment(m, p, q, one_minus_x0, one_plus_x0) / jacobi_norm_squared(m, p, q);

@@ -29,7 +29,7 @@
 // With the canonical function X = (z-a)^m (z-b)^n of riemann_problem.hpp (index 0) and
 // Abel's inversion int_a^y g = (sin(pi alpha)/pi) int_a^y A(x) (y-x)^(-alpha) dx:
 //     A~(x) := (sin(pi alpha)/pi) A(x) = (b-x)^alpha (Phi_+ - Phi_-)(x) / (2 pi i)
-//            = (c/pi) [ s F(x) - (1/pi) (x-a)^m (b-x)^(n+alpha) PV int_a^b w*(t) F(t)/(t-x) dt ],
+//            = (c/pi) [ s F(x) - (c/pi) (x-a)^m (b-x)^(n+alpha) PV int_a^b w*(t) F(t)/(t-x) dt ],
 //     w*(t) = (t-a)^(-m) (b-t)^(-alpha-n),  c = cos(beta pi/2), s = sin(beta pi/2),
 //     int_a^y g = int_a^y A~(x) (y-x)^(-alpha) dx                                   (derivative-free)
 //     g(y)      = A~(y) (y-a)^(-alpha) + alpha int_a^y (A~(y) - A~(x)) (y-x)^(-alpha-1) dx
@@ -61,30 +61,64 @@
 // on [-1, 1], mapped to each panel through the distances 1 -+ x) that carry (x-a)^m on the panel
 // touching a and (y-x)^(-alpha) on the panel touching y, geometrically graded (ratio 1/4)
 // towards y when b or a step of F is near y, and towards every step of F inside (a, y) (where
-// A~ has a logarithmic singularity, lambda log|x - c| with lambda = cos(beta pi/2) size/pi^2;
+// A~ has a logarithmic singularity, lambda log|x - c| with lambda = cos^2(beta pi/2) size/pi^2;
 // when y is itself a step, e.g. int_a^0 g for the wedge, that log is integrated exactly).
+// Nodes are evaluated at their rounded positions, but every factor that varies on the scale of
+// a short panel ((y-x)^(-alpha), (x-a)^m) is formed from the EXACT node offsets (near an end the
+// rounding of a node is relatively ~ulp(y)/(distance), 1e-10 at 1e-6 L).
+// The density uses the derivative form with a Chebyshev window around y (index0_abel::density):
+// A~ is interpolated at n Chebyshev-Lobatto points of [y - H, y + H], H = 1/3 of the distance
+// from y to a, b and the steps, and the near part of alpha int (A~(y) - A~(x))(y-x)^(-alpha-1)
+// is integrated from the interpolant's divided difference, a polynomial evaluated by a stable
+// recurrence; the far part on panels graded (ratio 2) towards y - H. The rounding of A~ is then
+// amplified by ~ (n/H)^alpha instead of (n^2/d)^alpha (d = distance of the nearest Gauss node,
+// ~ H/n^2, as before this session).
 // Every query is answered at two orders (n and 3n/2, inner and outer) and returns the finer
 // value with |difference| as error_estimate: an ESTIMATE, not a bound.
 //
-// Accuracy (measured, build-rh Release, tests/riemann/test_abel_solver.cpp; double unless said):
+// Usage for step data (the wedge; one call per scene, the punch layer's oracle):
+//     piecewise_function<double> F{[&](double) { return S1 / tgamma(1 - alpha); },
+//                                  {step<double>{apex, -(S1 + S2) / tgamma(1 - alpha)}}};
+//     const auto sol = solve_abel_rh(alpha, beta, a, b, F, edge::bounded, edge::bounded);
+//     sol.integral(apex).value;   // int_a^apex g  (error_estimate: two orders)
+//     sol.total().value;          // int_a^b g     (moment formula)
+//     sol.orthogonality_defect(); // nu = -1: ~0 iff S2/(S1+S2) satisfies the contact condition
+// Any number of steps (breakpoints of F) at any positions in (a, b), also within 1e-6 L of an end.
+//
+// Accuracy (measured in double on this machine, Release, unless said; commands:
+// build-rh3/tests/riemann_test_abel_solver, build-rh3/tests/riemann_test_density_table and
+// build-rh3/bin/study_riemann_convergence):
 //  * int g and int_a^y g: a few eps relative to int g for smooth F in every class, alpha in
-//    [0, 0.9], beta in [0, 0.7]: parabola closed form <= 32 eps; rhabel::abel agreement
-//    <= 1e-13 (observed ~1e-15); at 50 digits (cpp_bin_float_50) <= 1e-45. KNOWN WEAKNESS:
-//    for y within ~1e-5 L of the trailing edge b the error grows (alpha = 0.8, beta = 0:
-//    1e-14 at b - y = 1e-5 L, 5e-13 at 1e-7 L, 1e-12 at 1e-9 L; cause not yet identified, A~
-//    itself is smooth there to rounding); int_a^b g itself is exact (moment formula).
+//    [0, 0.9], beta in [0, 0.9]: parabola closed form <= 11 eps (also at b - y = 1e-7 L: the
+//    weakness near b of the previous session came from rounded nodes and is gone); 50-digit
+//    table <= 133 eps (3e-14); rhabel::abel agreement <= 1e-13; at 50 digits <= 1e-45.
 //    As alpha -> 1, A~ = O(1 - alpha) is formed from O(1) boundary values: a factor
 //    1/(1 - alpha) is lost (alpha = 0.999: ~1e-13 instead of 1e-16).
-//  * step data: int_a^0 g for the wedge with an interior apex to ~1e-16 (two orders agree to
-//    rounding; independent residual of eq. 8 <= 1e-12, limited by the residual's own quadrature).
-//  * g(y): the derivative form above divides differences of A~ by y - x down to the nearest
-//    Gauss node, amplifying the rounding of A~ by ~ (distance)^(-alpha): ~1e-14..1e-13 relative
-//    for alpha <= 0.5, ~1e-12..1e-11 for alpha in [0.6, 0.9], ~1e-7 at alpha = 0.999. Prefer
-//    int_a^y g when a quantity can be written with it (loads, moments, C_f by parts).
+//  * step data (wedge with an apex at e L from a, e in {1e-6, 1e-3, 0.4, 0.5, 0.999, 1 - 1e-6}):
+//    int g against the incomplete-beta closed form <= 64 eps max|F| int w*; int_a^apex g: the two
+//    orders agree to <= 32 eps, against rhabel::abel::solve_step (apex at 0.4 L, 0.5 L) <= 2e-14,
+//    independent residual of eq. 8 <= 1e-12 (limited by the residual's own quadrature).
+//  * g(y), relative to max(|g(y)|, int g / L), smooth F, every class, alpha in [0, 0.9], beta in
+//    [0, 0.9] (build-rh3/tests/riemann_test_density_table: 54 cases x 7 points against the
+//    45-digit table of tests/data/riemann_density_reference.hpp). The rounding of A~ is amplified
+//    by ~ (n/H)^alpha, H = d/3, d = min(y - a, b - y): measured error <= 133 eps (L/d)^alpha.
+//    At d >= 0.14 L: <= 50 eps for alpha <= 0.6, <= 550 eps (1.2e-13) at alpha = 0.8, 0.9.
+//    At 0.005 L from a: <= 480 eps (alpha <= 0.6), 2.2e3 eps (0.8), 9.3e3 eps (2e-12, 0.9).
+//    At 5e-7 L from a: <= 1.1e3 eps (alpha <= 0.6), 9e3 eps (0.8), 3e4 eps (7e-12, 0.9).
+//    At 5e-7 L from b, classes unbounded at b: up to 2e4 eps (alpha <= 0.6), 2.7e6 eps (0.9).
+//    KNOWN LIMIT at b for the classes bounded at b (g -> 0 while A~ = O(1); the first-row
+//    representation of nu = -1 also leaves its (b-t)^((beta-1)/2) component at rounding level):
+//    <= 12 eps (L/d)^(alpha + (1-beta)/2); at 5e-7 L from b 3.7e3 eps for alpha = beta = 0,
+//    1e5 eps (alpha = 0.6), 1.8e6 eps (4e-10, alpha = 0.8), 3.5e7 eps (8e-9, alpha = 0.9).
+//    The spectral solver rhabel::abel is the more accurate side there; the RH route is the more
+//    accurate side inside for alpha = beta = 0.9 (spectral 1e-12, RH 1e-14).
+//    Prefer int_a^y g when a quantity can be written with it (loads, moments, C_f by parts).
 //  * hard alphas: 1e-3 and 0 (the Carleman limit) lose nothing; 0.5 -+ 1e-9 (kappa through 0)
-//    loses nothing (the single-power integral K(q, .) is uniform through q = 0).
-// Cost (double): construction ~10 ms; a query int_a^y g ~0.2 ms (smooth F) to ~6 ms (steps,
-// graded panels); 50 digits ~100x more.
+//    loses nothing (the single-power integral K(q, .) is uniform through q = 0); 0.999 loses
+//    1/(1 - alpha) in int g and ~1/(1 - alpha)^2 in g.
+// Cost (double, Release, 2 busy cores; study_riemann_convergence "seconds"): construction
+// 2-15 ms; int_a^y g 0.2 ms (smooth F) to 1-20 ms (steps, graded panels); g(y) (n window
+// samples + graded far panels, two orders) 0.1-10 ms; 50 digits ~100x more.
 //
 // Bad input (alpha outside [0,1), beta outside [0,1), a >= b, a class that does not exist for
 // these parameters, y outside [a, b], a density point on a step) throws std::domain_error
@@ -146,6 +180,7 @@ class index0_abel {
     using std::sin;
     const Real pi = boost::math::constants::pi<Real>();
     c_ = cos(beta * pi / 2);
+    s_ = sin(beta * pi / 2);
     m_ = rh_.canonical().exponent_lo;
     legendre_ = quadrature::gauss_jacobi<Real>(n_, Real(0), Real(0));
     at_a_ = quadrature::gauss_jacobi<Real>(n_, Real(0), m_);
@@ -170,12 +205,33 @@ class index0_abel {
     return x;
   }
 
-  // A~(x) = (b-x)^alpha (Phi_+ - Phi_-)/(2 pi i), real.
+  // A~ at the node of `panel` with distances (from_lo, to_hi) to its ends, divided by (x-a)^m
+  // on the panel touching a (whose rule carries that weight). The node is evaluated at its
+  // rounded position x (node()), which differs from the exact node by up to ulp(x)/2: relatively
+  // ~1e-10 of x - a at 1e-6 from a, where A~ ~ (x-a)^m varies on the scale x - a. Since
+  // A~(x)/(x-a)^m is smooth on the scale of L, it is taken at x and multiplied by the EXACT
+  // (x-a)^m (from the exact distances); all factors in y - x are likewise formed from the exact
+  // distances by the callers. (Near b, A~ = smooth + (b-x)^k smooth has no such one-term
+  // correction: the residual sensitivity ulp(x)/(b - x) is a documented limit.)
+  Real sample(const std::pair<Real, Real>& panel, const Real& from_lo, const Real& to_hi, bool at_a) const {
+    using std::pow;
+    const Real x = node(panel, from_lo, to_hi);
+    Real value = reduced(x);
+    if (at_a) return value / pow(x - a_, m_);
+    const Real exact = (panel.first - a_) + from_lo;
+    return exact == x - a_ ? value : value * pow(exact / (x - a_), m_);
+  }
+
+  // A~(x) = (b-x)^alpha (Phi_+ - Phi_-)/(2 pi i) in its real form (file header)
+  //     A~ = (c/pi) [s F(x) - (c/pi) (x-a)^m (b-x)^(n+alpha) PV int w* F/(t-x) dt]
+  // (one principal value; the complex form Im(Phi_+ - Phi_-) cancels terms of size |rho X| ~
+  // (x-a)^(-m) |A~| next to a: 1e-12 relative at 1e-7 L from a; the two forms were checked to
+  // agree to 1e-14 in every row).
   Real reduced(const Real& x) const {
     using std::pow;
-    const auto [plus, minus] = rh_.boundary_values(x);
     const Real pi = boost::math::constants::pi<Real>();
-    return pow(b_ - x, alpha_) * (plus - minus).imag() / (2 * pi);
+    const Real n = rh_.canonical().exponent_hi;
+    return c_ / pi * (s_ * F_(x) - c_ / pi * pow(x - a_, m_) * pow(b_ - x, n + alpha_) * rh_.cauchy().principal_value(x));
   }
 
   Real total() const {
@@ -188,12 +244,14 @@ class index0_abel {
     using std::pow;
     using std::log;
     if (y == a_) return Real(0);
-    // y on a step at c: A~(x) = lambda log(c - x) + (continuous) near c, lambda = cos(beta pi/2) size/pi^2
-    // (the step's PV contributes -size w*(c) log|x - c| and (x-a)^m (b-x)^(n+alpha) w*(c) = 1 at c);
+    // y on a step at c: A~(x) = lambda log(c - x) + (continuous) near c, lambda = cos^2(beta pi/2) size/pi^2
+    // (the step's PV contributes -size w*(c) log|x - c| and (x-a)^m (b-x)^(n+alpha) w*(c) = 1 at c;
+    // the slope of A~ against log(c - x) was checked numerically: before this session lambda
+    // carried one factor cos(beta pi/2), harmless because the panels are graded towards the step);
     // the log is integrated exactly against (y-x)^(-alpha) on the panel touching y.
     Real lambda = 0;
     for (const auto& s : F_.steps)
-      if (s.position == y) lambda += c_ * s.size / (boost::math::constants::pi<Real>() * boost::math::constants::pi<Real>());
+      if (s.position == y) lambda += c_ * c_ * s.size / (boost::math::constants::pi<Real>() * boost::math::constants::pi<Real>());
     Real sum = 0;
     for (const auto& panel : panels(y)) {
       const bool at_a = panel.first == a_, at_y = panel.second == y;
@@ -202,13 +260,9 @@ class index0_abel {
       const Real scale = pow(half, (at_a ? m_ : Real(0)) + (at_y ? -alpha_ : Real(0)) + 1);
       for (std::size_t i = 0; i < standard.size(); ++i) {
         const Real from_lo = standard.x_minus_lo[i] * half, to_hi = standard.hi_minus_x[i] * half;
-        const Real x = node(panel, from_lo, to_hi);
-        const Real distance_to_y = at_y ? to_hi : y - x;
-        Real f = reduced(x);
+        const Real distance_to_y = at_y ? to_hi : (y - panel.second) + to_hi;  // exact node
+        Real f = sample(panel, from_lo, to_hi, at_a);
         if (at_y && lambda != 0) f -= lambda * log(distance_to_y);
-        // divide by the distance of the node AS EVALUATED (x rounded): A~(x)/(x-a)^m is smooth,
-        // but (x - a) and the exact from_lo differ by ~eps |a| / (x - a) relatively near a.
-        if (at_a) f /= pow(x - a_, m_);
         if (!at_y) f *= pow(distance_to_y, -alpha_);
         sum += standard.weight[i] * scale * f;
       }
@@ -221,38 +275,102 @@ class index0_abel {
     return sum;
   }
 
-  // g(y), a < y < b
+  // g(y), a < y < b, off the steps: Abel's inversion in derivative form (file header),
+  //     g(y) = A~(y) (y-a)^(-alpha) + alpha int_a^y (A~(y) - A~(x)) (y-x)^(-alpha-1) dx ,
+  // evaluated WITHOUT divided differences of computed A~ at short distances (those amplify the
+  // rounding of A~ by (distance)^(-alpha): 1e-12..1e-7 relative for alpha >= 0.6 with Gauss
+  // nodes clustered at y). On the window [y - H, y + H], H = 1/3 of the distance from y to a,
+  // b and the steps of F (A~ is analytic there: Bernstein ratio 3 + sqrt 8), A~ is replaced by
+  // its Chebyshev interpolant P(y + H s) = sum'' c_k T_k(s) at n Chebyshev-Lobatto points, and
+  //     (A~(y) - A~(x)) / (y - x) = (1/H) sum c_k D_k(s),  D_k(s) = (T_k(s) - T_k(0))/s,
+  // D_0 = 0, D_1 = 1, D_{k+1} = 2 T_k - D_{k-1} (from T_{k+1} = 2 s T_k - T_{k-1}, T_{k+1}(0) =
+  // -T_{k-1}(0)): a polynomial evaluated by a stable recurrence, never a cancelling difference.
+  // The nearest sample of A~ is then H/n from y (not H/n^2), and the rounding of A~ is amplified
+  // by ~ (n/H)^alpha instead of (n^2/H)^alpha. With u = (y - x)/H,
+  //     g(y) = A~(y) H^(-alpha) + alpha H^(-alpha) int_0^1 sum c_k D_k(-u) u^(-alpha) du
+  //            - alpha int_a^(y-H) A~(x) (y-x)^(-alpha-1) dx
+  // (the A~(y) terms of the far part integrate in closed form and combine with A~(y)(y-a)^(-alpha)).
+  // The far integral uses panels graded geometrically (ratio 2) towards y - H, so each panel
+  // sees the singularity at y at a distance >= its length, and towards every step of F.
   Real density(const Real& y) const {
+    using std::abs;
     using std::pow;
+    using std::sin;
     const Real ay = reduced(y);
-    Real sum = ay * pow(y - a_, -alpha_);
-    if (alpha_ == 0) return sum;
-    for (const auto& panel : panels(y, true)) {
-      const bool at_a = panel.first == a_, at_y = panel.second == y;
-      const Real half = (panel.second - panel.first) / 2;
-      if (at_y) {
-        // alpha int (A~(y) - A~(x))/(y - x) (y-x)^(-alpha) dx
-        const Real scale = pow(half, 1 - alpha_);
-        for (std::size_t i = 0; i < at_y_.size(); ++i) {
-          const Real from_lo = at_y_.x_minus_lo[i] * half, to_hi = at_y_.hi_minus_x[i] * half;
-          const Real x = node(panel, from_lo, to_hi);
-          sum += at_y_.weight[i] * scale * alpha_ * (ay - reduced(x)) / (y - x);
-        }
+    if (alpha_ == 0) return ay;
+    const Real pi = boost::math::constants::pi<Real>();
+    Real distance = std::min<Real>(y - a_, b_ - y);
+    for (const auto& s : F_.steps) distance = std::min<Real>(distance, abs(s.position - y));
+    // H = y - (y - distance/3) as rounded: the far part ends at the representable point y - H and
+    // the near part starts there. (Next to an end the integrand of the far part is ~H^(-alpha-1)
+    // at y - H, so a split point off by ulp(y)/2 would cost ~ulp(y) H^(-alpha-1) |A~|: 1e-10
+    // relative at 1e-6 from a, alpha = 0.6.) H itself is exact when y - H and y are within a
+    // factor 2 (Sterbenz), i.e. whenever H is small; otherwise its rounding is relative eps.
+    const Real H = y - (y - distance / 3);
+    // Chebyshev-Lobatto samples s_j = cos(j pi/(N-1)) = sin(pi (N-1-2j) / (2(N-1))) (exactly
+    // symmetric, s = 0 exact). The sample y + H s_j is rounded to a representable x_j; next to a
+    // or b, A~ varies on the scale of H itself while x_j moves by up to ulp(y)/2 (relatively
+    // ~1e-10 of H at 1e-6 from an end), so the interpolant is built at the ACTUAL abscissae
+    // s'_j = (x_j - y)/H: the DCT of the samples, refined twice by the DCT of the residual
+    // f_j - P(s'_j) (a fixed-point iteration that contracts like N^2 max|s'_j - s_j|).
+    const std::size_t N = n_ | 1;  // odd: y itself is a sample
+    std::vector<Real> values(N), abscissae(N), coefficients(N, Real(0)), residual(N);
+    for (std::size_t j = 0; j < N; ++j) {
+      const Real s = sin(pi * (Real(N - 1) - 2 * Real(j)) / (2 * Real(N - 1)));
+      if (s == 0) {
+        values[j] = ay;
+        abscissae[j] = 0;
         continue;
       }
-      // alpha A~(y) int (y-x)^(-alpha-1) - alpha int A~(x) (y-x)^(-alpha-1)
-      sum += ay * (pow(y - panel.second, -alpha_) - pow(y - panel.first, -alpha_));
+      Real x = y + H * s;
+      if (!(x > a_)) x = boost::math::float_next(a_);
+      if (!(x < b_)) x = boost::math::float_prior(b_);
+      values[j] = reduced(x);
+      abscissae[j] = (x - y) / H;
+    }
+    residual = values;
+    for (int sweep = 0; sweep < 3; ++sweep) {
+      // c_k += (2/(N-1)) sum''_j r_j cos(k j pi/(N-1)), halved for k = 0, N-1: P = sum_k c_k T_k
+      for (std::size_t k = 0; k < N; ++k) {
+        Real sum = 0;
+        for (std::size_t j = 0; j < N; ++j) {
+          const Real term = residual[j] * chebyshev_cosine(k * j, N - 1);
+          sum += (j == 0 || j + 1 == N) ? term / 2 : term;
+        }
+        coefficients[k] += ((k == 0 || k + 1 == N) ? sum : 2 * sum) / Real(N - 1);
+      }
+      for (std::size_t j = 0; j < N; ++j) residual[j] = values[j] - clenshaw(coefficients, abscissae[j]);
+    }
+    // near part: alpha H^(-alpha) int_0^1 sum c_k D_k(-u) u^(-alpha) du (at_y_ is exact: degree N-2 <= 2n-1)
+    Real near = 0;
+    for (std::size_t i = 0; i < at_y_.size(); ++i) {
+      const Real u = at_y_.hi_minus_x[i] / 2, s = -u;  // weight (1 - v)^(-alpha), u = (1 - v)/2
+      Real t_prev = 1, t = s, d_prev = 0, d = 1, sum = coefficients[1];  // T_0, T_1, D_0, D_1
+      for (std::size_t k = 1; k + 1 < N; ++k) {
+        const Real d_next = 2 * t - d_prev, t_next = 2 * s * t - t_prev;
+        sum += coefficients[k + 1] * d_next;
+        d_prev = d;
+        d = d_next;
+        t_prev = t;
+        t = t_next;
+      }
+      near += at_y_.weight[i] * sum;
+    }
+    near *= pow(Real(2), alpha_ - 1);  // int_0^1 f(u) u^(-alpha) du = 2^(alpha-1) sum w_i f(u_i)
+    Real result = (ay + alpha_ * near) * pow(H, -alpha_);
+    // far part: - alpha int_a^(y-H) A~(x) (y-x)^(-alpha-1) dx
+    for (const auto& panel : far_panels(y, H)) {
+      const bool at_a = panel.first == a_;
       const auto& standard = at_a ? at_a_ : legendre_;
+      const Real half = (panel.second - panel.first) / 2;
       const Real scale = pow(half, (at_a ? m_ : Real(0)) + 1);
       for (std::size_t i = 0; i < standard.size(); ++i) {
         const Real from_lo = standard.x_minus_lo[i] * half, to_hi = standard.hi_minus_x[i] * half;
-        const Real x = node(panel, from_lo, to_hi);
-        Real f = reduced(x) * pow(y - x, -alpha_ - 1);
-        if (at_a) f /= pow(x - a_, m_);  // rounded node, as in integral()
-        sum -= standard.weight[i] * scale * alpha_ * f;
+        const Real f = sample(panel, from_lo, to_hi, at_a) * pow((y - panel.second) + to_hi, -alpha_ - 1);
+        result -= standard.weight[i] * scale * alpha_ * f;
       }
     }
-    return sum;
+    return result;
   }
 
   const riemann_solution<Real>& riemann() const { return rh_; }
@@ -275,72 +393,109 @@ class index0_abel {
     return solve_riemann_problem(problem, 0, bounded, std::complex<Real>(0), order);
   }
 
-  // Panels of [a, y]: breaks at the steps of F inside (a, y) (log singularities of A~) and at
-  // the middle, graded towards a step and towards y when b or a step is near y.
-  std::vector<std::pair<Real, Real>> panels(const Real& y, bool split_middle = false) const {
-    using std::abs;
+  // Panels of [a, y]: breaks at the steps of F inside (a, y) (log singularities of A~), graded
+  // towards a step and towards y when b or a step is near y.
+  std::vector<std::pair<Real, Real>> panels(const Real& y) const {
     std::vector<Real> breaks{a_};
     for (const auto& s : F_.steps)
       if (s.position > a_ && s.position < y) breaks.push_back(s.position);
     std::sort(breaks.begin(), breaks.end());
-    if (breaks.size() == 1 && split_middle) breaks.push_back((a_ + y) / 2);
     breaks.push_back(y);
-    // distance from y to the nearest singularity beyond it
-    Real beyond = b_ - y;
-    for (const auto& s : F_.steps)
-      if (s.position >= y) beyond = std::min<Real>(beyond, s.position - y);
+    std::vector<std::pair<Real, Real>> result;
+    for (std::size_t k = 0; k + 1 < breaks.size(); ++k) grade(result, breaks[k], breaks[k + 1], y);
+    return result;
+  }
+
+  // Appends [u, v] to `result`, cut geometrically (ratio sigma_ = 1/4) towards an end that is a
+  // step of F, and towards v = y when b or a step lies within (v - u)/2 beyond y; a and the other
+  // breaks need no grading.
+  void grade(std::vector<std::pair<Real, Real>>& result, const Real& u, const Real& v, const Real& y) const {
+    using std::abs;
     auto is_step = [&](const Real& e) {
       for (const auto& s : F_.steps)
         if (e == s.position) return true;
       return false;
     };
-    std::vector<std::pair<Real, Real>> result;
     const Real eps = std::numeric_limits<Real>::epsilon();
-    for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
-      const Real u = breaks[k], v = breaks[k + 1];
-      const Real length = v - u;
-      const Real du = is_step(u) ? Real(0) : length;  // a and the middle need no grading
-      const Real dv = is_step(v) ? Real(0) : (v == y ? beyond : length);
-      const bool grade_u = du < length / 2, grade_v = dv < length / 2;
-      if (!grade_u && !grade_v) {
-        result.emplace_back(u, v);
-        continue;
-      }
-      const Real middle = grade_u && grade_v ? u + length / 2 : (grade_u ? v : u);
-      if (grade_u) {
-        // u < ... < middle, geometric towards u
-        std::vector<Real> points;
-        Real h = (middle - u) * sigma_;
-        const Real stop = std::max<Real>({du, (middle - u) * eps, 8 * eps * abs(u)});
-        while (h > stop) {
-          points.push_back(u + h);
-          h *= sigma_;
-        }
-        Real left = u;
-        for (auto it = points.rbegin(); it != points.rend(); ++it) {
-          result.emplace_back(left, *it);
-          left = *it;
-        }
-        result.emplace_back(left, middle);
-      }
-      if (grade_v) {
-        std::vector<Real> points;
-        Real h = (v - middle) * sigma_;
-        const Real stop = std::max<Real>({dv, (v - middle) * eps, 8 * eps * abs(v)});
-        while (h > stop) {
-          points.push_back(v - h);
-          h *= sigma_;
-        }
-        Real left = middle;
-        for (const Real& p : points) {
-          result.emplace_back(left, p);
-          left = p;
-        }
-        result.emplace_back(left, v);
-      } else if (middle < v) {
-        result.emplace_back(middle, v);
-      }
+    const Real length = v - u;
+    Real beyond = b_ - y;  // distance from y to the nearest singularity beyond it
+    for (const auto& s : F_.steps)
+      if (s.position >= y) beyond = std::min<Real>(beyond, s.position - y);
+    const Real du = is_step(u) ? Real(0) : length;
+    const Real dv = is_step(v) ? Real(0) : (v == y ? beyond : length);
+    const bool grade_u = du < length / 2, grade_v = dv < length / 2;
+    if (!grade_u && !grade_v) {
+      result.emplace_back(u, v);
+      return;
     }
+    const Real middle = grade_u && grade_v ? u + length / 2 : (grade_u ? v : u);
+    if (grade_u) {
+      // u < ... < middle, geometric towards u
+      std::vector<Real> points;
+      Real h = (middle - u) * sigma_;
+      const Real stop = std::max<Real>({du, (middle - u) * eps, 8 * eps * abs(u)});
+      while (h > stop) {
+        points.push_back(u + h);
+        h *= sigma_;
+      }
+      Real left = u;
+      for (auto it = points.rbegin(); it != points.rend(); ++it) {
+        result.emplace_back(left, *it);
+        left = *it;
+      }
+      result.emplace_back(left, middle);
+    }
+    if (grade_v) {
+      std::vector<Real> points;
+      Real h = (v - middle) * sigma_;
+      const Real stop = std::max<Real>({dv, (v - middle) * eps, 8 * eps * abs(v)});
+      while (h > stop) {
+        points.push_back(v - h);
+        h *= sigma_;
+      }
+      Real left = middle;
+      for (const Real& p : points) {
+        result.emplace_back(left, p);
+        left = p;
+      }
+      result.emplace_back(left, v);
+    } else if (middle < v) {
+      result.emplace_back(middle, v);
+    }
+  }
+
+  // sum_k c_k T_k(s) (Clenshaw).
+  static Real clenshaw(const std::vector<Real>& c, const Real& s) {
+    Real b1 = 0, b2 = 0;
+    for (std::size_t k = c.size(); k-- > 1;) {
+      const Real b0 = 2 * s * b1 - b2 + c[k];
+      b2 = b1;
+      b1 = b0;
+    }
+    return s * b1 - b2 + c[0];
+  }
+
+  // cos(pi m / M) with the argument reduced to [0, pi/2] (exact symmetry, no large arguments).
+  static Real chebyshev_cosine(std::size_t m, std::size_t M) {
+    using std::cos;
+    const Real pi = boost::math::constants::pi<Real>();
+    m %= 2 * M;
+    if (m > M) m = 2 * M - m;  // cos is even and 2 pi periodic
+    if (2 * m > M) return -cos(pi * Real(M - m) / Real(M));
+    return cos(pi * Real(m) / Real(M));
+  }
+
+  // Panels of [a, y - H] for the far part of density(): breaks at y - 2^j H (j >= 0), at the
+  // steps of F (which all lie below y - 3H), graded towards each step as in panels().
+  std::vector<std::pair<Real, Real>> far_panels(const Real& y, const Real& H) const {
+    std::vector<Real> breaks{a_};
+    for (const auto& s : F_.steps)
+      if (s.position > a_ && s.position < y) breaks.push_back(s.position);
+    for (Real d = H; y - d > a_; d *= 2) breaks.push_back(y - d);
+    std::sort(breaks.begin(), breaks.end());
+    breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+    std::vector<std::pair<Real, Real>> result;
+    for (std::size_t k = 0; k + 1 < breaks.size(); ++k) grade(result, breaks[k], breaks[k + 1], y);
     return result;
   }
 
@@ -348,7 +503,7 @@ class index0_abel {
   piecewise_function<Real> F_;
   std::size_t n_;
   riemann_solution<Real> rh_;
-  Real c_, m_, sigma_;
+  Real c_, s_, m_, sigma_;
   quadrature::quadrature_rule<Real> legendre_, at_a_, at_y_, both_;
 };
 
@@ -467,8 +622,12 @@ class abel_rh_solution {
     const Real end_term = Fb * pow(L, P + Q + 1) * tgamma(Q + 1) / tgamma(P + Q + 2);
     // scale of the defect for the status: max|F| times the size of its two terms
     defect_scale_ = abs_value(pow(L, P + Q + 1)) * (abs_value(rgamma_p1) + abs_value(tgamma(Q + 1) / tgamma(P + Q + 2)));
-    Real max_f = 0;
+    // (sampled, and on both sides of every step: an apex 1e-6 L from a leaves F = S1 on a piece
+    // no sample hits)
+    Real max_f = abs_value(F(a_));
     for (int k = 1; k < 16; ++k) max_f = std::max<Real>(max_f, abs_value(F(a_ + (b_ - a_) * k / 16)));
+    for (const auto& s : F.steps)
+      max_f = std::max<Real>({max_f, abs_value(F(s.position)), abs_value(F(s.position) + s.size)});
     defect_scale_ *= std::max<Real>(max_f, abs_value(Fb));
     Real values[2];
     const std::size_t n = options_.order == 0 ? default_cauchy_order<Real>() : options_.order;
@@ -483,7 +642,18 @@ class abel_rh_solution {
         sum += jacobi_cauchy_integral<Real>(a_, b_, P + 1, Q, divided, orders[r]).moment();
       }
       for (const auto& s : F.steps) {
-        // - size int_a^c (t-a)^Q (b-t)^P dt   (F - F(b) = -size on (a, c))
+        // - size int_a^c (t-a)^Q (b-t)^P dt   (F - F(b) = -size on (a, c)). For P > -1 (alpha +
+        // beta/2 < 1/2, where a wedge apex occurs) in closed form, L^(P+Q+1) B_x(Q+1, P+1),
+        // x = (c-a)/L, through the complement B(Q+1, P+1) - B_(1-x)(P+1, Q+1) when c is nearer
+        // to b (a Gauss rule on [a, c] would see (b-t)^P nearly singular: with c 1e-3 L from b
+        // it gave the defect to only ~1e-3).
+        if (P > -1) {
+          const Real x = (s.position - a_) / L, xc = (b_ - s.position) / L;
+          const Real incomplete = x <= xc ? boost::math::beta(Q + 1, P + 1, x)
+                                          : boost::math::beta(Q + 1, P + 1) - boost::math::beta(P + 1, Q + 1, xc);
+          sum -= s.size * pow(L, P + Q + 1) * incomplete;
+          continue;
+        }
         piecewise_function<Real> power;
         const Real bb = b_;
         power.smooth = [bb, P](Real t) {

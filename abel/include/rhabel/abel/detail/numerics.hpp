@@ -17,10 +17,9 @@
 //    quadrature::gauss_jacobi on the panels that touch an end, Gauss-Legendre elsewhere. A
 //    singularity at distance d from an end sits 3 panel half-widths from the centre of every
 //    panel, so each panel converges like (3 + sqrt 8)^(-2 n_panel): 16 nodes give ~ 1e-24.
-//  * gauss_jacobi_rule: quadrature::gauss_jacobi, except for hardware floating types with BOTH
-//    exponents within 1e-5 of -1, where quadrature::gauss_jacobi is less accurate (measured
-//    1.6e5 eps at p = q = -1 + 1e-9) and the module's former private rule (Golub-Welsch start,
-//    Newton on the recurrence, endpoint-series Newton) is kept for exactly that case.
+//  * cached_gauss_jacobi_rule: quadrature::gauss_jacobi from a thread-safe cache keyed by (n, p, q).
+//  * gauss_laguerre_rule: Gauss-Laguerre nodes and weights (the log-singular end rule of the
+//    step enrichment at small alpha).
 //  * chebyshev_grid / chebyshev_coefficients, exprel, lgamma_difference_over_alpha.
 #pragma once
 
@@ -36,6 +35,10 @@
 
 #include <cmath>
 #include <cstddef>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <tuple>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -92,111 +95,30 @@ Real jacobi_sum_any(const std::vector<Real>& c, const Real& p, const Real& q, co
   return b1;
 }
 
-/// The abel module's former private Gauss-Jacobi rule, kept ONLY for the case where
-/// quadrature::gauss_jacobi is measurably less accurate: Real = double or long double (float
-/// treated alike) with BOTH exponents within 1e-5 of -1 (see gauss_jacobi_rule below). Golub-Welsch in double
-/// for starting values, Newton in Real on the plain recurrence, a series Newton for nodes next
-/// to an end, weights from K_n / ((1 - x^2) P_n'(x)^2) (Szego 15.3.5). Measured against
-/// 50-digit rules, n = 16..80: <= 940 eps there (p = q = -1 + 1e-9: <= 440 eps, where
-/// quadrature::gauss_jacobi<double> and <long double> err by 1.6e5 eps in the weights and
-/// 4e4 eps in the node distances; at p = q = -1 + 1e-5 both are ~120 eps). p, q > -1.
+/// quadrature::gauss_jacobi(n, p, q) from a process-wide cache keyed by (n, p, q) (exact keys: the
+/// rule depends on the exact exponents). Building a rule costs O(n^2)-O(n^3) operations
+/// (quadrature::gauss_jacobi); the abel quadratures (panel_integrator, jacobi_density::integrate,
+/// abel_operator::apply outside [lo, hi], the enrichment of step_enrichment.hpp) need the same few
+/// rules thousands of times per solve. Thread-safe (one mutex; the rules are immutable and
+/// shared). The cache is emptied when it holds more than 512 rules, so memory stays bounded when
+/// the exponents sweep a continuum (a rule of n nodes holds 4n numbers).
 template <class Real>
-rhabel::quadrature::quadrature_rule<Real> gauss_jacobi_both_ends_near_minus_one(std::size_t n, const Real& p, const Real& q) {
-  using std::pow;
-  // Newton below runs on the plain forward recurrence (the rule was validated with it).
-  Eigen::VectorXd diagonal(static_cast<Eigen::Index>(n));
-  Eigen::VectorXd off(static_cast<Eigen::Index>(n > 1 ? n - 1 : 0));
-  const double pd = static_cast<double>(p), qd = static_cast<double>(q);
-  for (std::size_t k = 0; k < n; ++k) {
-    const double s = 2.0 * static_cast<double>(k) + pd + qd;
-    diagonal[static_cast<Eigen::Index>(k)] = k == 0 ? (qd - pd) / (pd + qd + 2) : (qd * qd - pd * pd) / (s * (s + 2));
+std::shared_ptr<const rhabel::quadrature::quadrature_rule<Real>> cached_gauss_jacobi_rule(std::size_t n, const Real& p,
+                                                                                         const Real& q) {
+  using rule_type = rhabel::quadrature::quadrature_rule<Real>;
+  static std::mutex mutex;
+  static std::map<std::tuple<std::size_t, Real, Real>, std::shared_ptr<const rule_type>> cache;
+  const auto key = std::make_tuple(n, p, q);
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    const auto it = cache.find(key);
+    if (it != cache.end()) return it->second;
   }
-  for (std::size_t k = 1; k < n; ++k) {
-    const double m = static_cast<double>(k), s = 2 * m + pd + qd;
-    const double b2 = k == 1 ? 4 * (1 + pd) * (1 + qd) / ((2 + pd + qd) * (2 + pd + qd) * (3 + pd + qd))
-                             : 4 * m * (m + pd) * (m + qd) * (m + pd + qd) / (s * s * (s + 1) * (s - 1));
-    off[static_cast<Eigen::Index>(k - 1)] = std::sqrt(b2);
-  }
-  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen;
-  eigen.computeFromTridiagonal(diagonal, off, Eigen::EigenvaluesOnly);
-  rhabel::quadrature::quadrature_rule<Real> r;
-  r.x.resize(n);
-  r.hi_minus_x.resize(n);
-  r.x_minus_lo.resize(n);
-  r.weight.resize(n);
-  const Real m = Real(n);
-  // K_n = 2^(p+q+1) Gamma(n+p+1) Gamma(n+q+1) / (Gamma(n+p+q+1) n!) by gamma ratios (a few ulps).
-  const Real K = pow(Real(2), p + q + 1) * boost::math::tgamma_delta_ratio(m + q + 1, p) /
-                 boost::math::tgamma_delta_ratio(m + 1, p);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double guess = eigen.eigenvalues()[static_cast<Eigen::Index>(i)];
-    const bool near_left = guess < 0;
-    // Distance to the nearer end in the variable z = (1 -+ x)/2.
-    const double z_guess = near_left ? (1 + guess) / 2 : (1 - guess) / 2;
-    if (static_cast<double>(n * n) * z_guess <= 2) {
-      // Nodes very close to an end: Newton in z on the terminating series
-      //   P_n^(p,q)(x) = (-1)^n (q+1)_n/n! 2F1(-n, n+p+q+1; q+1; (1+x)/2)   (near x = -1),
-      //   P_n^(p,q)(x) =        (p+1)_n/n! 2F1(-n, n+p+q+1; p+1; (1-x)/2)   (near x = +1),
-      // well conditioned for n^2 z <= 2 (largest term < e^3), relative accuracy in z.
-      const Real c = near_left ? q : p;
-      Real z = Real(z_guess);
-      Real f = 0, df = 0;
-      auto series = [&](const Real& zz) {
-        Real term = 1;
-        f = 1;
-        df = 0;
-        for (std::size_t k = 0; k < n; ++k) {
-          const Real kk = Real(k);
-          term *= (kk - m) * (kk + m + p + q + 1) * zz / ((kk + c + 1) * (kk + 1));
-          f += term;
-          df += (kk + 1) * term;
-        }
-        df /= zz;
-      };
-      for (int it = 0; it < 8; ++it) {
-        series(z);
-        z -= f / df;
-      }
-      series(z);
-      Real lead = 1;  // (c+1)_n / n!
-      for (std::size_t k = 0; k < n; ++k) lead *= (Real(k) + c + 1) / (Real(k) + 1);
-      const Real dP = lead * df / 2;  // |P_n'(x)|
-      const Real u = 2 * z, v = 2 - 2 * z;
-      r.x[i] = near_left ? u - 1 : 1 - u;
-      r.x_minus_lo[i] = near_left ? u : v;
-      r.hi_minus_x[i] = near_left ? v : u;
-      r.weight[i] = K / (u * v * dP * dP);
-      continue;
-    }
-    Real x = Real(guess);
-    for (int it = 0; it < 4; ++it) {
-      const auto v = plain_jacobi_values(n, p, q, x);
-      const Real slope = (m + p + q + 1) / 2 * plain_jacobi_values(n - 1, p + 1, q + 1, x)[n - 1];
-      x -= v[n] / slope;
-    }
-    const Real slope = (m + p + q + 1) / 2 * plain_jacobi_values(n - 1, p + 1, q + 1, x)[n - 1];
-    r.x[i] = x;
-    r.hi_minus_x[i] = 1 - x;
-    r.x_minus_lo[i] = 1 + x;
-    r.weight[i] = K / ((1 - x) * (1 + x) * slope * slope);
-  }
-  return r;
-}
-
-/// n-point Gauss-Jacobi rule for the weight (1-x)^p (1+x)^q on [-1, 1] (p, q > -1, n >= 1):
-/// quadrature::gauss_jacobi, except for Real = float, double or long double with both p and q
-/// within 1e-5 of -1, where quadrature::gauss_jacobi loses accuracy (3.5e-11 relative at
-/// p = q = -1 + 1e-9, n = 16..80) and the former private rule above is used instead. Reached
-/// in abel only at the corner alpha -> 1, beta -> -1 of the class nu = +1 (del, gam -> -1) and
-/// in step enrichment for alpha -> 0, 2 alpha + beta -> 1 (gam, alpha - 1 -> -1).
-template <class Real>
-rhabel::quadrature::quadrature_rule<Real> gauss_jacobi_rule(std::size_t n, const Real& p, const Real& q) {
-  if constexpr (std::is_floating_point_v<Real>) {
-    const Real near = Real(1e-5);
-    if (p > -1 && q > -1 && p + 1 <= near && q + 1 <= near && n >= 1)
-      return gauss_jacobi_both_ends_near_minus_one(n, p, q);
-  }
-  return rhabel::quadrature::gauss_jacobi<Real>(n, p, q);
+  // Built outside the lock (two threads may build the same rule once each; both are identical).
+  auto rule = std::make_shared<const rule_type>(rhabel::quadrature::gauss_jacobi<Real>(n, p, q));
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (cache.size() >= 512) cache.clear();
+  return cache.emplace(key, std::move(rule)).first->second;
 }
 
 /// Chebyshev points of the first kind x_j = cos(pi (j + 1/2)/m), j = 0..m-1, with 1 -+ x_j
@@ -281,12 +203,14 @@ std::vector<Real> chebyshev_to_jacobi(const std::vector<Real>& a, const Real& p,
 template <class Real>
 class panel_integrator {
  public:
+  /// The four rules come from cached_gauss_jacobi_rule: constructing an integrator is cheap
+  /// after the first use of (nodes, p, q).
   panel_integrator(const Real& p, const Real& q, std::size_t nodes = 16)
       : p_(p), q_(q),
-        legendre_(rhabel::quadrature::gauss_jacobi<Real>(nodes, Real(0), Real(0))),
-        left_(rhabel::quadrature::gauss_jacobi<Real>(nodes, Real(0), q)),
-        right_(rhabel::quadrature::gauss_jacobi<Real>(nodes, p, Real(0))),
-        both_(gauss_jacobi_rule<Real>(nodes, p, q)) {}
+        legendre_(cached_gauss_jacobi_rule<Real>(nodes, Real(0), Real(0))),
+        left_(cached_gauss_jacobi_rule<Real>(nodes, Real(0), q)),
+        right_(cached_gauss_jacobi_rule<Real>(nodes, p, Real(0))),
+        both_(cached_gauss_jacobi_rule<Real>(nodes, p, q)) {}
 
   template <class F>
   Real integrate(const Real& len, const Real& d_left, const Real& d_right, F&& f) const {
@@ -325,7 +249,7 @@ class panel_integrator {
       const Real width = b.left - a.left;
       if (!(width > 0)) continue;
       const bool touches_left = k == 0, touches_right = k + 2 == pts.size();
-      const auto& rule = touches_left ? (touches_right ? both_ : left_) : (touches_right ? right_ : legendre_);
+      const auto& rule = *(touches_left ? (touches_right ? both_ : left_) : (touches_right ? right_ : legendre_));
       const Real h = width / 2;
       const Real scale = pow(h, (touches_left ? q_ : Real(0)) + (touches_right ? p_ : Real(0)) + 1);
       for (std::size_t i = 0; i < rule.size(); ++i) {
@@ -333,8 +257,8 @@ class panel_integrator {
         const Real u = a.left + from_a;              // distance from 0
         const Real v = b.right + to_b;               // distance from len
         Real weight = rule.weight[i];
-        if (!touches_left) weight *= pow(u, q_);
-        if (!touches_right) weight *= pow(v, p_);
+        if (!touches_left && q_ != 0) weight *= pow(u, q_);   // (the exponent is often exactly 0)
+        if (!touches_right && p_ != 0) weight *= pow(v, p_);
         visit(u, v, scale * weight);
       }
     }
@@ -342,8 +266,60 @@ class panel_integrator {
 
  private:
   Real p_, q_;
-  rhabel::quadrature::quadrature_rule<Real> legendre_, left_, right_, both_;
+  std::shared_ptr<const rhabel::quadrature::quadrature_rule<Real>> legendre_, left_, right_, both_;
 };
+
+/// n-point Gauss-Laguerre rule: int_0^inf e^-t f(t) dt ~ sum_i weight[i] f(x[i]). Starting values
+/// from the Golub-Welsch eigenvalues in double (Jacobi matrix: diagonal 2k + 1, off-diagonal k),
+/// then Newton in Real on the recurrence (k+1) L_{k+1} = (2k + 1 - t) L_k - k L_{k-1}, with
+/// L_n' = n (L_n - L_{n-1})/t; weights t_i / ((n+1) L_{n+1}(t_i))^2 (Abramowitz-Stegun 25.4.45).
+/// Computed once per (Real, n) and shared (function-local static map behind a mutex).
+template <class Real>
+struct laguerre_rule {
+  std::vector<Real> x, weight;
+};
+
+template <class Real>
+const laguerre_rule<Real>& gauss_laguerre_rule(std::size_t n) {
+  static std::mutex mutex;
+  static std::map<std::size_t, std::shared_ptr<const laguerre_rule<Real>>> cache;
+  const std::lock_guard<std::mutex> lock(mutex);
+  auto& slot = cache[n];
+  if (slot) return *slot;
+  Eigen::VectorXd diagonal(static_cast<Eigen::Index>(n));
+  Eigen::VectorXd off(static_cast<Eigen::Index>(n > 1 ? n - 1 : 0));
+  for (std::size_t k = 0; k < n; ++k) diagonal[static_cast<Eigen::Index>(k)] = 2.0 * double(k) + 1;
+  for (std::size_t k = 1; k < n; ++k) off[static_cast<Eigen::Index>(k - 1)] = double(k);
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen;
+  eigen.computeFromTridiagonal(diagonal, off, Eigen::EigenvaluesOnly);
+  auto values = [n](const Real& t, Real& Ln, Real& Lnm1, Real& Lnp1) {
+    Real prev = 0, cur = 1;
+    for (std::size_t k = 0; k <= n; ++k) {
+      const Real next = ((2 * Real(k) + 1 - t) * cur - Real(k) * prev) / Real(k + 1);
+      prev = cur;
+      cur = next;
+      if (k + 1 == n) {
+        Ln = cur;
+        Lnm1 = prev;
+      }
+    }
+    Lnp1 = cur;
+  };
+  auto rule = std::make_shared<laguerre_rule<Real>>();
+  for (std::size_t i = 0; i < n; ++i) {
+    Real t = Real(eigen.eigenvalues()[static_cast<Eigen::Index>(i)]);
+    Real Ln = 0, Lnm1 = 0, Lnp1 = 0;
+    for (int it = 0; it < 6; ++it) {
+      values(t, Ln, Lnm1, Lnp1);
+      t -= Ln / (Real(n) * (Ln - Lnm1) / t);
+    }
+    values(t, Ln, Lnm1, Lnp1);
+    rule->x.push_back(t);
+    rule->weight.push_back(t / (Real(n + 1) * Real(n + 1) * Lnp1 * Lnp1));
+  }
+  slot = rule;
+  return *slot;
+}
 
 /// expm1(x)/x, = 1 at x = 0.
 template <class Real>

@@ -18,7 +18,10 @@
 // or if the sum of the bounds exceeds 2 (the terms first grow like (p^2/(2 rho t))^m / m! for
 // large p, and cancellation would cost accuracy), the point is outside the interior region and
 // the caller uses the recurrence. Measured at n = 10^6: the interior starts at rho t = 20 for
-// |p| <= 2, 22 for p = 5, and ~650 for p = 30.
+// |p| <= 2, 22 for p = 5, and ~650 for p = 30. evaluate_batch sums the same series for up to
+// 32 points at once with the number of terms its first point needs (the bounds decrease with t
+// in the interior), so a later point may get a few more terms than it needs, each below eps/16
+// of the amplitude; the caller checks every point's last bound and bound sum.
 //
 // The zeros of P_n are those of G. Newton's method is run on G in t: the phase phi_0 = rho t
 // is formed with relative error eps, so t is found to relative accuracy O(eps) for every
@@ -67,6 +70,11 @@ inline double hahn_weight_factor(std::size_t n, double p, double q) {
 // The interior expansion for the end t = 0 with exponent a there and b at t = pi.
 class hahn_expansion {
  public:
+  // Terms are summed until the first whose phase-independent bound is below this.
+  static constexpr double tolerance = std::numeric_limits<double>::epsilon() / 16;
+  // Largest batch of evaluate_batch.
+  static constexpr std::size_t batch_size = 32;
+
   hahn_expansion(std::size_t n, double a, double b) : a_(a) {
     rho_ = static_cast<double>(n) + (a + b + 1) / 2;
     alpha_.resize(hahn_max_terms);
@@ -84,18 +92,25 @@ class hahn_expansion {
   double rho() const { return rho_; }
 
   // G(t) and G'(t) (value, slope), with s = sin(t/2) and c = cos(t/2). Returns false when
-  // the series does not reach eps/16 within hahn_max_terms terms at t (t is then outside the
-  // interior region).
+  // the series does not reach the tolerance within hahn_max_terms terms at t, or the sum of
+  // the bounds exceeds hahn_max_total (t is then outside the interior region).
   bool evaluate(double t, double& value, double& slope, double& s, double& c) const {
     s = std::sin(t / 2);
     c = std::cos(t / 2);
-    const double inverse_s = 1 / s, inverse_c = 1 / c;
+    const double phase = rho_ * t - (a_ + 0.5) * boost::math::constants::half_pi<double>();
+    return evaluate_at(s, c, 1 / (s * c), std::cos(phase), std::sin(phase), value, slope);
+  }
+
+  // The same from s = sin(t/2), c = cos(t/2), inverse_sc = 1/(s c) and the phase
+  // phi_0 = rho t - (a + 1/2) pi/2 as (cos phi_0, sin phi_0), which the caller may know more
+  // cheaply and more accurately than from t (gauss_jacobi.hpp forms phi_0 - (k - 1/2) pi, a
+  // small angle, for the k-th guess).
+  bool evaluate_at(double s, double c, double inverse_sc, double cos_phi, double sin_phi, double& value,
+                   double& slope) const {
+    const double inverse_s = c * inverse_sc, inverse_c = s * inverse_sc;  // 1/s = c/(sc), 1/c = s/(sc)
     const double half_cot = c * inverse_s / 2, half_tan = s * inverse_c / 2;
     double g[hahn_max_terms], h[hahn_max_terms];  // alpha_l s^-l, beta_j c^-j, filled as needed
     double power_s = 1, power_c = 1;
-    const double tolerance = std::numeric_limits<double>::epsilon() / 16;
-    const double phase = rho_ * t - (a_ + 0.5) * boost::math::constants::half_pi<double>();
-    double cos_phi = std::cos(phase), sin_phi = std::sin(phase);
     value = 0;
     slope = 0;
     double total = 0;  // sum of the bounds: the rounding error of G is about eps * total
@@ -104,17 +119,16 @@ class hahn_expansion {
       h[m] = beta_[m] * power_c;
       power_s *= inverse_s;
       power_c *= inverse_c;
+      // cos(phi_m - l pi/2) = cos phi_m, sin phi_m, -cos phi_m, -sin phi_m for l = 0, 1, 2, 3
+      // (mod 4): U collects the even l, V the odd l, each with the sign (-1)^(l/2).
       double U = 0, V = 0, dU = 0, dV = 0, bound = 0;
       for (int l = 0; l <= m; ++l) {
         const double product = g[l] * h[m - l];
         const double d = (m - l) * half_tan - l * half_cot;  // d/dt log(s^-l c^-(m-l))
+        const double signed_product = (l & 2) ? -product : product;
         bound += std::abs(product);
-        switch (l & 3) {
-          case 0: U += product; dU += product * d; break;
-          case 1: V += product; dV += product * d; break;
-          case 2: U -= product; dU -= product * d; break;
-          default: V -= product; dV -= product * d; break;
-        }
+        (l & 1 ? V : U) += signed_product;
+        (l & 1 ? dV : dU) += signed_product * d;
       }
       const double w = inverse_[m];
       value += w * (cos_phi * U + sin_phi * V);
@@ -127,6 +141,78 @@ class hahn_expansion {
       cos_phi = next_cos;
     }
     return false;
+  }
+
+  // The number of terms evaluate_at sums at (s, c): the first m + 1 with a term bound below
+  // the tolerance, or hahn_max_terms + 1 if there is none.
+  int terms_needed(double s, double c) const {
+    const double inverse_s = 1 / s, inverse_c = 1 / c;
+    double g[hahn_max_terms], h[hahn_max_terms], power_s = 1, power_c = 1;
+    for (int m = 0; m < hahn_max_terms; ++m) {
+      g[m] = std::abs(alpha_[m]) * power_s;
+      h[m] = std::abs(beta_[m]) * power_c;
+      power_s *= inverse_s;
+      power_c *= inverse_c;
+      double bound = 0;
+      for (int l = 0; l <= m; ++l) bound += g[l] * h[m - l];
+      if (inverse_[m] * bound < tolerance) return m + 1;
+    }
+    return hahn_max_terms + 1;
+  }
+
+  // evaluate_at for a batch of `count` points (count <= batch_size) with exactly `terms` terms
+  // each (terms <= hahn_max_terms), in loops over the batch without branches that the compiler
+  // vectorises. Inputs s, c, 1/(s c) and the phase (cos phi_0, sin phi_0; overwritten); outputs
+  // G, G', the bound of the last term and the sum of the bounds, from which the caller decides,
+  // point by point, what evaluate_at would have decided (terms beyond the first one below the
+  // tolerance change G by less than that).
+  void evaluate_batch(std::size_t count, int terms, const double* s, const double* c, const double* inverse_sc,
+                      double* cos_phi, double* sin_phi, double* value, double* slope, double* last_bound,
+                      double* total) const {
+    double power_s[hahn_max_terms][batch_size], power_c[hahn_max_terms][batch_size];  // s^-l, c^-j
+    double half_cot[batch_size], half_tan[batch_size];
+    double U[batch_size], V[batch_size], dU[batch_size], dV[batch_size], bound[batch_size];
+    for (std::size_t i = 0; i < count; ++i) {
+      half_cot[i] = c[i] * c[i] * inverse_sc[i] / 2;
+      half_tan[i] = s[i] * s[i] * inverse_sc[i] / 2;
+      power_s[0][i] = power_c[0][i] = 1;
+      value[i] = slope[i] = total[i] = 0;
+    }
+    for (int m = 1; m < terms; ++m) {
+      for (std::size_t i = 0; i < count; ++i) {
+        power_s[m][i] = power_s[m - 1][i] * (c[i] * inverse_sc[i]);
+        power_c[m][i] = power_c[m - 1][i] * (s[i] * inverse_sc[i]);
+      }
+    }
+    for (int m = 0; m < terms; ++m) {
+      for (std::size_t i = 0; i < count; ++i) U[i] = V[i] = dU[i] = dV[i] = bound[i] = 0;
+      for (int l = 0; l <= m; ++l) {
+        const double coefficient = ((l & 2) ? -1.0 : 1.0) * alpha_[l] * beta_[m - l];
+        const double magnitude = std::abs(coefficient);
+        const double j = m - l, ll = l;
+        double* sum = (l & 1) ? V : U;
+        double* sum_slope = (l & 1) ? dV : dU;
+        const double* ps = power_s[l];
+        const double* pc = power_c[m - l];
+        for (std::size_t i = 0; i < count; ++i) {
+          const double power = ps[i] * pc[i];
+          const double product = coefficient * power;
+          sum[i] += product;
+          sum_slope[i] += product * (j * half_tan[i] - ll * half_cot[i]);
+          bound[i] += magnitude * power;
+        }
+      }
+      const double w = inverse_[m], frequency = (2 * rho_ + m) / 2;
+      for (std::size_t i = 0; i < count; ++i) {
+        value[i] += w * (cos_phi[i] * U[i] + sin_phi[i] * V[i]);
+        slope[i] += w * (frequency * (cos_phi[i] * V[i] - sin_phi[i] * U[i]) + cos_phi[i] * dU[i] + sin_phi[i] * dV[i]);
+        total[i] += w * bound[i];
+        last_bound[i] = w * bound[i];
+        const double next_cos = cos_phi[i] * c[i] - sin_phi[i] * s[i];
+        sin_phi[i] = sin_phi[i] * c[i] + cos_phi[i] * s[i];
+        cos_phi[i] = next_cos;
+      }
+    }
   }
 
  private:
@@ -147,7 +233,10 @@ inline double interior_guess(std::size_t k, double a, double b, double rho) {
 // DLMF 18.16.8; Hale & Townsend 2013 eq. (3.8)): phi = j / rho,
 //   t ~ phi + ((a^2 - 1/4)(1 - phi cot phi) / (2 phi) - (a^2 - b^2) tan(phi/2) / 4) / rho^2.
 inline double boundary_guess(std::size_t k, double a, double b, double rho) {
-  const double j = boost::math::cyl_bessel_j_zero(a, static_cast<int>(k));
+  // In double without Boost's default promotion to long double (a starting value only; the
+  // promoted evaluation cost a third of the time of a rule at n = 100).
+  using double_policy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
+  const double j = boost::math::cyl_bessel_j_zero(a, static_cast<int>(k), double_policy());
   const double phi = j / rho;
   return phi + ((a * a - 0.25) * (1 - phi / std::tan(phi)) / (2 * phi) - (a * a - b * b) * std::tan(phi / 2) / 4) /
                    (rho * rho);

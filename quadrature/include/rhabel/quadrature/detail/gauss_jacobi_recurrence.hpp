@@ -22,26 +22,31 @@
 // differences d_k are formed from small quantities. Nodes near x = -1 are found as the nodes
 // near +1 of P_n^(q,p), since P_n^(p,q)(-x) = (-1)^n P_n^(q,p)(x). Dividing by P_k(1) also
 // removes the growth k^p (no overflow for p = 30, n = 10^6).
-// The constant is a product of gamma ratios with arguments n + O(1) (gamma_delta_ratio below,
-// a few ulps for any n): exp of a difference of four lgamma values of
-// size n log n would lose log10(n log n) digits (7 at n = 10^6).
+// The constant is a finite product for n <= 128 and a product of gamma ratios with arguments
+// n + O(1) beyond (gamma_delta_ratio below, a few ulps for any n): exp of a difference of four
+// lgamma values of size n log n would lose log10(n log n) digits (7 at n = 10^6).
 //
 // In the code gamma_k d_k is formed as d_k - (1 - gamma_k) d_k with 1 - gamma_k in closed form,
 //   1 - gamma_k = (2 (2p+1) k (k+p+q+1) + c0) / ((k+p+q+1)(k+p+1) s),
-//   c0 = p^3 + 2p^2 q + 2p^2 + p q^2 + 3pq + p + q^2 + q,
-// and the sums d_k + increment are compensated (Kahan).
+//   c0 = p^3 + 2p^2 q + 2p^2 + p q^2 + 3pq + p + q^2 + q = (p + q + 1)(p + 1)(p + q),
+// and the sums d_k + increment are compensated (Kahan). Every coefficient is formed from
+// p + 1 and q + 1 (exact for double p, q in [-1, -1/2]), c0 in the factored form, s as
+// 2 (k - 1) + (p + 1) + (q + 1): the expanded c0 has O(1) terms and the value O(p + 1) when
+// p, q -> -1 and lost 1e-11 relative in long double at p = q = -1 + 1e-9 (1.6e5 eps in the
+// weights of issue #2).
 //
 // Accuracy. Without the compensation the rounding errors of the d_k add up coherently (the
 // increments are small and vary smoothly with k), O(n) units of the working precision: 4.5e-15
 // relative node error at n = 10^6 in long double. With it the error in e_n near a zero stays
 // at a few units of the working precision relative to the local amplitude (measured 4e-20
-// relative node error at that node), which moves a node by that relative amount in u. gauss_jacobi runs this code in long double (64-bit significand, unit roundoff
-// 5.4e-20) when Real is double, and in Real otherwise.
+// relative node error at that node), which moves a node by that relative amount in u.
+// gauss_jacobi runs this code in long double (64-bit significand, unit roundoff 5.4e-20) when
+// Real is double, and in Real otherwise.
 //
 // Double sweep (jacobi_recurrence_in_u_compensated; the boundary nodes of the asymptotic
 // path). The same recurrence in double with the e and e' sums compensated as well (they cost
 // ~3 units of the working precision uncompensated), the coefficients formed from p + 1 and
-// q + 1 (in the form above, (p + q) + 2 and c0 cancel to 1000 eps at p = q = -0.999), and the
+// q + 1 (in the expanded form, (p + q) + 2 and c0 cancel to 1000 eps at p = q = -0.999), and the
 // results rounded once from the compensated sums. Rounding errors of the coefficients are
 // relative eps per step and do not accumulate into the phase (measured: the nodes agree with
 // the long double sweep to <= 1 ulp, the weights to <= 4.5 eps, n = 101 ... 10^6,
@@ -105,13 +110,77 @@ Real gamma_delta_ratio(const Real& z, const Real& delta) {
 // This is K_n / P_n^(p,q)(1)^2 with P_n(1) = Gamma(n+p+1) / (Gamma(p+1) n!) (DLMF 18.6.1), i.e.
 // 2^(p+q+1) Gamma(p+1)^2 [n! / Gamma(n+p+1)] [Gamma(n+q+1) / Gamma(n+p+q+1)]; the factor of the
 // weights in the normalised variable e_n = P_n / P_n(1) of the difference-form recurrence.
+// For n <= gauss_jacobi_product_max_n the two brackets are finite products (n roundings of the
+// working type, 2e-17 relative in long double at n = 128) and three gamma functions of
+// arguments that never approach a pole, everything formed from p + 1 and q + 1:
+//   Gamma(p+1)^2 n! / Gamma(n+p+1) = Gamma(p+1) / prod_{k=1}^n (k - 1 + (p+1)) / k,
+//   Gamma(n+q+1) / Gamma(n+p+q+1) = (p+q+2) Gamma(q+2) / Gamma(p+q+3)                     (n = 1),
+//                                 = Gamma(q+3) / Gamma(p+q+3) prod_{k=3}^n (k-1+(q+1)) / (k-2+(p+q+2))  (n >= 2)
+// (Gamma(p+q+2) itself is near its pole when p, q -> -1; the first form keeps p + q + 2 as a
+// factor). Beyond, gamma ratios with arguments n + O(1) (gamma_delta_ratio above, a few ulps for
+// any n): exp of a difference of four lgamma values of size n log n would lose log10(n log n)
+// digits (7 at n = 10^6).
+inline constexpr std::size_t gauss_jacobi_product_max_n = 128;
+
+// Gamma and 2^x in the working type: glibc's tgammal and exp2l for long double (within 10 ulps
+// of long double, 5e-19; three times and ten times faster than Boost's tgamma and powl, which
+// dominated the cost of small rules), Boost.Math and pow for other types.
+template <class Real>
+Real working_tgamma(const Real& x) {
+  if constexpr (std::is_floating_point_v<Real>) {
+    return std::tgamma(x);
+  } else {
+    return boost::math::tgamma(x);
+  }
+}
+template <class Real>
+Real working_exp2(const Real& x) {
+  using std::pow;
+  if constexpr (std::is_floating_point_v<Real>) {
+    return std::exp2(x);
+  } else {
+    return pow(Real(2), x);
+  }
+}
+
+// K_n / P_n(1)^2 for the end +1 (first) and, with p and q exchanged, for the end -1 (second).
+template <class Real>
+struct weight_constants {
+  Real right, left;
+};
+
+template <class Real>
+weight_constants<Real> gauss_jacobi_weight_constants(std::size_t n, const Real& p, const Real& q) {
+  const Real p1 = p + 1, q1 = q + 1, pq2 = p1 + q1;
+  const Real gamma_p1 = working_tgamma(p1), gamma_q1 = working_tgamma(q1);
+  const Real power = working_exp2(pq2 - 1);
+  if (n > gauss_jacobi_product_max_n) {
+    const Real m = Real(n);
+    return {power * gamma_delta_ratio(m + 1, p) * gamma_delta_ratio(m + q1, p) * gamma_p1 * gamma_p1,
+            power * gamma_delta_ratio(m + 1, q) * gamma_delta_ratio(m + p1, q) * gamma_q1 * gamma_q1};
+  }
+  // P_n(1) for both ends, and Gamma(n+q+1)/Gamma(n+p+q+1), Gamma(n+p+1)/Gamma(n+p+q+1).
+  Real end_p = 1, end_q = 1, ratio_q = 1, ratio_p = 1;
+  for (std::size_t k = 1; k <= n; ++k) {
+    end_p *= (Real(k - 1) + p1) / Real(k);
+    end_q *= (Real(k - 1) + q1) / Real(k);
+  }
+  for (std::size_t k = 3; k <= n; ++k) {
+    const Real denominator = Real(k - 2) + pq2;
+    ratio_q *= (Real(k - 1) + q1) / denominator;
+    ratio_p *= (Real(k - 1) + p1) / denominator;
+  }
+  const Real gamma_pq3 = working_tgamma(pq2 + 1);  // Gamma(p + q + 3), argument > 1
+  const Real gamma_q2 = q1 * gamma_q1, gamma_p2 = p1 * gamma_p1;
+  const Real second_q = n == 1 ? pq2 * gamma_q2 / gamma_pq3 : (q1 + 1) * gamma_q2 / gamma_pq3 * ratio_q;
+  const Real second_p = n == 1 ? pq2 * gamma_p2 / gamma_pq3 : (p1 + 1) * gamma_p2 / gamma_pq3 * ratio_p;
+  return {power * gamma_p1 / end_p * second_q, power * gamma_q1 / end_q * second_p};
+}
+
+// The first of the two (the end +1).
 template <class Real>
 Real gauss_jacobi_weight_constant_over_end_value(std::size_t n, const Real& p, const Real& q) {
-  using std::pow;
-  const Real m = Real(n);
-  const Real ratio = gamma_delta_ratio(m + 1, p) * gamma_delta_ratio(m + q + 1, p);
-  const Real gamma_p1 = boost::math::tgamma(p + 1);
-  return pow(Real(2), p + q + 1) * ratio * gamma_p1 * gamma_p1;
+  return gauss_jacobi_weight_constants(n, p, q).right;
 }
 
 // e_n(u_j) = P_n^(p,q)(1 - u_j) / P_n(1) and its derivative de_n/du for a batch of points,
@@ -125,7 +194,12 @@ void jacobi_recurrence_in_u(std::size_t n, const W& p, const W& q, const std::ve
     W u, e, d, e_slope, d_slope;
     W d_carry, d_slope_carry;  // Kahan compensations
   };
-  const W first = -(p + q + 2) / (2 * (p + 1));  // d_1 / u
+  // Every coefficient is formed from p + 1 and q + 1 (exact for p, q in [-1, -1/2] in any
+  // binary type), as in the double sweep below: the expanded c0 of the header comment has O(1)
+  // terms and a value O(p + 1) when p -> -1 and q -> -1 (the root of issue #2's 1.6e5 eps
+  // weight error at p = q = -1 + 1e-9 in long double), and (2k + p) + q rounds at k = 1.
+  const W p1 = p + 1, q1 = q + 1, pq2 = p1 + q1;
+  const W first = -pq2 / (2 * p1);  // d_1 / u
   std::vector<state> points(K);
   for (std::size_t j = 0; j < K; ++j) {
     const W d = first * u[j];
@@ -138,16 +212,19 @@ void jacobi_recurrence_in_u(std::size_t n, const W& p, const W& q, const std::ve
     carry = (next - sum) - y;
     sum = next;
   };
-  // 1 - gamma_k = (2 (2p+1) k (k+p+q+1) + c0) / ((k+p+q+1)(k+p+1) s), c0 = the value at k = 0.
-  const W c0 = p * p * p + 2 * p * p * q + 2 * p * p + p * q * q + 3 * p * q + p + q * q + q;
+  // 1 - gamma_k = (2 (2p+1) k (k+p+q+1) + c0) / ((k+p+q+1)(k+p+1) s), c0 = the value at k = 0,
+  // c0 = (p + q + 1)(p + 1)(p + q) in factored form (no cancellation).
+  const W c0 = (pq2 - 1) * p1 * (pq2 - 2);
+  const W two_p_plus_1 = 2 * p1 - 1;
   state* const begin = points.data();
   state* const end = begin + K;
   for (std::size_t k = 1; k < n; ++k) {
-    const W kk = W(k);
-    const W s = 2 * kk + p + q;
-    const W inverse = 1 / ((kk + p + q + 1) * (kk + p + 1) * s);  // the one division of the step
+    const W kk = W(k), km1 = W(k - 1);
+    const W s = 2 * km1 + pq2;     // 2k + p + q
+    const W kpq1 = km1 + pq2;      // k + p + q + 1
+    const W inverse = 1 / (kpq1 * (kk + p1) * s);  // the one division of the step
     const W beta = (s + 1) * (s + 2) * s * inverse / 2;
-    const W one_minus_gamma = (2 * (2 * p + 1) * kk * (kk + p + q + 1) + c0) * inverse;
+    const W one_minus_gamma = (2 * two_p_plus_1 * kk * kpq1 + c0) * inverse;
     for (state* x = begin; x != end; ++x) {
       // d_{k+1} = d_k - (1 - gamma_k) d_k - beta_k u e_k and its u-derivative, then e += d.
       // The d sums are compensated: their increments are small and vary smoothly with k, so

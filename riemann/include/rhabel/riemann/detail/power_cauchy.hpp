@@ -18,7 +18,9 @@
 //      L = log(-rho), T = pi q / sin(pi q) - 1 = (x - sin x)/sin x (x = pi q), both uniform
 //      through q = 0 (where K = -log(-rho) - sum rho^k / k, the log case).
 //      For real rho in (0, 1/2] the principal value replaces (-rho)^q by rho^q cos(pi q) and
-//      L by log(rho):  bracket/q = -expm1(q log rho)/q + rho^q U/q,  U = 1 - pi q cot(pi q).
+//      L by log(rho):  bracket/q = -expm1(q log rho)/q + rho^q U/q,  U = 1 - pi q cot(pi q),
+//      used for |q| < 1/4; for |q| >= 1/4 the equal direct form 1/q - pi cot(pi q) rho^q with
+//      cot from cos_pi/sin_pi (exactly 0 at q = -1/2: no cancellation of two rho^q-sized terms).
 //  (B) |rho| >= 2 (expansion at infinity):  K = - sum_{k>=0} rho^(-k-1) / (q + k + 1).
 //  (C) otherwise (1/2 < |rho| < 2):
 //          K = int_0^{1/4} v^q/(v - rho) dv + int_{1/4}^1 (v^q - rho^q)/(v - rho) dv
@@ -44,6 +46,8 @@
 #include "rhabel/quadrature/jacobi_polynomial.hpp"  // detail::throw_bad_parameter
 
 #include <boost/math/constants/constants.hpp>
+#include <boost/math/special_functions/cos_pi.hpp>
+#include <boost/math/special_functions/sin_pi.hpp>
 
 #include <cmath>
 #include <complex>
@@ -212,6 +216,9 @@ class power_cauchy {
       t_over_q_ = pi * x_minus_sin(x) / (x * sin(x));
       u_over_q_ = pi * sin_minus_x_cos(x) / (x * sin(x));
     }
+    using std::abs;
+    direct_pv_ = abs(q) >= Real(1) / 4;  // 1/q <= 4: no loss of uniformity through q = 0
+    if (direct_pv_) pi_cot_ = pi * boost::math::cos_pi(q) / boost::math::sin_pi(q);
   }
 
   const Real& exponent() const { return q_; }
@@ -244,8 +251,15 @@ class power_cauchy {
         if (rho > 0) {
           // PV on the cut: (-rho)^q -> rho^q cos(pi q)
           using std::pow;
-          const Real L = log(rho);
-          bracket = -expm1_over(q_, L) + pow(rho, q_) * u_over_q_;
+          if (direct_pv_) {
+            // = 1/q - pi cot(pi q) rho^q exactly; with cot from cos_pi/sin_pi the coefficient is
+            // exactly 0 at q = -1/2 (beta = 0 in the Abel route), where the form below would
+            // cancel two terms of size 2 rho^(-1/2) and leave noise eps rho^q.
+            bracket = 1 / q_ - pi_cot_ * pow(rho, q_);
+          } else {
+            const Real L = log(rho);
+            bracket = -expm1_over(q_, L) + pow(rho, q_) * u_over_q_;
+          }
         } else {
           const Real L = log(-rho);
           const Real e = expm1_over(q_, L) * q_;  // expm1(q L)
@@ -313,6 +327,8 @@ class power_cauchy {
 
   Real q_;
   Real t_over_q_, u_over_q_;
+  bool direct_pv_ = false;
+  Real pi_cot_ = 0;  // pi cot(pi q), for |q| >= 1/4
   quadrature::quadrature_rule<Real> near_rule_, far_rule_;
 };
 
