@@ -41,6 +41,7 @@
 #pragma once
 
 #include "rhabel/abel/abel_operator.hpp"
+#include "rhabel/quadrature/jacobi_polynomial.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -162,11 +163,16 @@ Real independent_residual(const abel_operator<Real>& op, const abel_solution<Rea
   const Real defect = sol.exponents.nu == -1 ? pow(h, op.parameters().alpha()) * sol.solvability_defect : Real(0);
   const typename abel_operator<Real>::quadrature_evaluator evaluate(op, sol.density.gam, sol.density.del,
                                                                     sol.density.coefficients.size());
+  // sol.density.series(x) with the recurrence coefficients computed once (the same sum to a few
+  // ulps; quadrature::jacobi_series): it is evaluated at every node of every check point.
+  const auto series = sol.density.coefficients.empty()
+                          ? rhabel::quadrature::jacobi_series<Real>()
+                          : rhabel::quadrature::jacobi_series<Real>(sol.density.coefficients, sol.density.del, sol.density.gam);
   Real worst = 0, scale = 0;
   for (std::size_t j = 0; j < points; ++j) {
     const Real s = grid.one_plus_x[j] <= grid.one_minus_x[j] ? op.lo() + h * grid.one_plus_x[j]
                                                              : op.hi() - h * grid.one_minus_x[j];
-    const Real Ag = evaluate([&](const Real& x) { return sol.density.series(x); }, s);
+    const Real Ag = evaluate([&](const Real& x) { return series(x); }, s);
     const Real Fs = f(s);
     worst = max(worst, abs(Ag - (Fs - defect)));
     scale = max(scale, abs(Fs));

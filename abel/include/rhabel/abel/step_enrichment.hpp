@@ -744,11 +744,15 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
       }
     }
     const Real defect = e.nu == -1 ? pow(h, alpha) * sol.solvability_defect : Real(0);
+    // g.smooth.series with the recurrence coefficients computed once (quadrature::jacobi_series).
+    const auto series = g.smooth.coefficients.empty()
+                            ? rhabel::quadrature::jacobi_series<Real>()
+                            : rhabel::quadrature::jacobi_series<Real>(g.smooth.coefficients, g.smooth.del, g.smooth.gam);
     Real worst = 0, scale = 0;
     for (const auto& [one_plus_y, one_minus_y] : points) {
       const Real s = one_plus_y <= one_minus_y ? op.lo() + h * one_plus_y : op.hi() - h * one_minus_y;
       const Real y = one_plus_y <= one_minus_y ? one_plus_y - 1 : 1 - one_minus_y;
-      const Real Ag = direct([&](const Real& x) { return g.smooth.series(x); }, s) +
+      const Real Ag = direct([&](const Real& x) { return series(x); }, s) +
                       pow(h, alpha) * g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, y);
       const Real Fs = f(s);
       worst = max(worst, abs(Ag - (Fs - defect)));

@@ -80,7 +80,8 @@
 //     than 10 tolerance L; residual of (8) on the union checked independently. Far apart the coupling
 //     decays like distance^(alpha - 1); nearly touching contacts make the cross terms nearly singular
 //     (slow, or an error naming the indentor); overlapping contacts throw naming both indentors.
-//   * residual: max over 7 interior points of |A g - F| / max|F| with the two one-sided integrals
+//   * residual (computed unless solve_options::residual is false; NaN then): max over 7 interior
+//     points of |A g - F| / max|F| with the two one-sided integrals
 //     computed by abel_operator::apply_by_quadrature (Gauss-Jacobi with the kernel singularity as
 //     weight, independent of the spectral relation; uniform down to alpha = 0), the apex enrichment
 //     by abel's direct quadrature of A[phi] (the one solve_step used to build the data: for that part
@@ -93,19 +94,26 @@
 //     the datum (log-singular at t = a) by tanh-sinh in offsets from a, the apex and b; inside the own
 //     contact f(x) - f(a) exactly. Elastic flat punch against -(2P/(pi E*)) arccosh(x/c): < 1e-8 for
 //     |x| >= 1.4 c; accuracy degrades next to the edges (log kernel nearly singular there).
-//   * Cost (Release, warm caches, 2-core machine shared with other builds, so medians vary 2x;
-//     build-punch3/bin/study_scene_timing and a 21-run median): single parabola ~0.2 ms. Single wedge
-//     below the boundary, apex >= 0.1 L from the edges, tolerance 1e-12: 0.8-1.3 ms without samples
-//     and 1.3-1.8 ms with 1000 pressure samples for alpha in [0.05, 0.45] (perf: abel::solve_step
-//     ~35%, the independent residual ~35%, the 1000 samples ~25%: quadrature::jacobi_clenshaw
-//     recomputes the recurrence coefficients at every call); 2.5-15 ms for alpha < 0.05 (solve_step's
-//     logarithmic branch); 10-40 ms with the apex within 0.1 L of an edge (Riemann-Hilbert C_f,
-//     enrichment at up to 257 points). Coupled scenes with wedges 0.05-0.3 s
-//     (examples/default_scene.json: ~0.05-0.08 s). The target of issue #4 (1e-10 in < 1 ms for eps,
-//     L, C_f and 1000 samples) is met at tolerance 1e-8 in 0.7 ms for alpha = 0.05 (S1 = S2, k in
-//     {0, 0.5}) and alpha = 0.45 (S2/S1 = 0.1): C_f <= 4e-13, pressure <= 2.4e-11 of the peak; NOT
-//     at alpha = 0.2 (0.7 ms gives pressure 1.2e-9; 1e-12 needs 1.3 ms), nor below alpha = 0.05
-//     (>= 1.5 ms), nor with the apex within 0.1 L of an edge (10-90 ms).
+//   * Cost (Release, warm caches, 2-core machine shared with other builds (load 2.5-3.5), so
+//     medians vary up to 2x between runs; build-speed/bin/study_scene_timing, 5-call medians, and a
+//     300-call median of solve_single for the cases below): single parabola ~0.2 ms. Single wedge
+//     below the boundary, apex >= 0.1 L from the edges, 1000 pressure samples, residual on / off
+//     (solve_options::residual): alpha = 0.05 (S1 = S2, k in {0, 0.5}) tolerance 1e-8:
+//     0.41 / 0.31 ms, C_f <= 3.9e-13, pressure <= 2.4e-11 of the peak; alpha = 0.2 (S1 = S2, k = 0)
+//     tolerance 1e-10: 0.78 / 0.61 ms, C_f 7e-14, pressure 5.8e-12; alpha = 0.3 (S2/S1 = 0.1,
+//     k = 0.5) tolerance 1e-8: 0.84 / 0.61 ms, C_f 8e-12, pressure 4.8e-11; alpha = 0.45 (S2/S1 =
+//     0.1, k = 0) tolerance 1e-8: 0.40-0.59 / 0.30-0.45 ms, C_f 2.3e-13, pressure 1.7e-12. So the
+//     target of issue #4 (1e-10 relative for eps, L, C_f and 1000 samples in < 1 ms) is met for
+//     these; NOT for alpha = 0.2, k = 0.5, S1 = S2 (eps = 0.84: 1e-10 needs 127 points, 1.2-2.1 ms
+//     without residual, 1.8-6.8 ms with it; tolerance 1e-8 gives 2.9e-9 in ~1 ms), nor below alpha =
+//     0.05 (alpha = 1e-3: 1.2-1.8 ms; solve_step's normalized logarithmic enrichment), nor with the
+//     apex within 0.1 L of an edge (10-90 ms). Where the time goes (perf, alpha = 0.2, k = 0,
+//     tolerance 1e-10): ~60% abel::solve_step's quadrature of A[phi] at its 17 + 33 + 65
+//     Chebyshev points (detail::enrichment_image: pow at every node of the graded composite
+//     rules), ~20% the independent residual, the rest the 1000 samples (series by
+//     quadrature::jacobi_series, coefficients computed once) and bookkeeping; below alpha = 0.05
+//     ~80% is the same quadrature in the normalized mode (enrichment_image_uniform). Coupled scenes
+//     with wedges 0.05-0.3 s (examples/default_scene.json: ~0.05-0.08 s).
 //
 // UNITS: any consistent set; the comments use SI: lengths in m, E1 in Pa s^alpha, speed in m/s,
 //   load per unit length in N/m, pressure in Pa. Slopes and friction coefficients are dimensionless.
@@ -186,6 +194,10 @@ struct solve_options {
   /// (pressure poor next to the apex; C_f of an isolated wedge then from the Riemann-Hilbert route,
   /// of a coupled one by Richardson extrapolation, ~1e-6). The name is kept from the former apex split.
   bool wedge_apex_split = true;
+  /// Compute the independent residual of (8) at 7 interior points (indentor_result::residual,
+  /// diagnostics::residual): the evidence that the solution solves the equation. false skips it
+  /// (roughly a quarter to a third of a wedge solve; study_scene_timing) and reports NaN there.
+  bool residual = true;
 };
 
 enum class edge_side { leading, trailing };
@@ -216,6 +228,7 @@ struct indentor_result {
   std::vector<double> displacement;    ///< surface height relative to its value at the leading
                                        ///< edge a (upward positive): equals f(x) - f(a) in contact [m]
   double residual = 0;              ///< max |LHS - RHS of (8)| / max |F| at check points
+                                    ///< (NaN if solve_options::residual is false)
   double error_estimate = 0;        ///< estimated relative error of the density (an estimate)
   std::size_t degree = 0;           ///< Jacobi degree used
   std::string status;               ///< "ok", or what went wrong / was approximated
@@ -227,7 +240,7 @@ struct scene_result {
   std::string regime;  ///< "below", "boundary" or "above": sign of alpha + beta/2 - 1/2 (see top)
   std::vector<indentor_result> indentors;
   struct diagnostics_t {
-    double residual = 0;  ///< max over indentors of indentor_result::residual
+    double residual = 0;  ///< max over indentors of indentor_result::residual (NaN if not computed)
     double seconds = 0;   ///< wall-clock solve time [s]
     std::string status;   ///< "ok" or a summary of the indentors' statuses
   } diagnostics;

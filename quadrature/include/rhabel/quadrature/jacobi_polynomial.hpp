@@ -23,6 +23,12 @@
 //    error a few eps for any n.
 //  * jacobi_clenshaw: sum_k c_k P_k(x) by Clenshaw's algorithm for |x| < 1/2, by the forward
 //    difference-form recurrence near the ends; O(K).
+//  * jacobi_series<Real>: the same sum with the recurrence coefficients computed once (O(K)
+//    setup, then O(K) multiply-adds per point, no divisions): for many evaluations of one series.
+//    Same algorithms and switches as jacobi_clenshaw; Clenshaw's branch is bit-identical, the
+//    difference-form branch agrees to a few ulps (one product regrouped; measured and tested in
+//    tests/quadrature/test_jacobi_series.cpp). Overload (one_minus_x, one_plus_x) takes exact
+//    complements near the ends (u = 1 -+ x is then not re-rounded).
 //  * jacobi_weight(p, q, 1 - x, 1 + x): the weight from the complements, full relative accuracy
 //    at 1e-300 from an end when the complements are exact.
 //  * connection coefficients (DLMF 18.9.5-6): P_n^(p,q) in the families (p+1, q) and (p, q+1)
@@ -485,5 +491,110 @@ std::vector<Real> jacobi_ramp_coefficients(std::size_t n, const Real& p, const R
   if (!isfinite(x0) || x0 < -1 || x0 > 1) detail::throw_bad_parameter("jacobi_ramp_coefficients", "x0", x0, "[-1, 1]");
   return jacobi_ramp_coefficients(n, p, q, Real(1 - x0), Real(1 + x0));
 }
+
+
+/// sum_{k=0}^{K-1} c[k] P_k^(p,q)(x) for many x: jacobi_clenshaw with the recurrence coefficients
+/// precomputed (see the header). Holds c, p, q, the three-term coefficients A_k, B_k, C_k and, for
+/// each end, the difference-form coefficients of jacobi_p_visit_near_one
+///   b_k = C_k (k+1) k / ((k+1+p)(k+p)),  a_k = A_k (k+1)/(k+1+p),  pi_k = (p+1)_k / k!
+/// (with p and q exchanged for the end -1, where P_k^(p,q)(x) = (-1)^k P_k^(q,p)(-x)).
+template <class Real>
+class jacobi_series {
+ public:
+  jacobi_series() = default;
+  jacobi_series(std::vector<Real> c, const Real& p, const Real& q) : c_(std::move(c)), p_(p), q_(q) {
+    detail::check_jacobi_exponents("jacobi_series", p, q);
+    const std::size_t K = c_.size();
+    A_.resize(K);
+    B_.resize(K);
+    C_.resize(K + 1, Real(0));  // C_[K] = 0 closes Clenshaw's recurrence
+    for (std::size_t k = 0; k < K; ++k) {
+      const auto r = detail::jacobi_recurrence_coefficients(k, p, q);
+      A_[k] = r.A;
+      B_[k] = r.B;
+      C_[k] = r.C;
+    }
+    make_end(upper_, p, q);
+    make_end(lower_, q, p);
+  }
+
+  const std::vector<Real>& coefficients() const { return c_; }
+  const Real& p() const { return p_; }
+  const Real& q() const { return q_; }
+  std::size_t size() const { return c_.size(); }
+
+  /// The sum at x (any finite x; the difference form is used for 1/2 <= |x| <= 1).
+  Real operator()(const Real& x) const {
+    if (c_.empty()) return Real(0);
+    if (x >= Real(0.5) && x <= 1) return near_end(upper_, p_, q_, Real(1 - x), false);
+    if (x <= Real(-0.5) && x >= -1) return near_end(lower_, q_, p_, Real(1 + x), true);
+    return clenshaw(x);
+  }
+
+  /// The sum at x given the complements one_minus_x = 1 - x and one_plus_x = 1 + x (both in
+  /// [0, 2]); near an end the small complement is used as it is.
+  Real operator()(const Real& one_minus_x, const Real& one_plus_x) const {
+    if (!(one_minus_x >= 0) || !(one_minus_x <= 2))
+      detail::throw_bad_parameter("jacobi_series", "one_minus_x", one_minus_x, "[0, 2]");
+    if (!(one_plus_x >= 0) || !(one_plus_x <= 2))
+      detail::throw_bad_parameter("jacobi_series", "one_plus_x", one_plus_x, "[0, 2]");
+    if (c_.empty()) return Real(0);
+    if (one_minus_x <= Real(0.5)) return near_end(upper_, p_, q_, one_minus_x, false);
+    if (one_plus_x <= Real(0.5)) return near_end(lower_, q_, p_, one_plus_x, true);
+    return clenshaw(Real(one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x));
+  }
+
+ private:
+  struct end_coefficients {
+    std::vector<Real> a, b, pi;  // index k: a_k, b_k (k >= 1), pi_k (k >= 0)
+  };
+
+  void make_end(end_coefficients& e, const Real& p, const Real& q) const {
+    const std::size_t K = c_.size();
+    e.a.assign(K, Real(0));
+    e.b.assign(K, Real(0));
+    e.pi.assign(K, Real(1));
+    if (K >= 2) e.pi[1] = p + 1;
+    for (std::size_t k = 1; k + 1 < K; ++k) {
+      const auto r = detail::jacobi_recurrence_coefficients(k, p, q);
+      const Real n = Real(k);
+      e.b[k] = r.C * (n + 1) * n / ((n + 1 + p) * (n + p));
+      e.a[k] = r.A * (n + 1) / (n + 1 + p);
+      e.pi[k + 1] = e.pi[k] * ((n + 1 + p) / (n + 1));  // the same products as jacobi_p_visit_near_one
+    }
+  }
+
+  // jacobi_p_visit_near_one summed against c (u = distance from the end, exponents (p, q) of that end).
+  Real near_end(const end_coefficients& e, const Real& p, const Real& q, const Real& u, bool alternate) const {
+    const std::size_t K = c_.size();
+    Real R = 1, sum = c_[0];
+    if (K == 1) return sum;
+    Real D = -(p + q + 2) * u / (2 * (p + 1));
+    R += D;
+    sum += alternate ? Real(-c_[1] * Real(e.pi[1] * R)) : Real(c_[1] * Real(e.pi[1] * R));
+    for (std::size_t k = 1; k + 1 < K; ++k) {
+      D = e.b[k] * D - e.a[k] * u * R;
+      R += D;
+      const Real v = e.pi[k + 1] * R;
+      sum += (alternate && (k + 1) % 2 == 1) ? Real(-c_[k + 1] * v) : Real(c_[k + 1] * v);
+    }
+    return sum;
+  }
+
+  Real clenshaw(const Real& x) const {
+    Real b1 = 0, b2 = 0;  // b_{k+1}, b_{k+2}
+    for (std::size_t k = c_.size(); k-- > 0;) {
+      const Real b0 = c_[k] + (A_[k] * x + B_[k]) * b1 - C_[k + 1] * b2;
+      b2 = b1;
+      b1 = b0;
+    }
+    return b1;
+  }
+
+  std::vector<Real> c_;
+  Real p_ = 0, q_ = 0;
+  std::vector<Real> A_, B_, C_;
+  end_coefficients upper_, lower_;
+};
 
 }  // namespace rhabel::quadrature

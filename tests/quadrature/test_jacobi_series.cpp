@@ -1,0 +1,120 @@
+// Tests of rhabel::quadrature::jacobi_series (jacobi_polynomial.hpp): the precomputed-coefficient
+// evaluator of sum_k c_k P_k^(p,q)(x).
+// Oracles: the end values P_k^(p,q)(1) = (p+1)_k/k!, P_k^(p,q)(-1) = (-1)^k (q+1)_k/k! (DLMF
+// 18.6.1) accumulated by an independent product loop here; Legendre (p = q = 0) sums against the
+// same sum at 50 digits; and agreement with jacobi_clenshaw (the per-call evaluator it replaces:
+// bit-identical in Clenshaw's branch |x| < 1/2, a few ulps in the difference-form branch).
+#include <doctest/doctest.h>
+
+#include <rhabel/quadrature.hpp>
+
+#include "quadrature/support.hpp"
+
+#include <boost/multiprecision/cpp_bin_float.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+namespace rq = rhabel::quadrature;
+using bf50 = boost::multiprecision::cpp_bin_float_50;
+using rhabel_test::eps;
+
+namespace {
+
+// Deterministic coefficients of mixed sign, decaying like 1/(k+1) (no cancellation-free sums).
+std::vector<double> test_coefficients(std::size_t K) {
+  std::vector<double> c(K);
+  for (std::size_t k = 0; k < K; ++k) c[k] = std::cos(0.7 * static_cast<double>(k) + 0.3) / static_cast<double>(k + 1);
+  return c;
+}
+
+// sum_k |c_k| |P_k(x)| bound from the end values max(|P_k(1)|, |P_k(-1)|) (|P_k| attains its
+// max on [-1, 1] at an end when max(p, q) >= -1/2, Szego 7.32.1): the scale of rounding.
+double magnitude(const std::vector<double>& c, double p, double q) {
+  double pk = 1, qk = 1, m = 0;
+  for (std::size_t k = 0; k < c.size(); ++k) {
+    if (k > 0) {
+      pk *= (static_cast<double>(k) + p) / static_cast<double>(k);
+      qk *= (static_cast<double>(k) + q) / static_cast<double>(k);
+    }
+    m += std::abs(c[k]) * std::max({std::abs(pk), std::abs(qk), 1.0});
+  }
+  return m;
+}
+
+}  // namespace
+
+TEST_CASE("jacobi_series at x = +-1 equals the closed-form end values (p+1)_k/k!, (-1)^k (q+1)_k/k!") {
+  // The end values are products of K exact-ish factors: O(K eps) relative each, summed.
+  constexpr double end_value_tolerance = 8 * 64 * eps;  // 64-term sums of O(64 eps) products, 8x margin
+  for (const auto& [p, q] : std::vector<std::pair<double, double>>{{0.0, 0.0}, {-0.5, 0.5}, {0.45, -0.95}, {-0.999, -0.999}, {1.5, 2.5}}) {
+    const auto c = test_coefficients(64);
+    const rq::jacobi_series<double> s(c, p, q);
+    double at_plus = 0, at_minus = 0, pk = 1, qk = 1;
+    for (std::size_t k = 0; k < c.size(); ++k) {
+      if (k > 0) {
+        pk *= (static_cast<double>(k) + p) / static_cast<double>(k);
+        qk *= (static_cast<double>(k) + q) / static_cast<double>(k);
+      }
+      at_plus += c[k] * pk;
+      at_minus += (k % 2 == 0 ? 1 : -1) * c[k] * qk;
+    }
+    const double scale = magnitude(c, p, q);
+    CHECK(std::abs(s(1.0) - at_plus) <= end_value_tolerance * scale);
+    CHECK(std::abs(s(-1.0) - at_minus) <= end_value_tolerance * scale);
+    CHECK(std::abs(s(0.0, 2.0) - at_plus) <= end_value_tolerance * scale);   // complements form
+    CHECK(std::abs(s(2.0, 0.0) - at_minus) <= end_value_tolerance * scale);
+  }
+}
+
+TEST_CASE("jacobi_series agrees with jacobi_clenshaw: bit-identical for |x| < 1/2, a few ulps near the ends, K up to 2000") {
+  // Difference-form branch: one product regrouped (a_k u R instead of A_k u (k+1)/(k+1+p) R),
+  // a relative change of ~2 eps per step that the stable recurrence does not amplify.
+  constexpr double near_end_tolerance = 16 * eps;  // relative to sum |c_k| max|P_k|; measured <= 4.2 eps of max|sum|
+  for (std::size_t K : {std::size_t(1), std::size_t(2), std::size_t(7), std::size_t(129), std::size_t(2000)}) {
+    for (const auto& [p, q] : std::vector<std::pair<double, double>>{{0.0, 0.0}, {-0.45, 0.2}, {-0.999, 0.5}, {0.3, -0.999}}) {
+      const auto c = test_coefficients(K);
+      const rq::jacobi_series<double> s(c, p, q);
+      const double scale = magnitude(c, p, q);
+      for (int i = 0; i <= 400; ++i) {
+        const double x = -1 + i / 200.0;
+        const double reference = rq::jacobi_clenshaw(c, p, q, x);
+        if (std::abs(x) < 0.5)
+          CHECK(s(x) == reference);
+        else
+          CHECK(std::abs(s(x) - reference) <= near_end_tolerance * scale);
+      }
+      for (double d : {std::ldexp(1.0, -40), std::ldexp(1.0, -30), 0.25}) {  // 1 - d exact: the same u both ways
+        CHECK(std::abs(s(d, 2 - d) - rq::jacobi_clenshaw(c, p, q, 1 - d)) <= near_end_tolerance * scale);
+        CHECK(std::abs(s(2 - d, d) - rq::jacobi_clenshaw(c, p, q, d - 1)) <= near_end_tolerance * scale);
+      }
+    }
+  }
+}
+
+TEST_CASE("jacobi_series of a Legendre sum matches the 50-digit sum to O(K eps)") {
+  constexpr std::size_t K = 300;
+  constexpr double legendre_tolerance = 4 * K * eps;  // |P_k| <= 1, sum of K terms each O(k eps)/k
+  const auto c = test_coefficients(K);
+  const rq::jacobi_series<double> s(c, 0.0, 0.0);
+  const std::vector<bf50> cb(c.begin(), c.end());
+  const rq::jacobi_series<bf50> sb(cb, bf50(0), bf50(0));
+  double scale = 0;
+  for (double v : c) scale += std::abs(v);
+  for (double x : {-0.999, -0.7, -0.3, 0.0, 0.123, 0.5, 0.9, 0.99999}) {
+    const double exact = static_cast<double>(sb(bf50(x)));
+    CHECK(std::abs(s(x) - exact) <= legendre_tolerance * scale);
+  }
+}
+
+TEST_CASE("jacobi_series rejects bad exponents and complements") {
+  CHECK_THROWS_AS(rq::jacobi_series<double>(std::vector<double>{1.0}, -1.0, 0.0), std::domain_error);
+  const rq::jacobi_series<double> s(std::vector<double>{1.0, 2.0}, 0.0, 0.0);
+  CHECK_THROWS_AS(s(-0.1, 2.0), std::domain_error);
+  CHECK_THROWS_AS(s(1.0, 3.0), std::domain_error);
+  CHECK(rq::jacobi_series<double>()(0.3) == 0.0);
+}
