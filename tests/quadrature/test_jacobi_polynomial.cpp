@@ -262,6 +262,9 @@ TEST_CASE("bad input names function, parameter and value") {
   // Regression: the message named the internal jacobi_integral_below instead of the public function.
   rhabel_test::check_domain_error_mentions([] { rq::jacobi_step_coefficients(3, 0.5, -1.5, 0.0); },
                                            {"jacobi_step_coefficients", "q = -1.5", "(-1, inf)"});
+  // Regression: the ramp's message named jacobi_step_coefficients (a copied validation block).
+  rhabel_test::check_domain_error_mentions([] { rq::jacobi_ramp_coefficients(3, 0.5, 0.0, 2.5, -0.5); },
+                                           {"jacobi_ramp_coefficients", "one_minus_x0 = 2.5", "[0, 2]"});
 }
 
 namespace {

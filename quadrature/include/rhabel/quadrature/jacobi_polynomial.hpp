@@ -25,9 +25,9 @@
 //    difference-form recurrence near the ends; O(K).
 //  * jacobi_series<Real>: the same sum with the recurrence coefficients computed once (O(K)
 //    setup, then O(K) multiply-adds per point, no divisions): for many evaluations of one series.
-//    Same algorithms and switches as jacobi_clenshaw; Clenshaw's branch is bit-identical, the
-//    difference-form branch agrees to a few ulps (one product regrouped; measured and tested in
-//    tests/quadrature/test_jacobi_series.cpp). Overload (one_minus_x, one_plus_x) takes exact
+//    Same algorithms, switches and operation order as jacobi_clenshaw (the difference-form
+//    coefficients of both come from detail::difference_form_coefficients), so the sums are the
+//    same (tested in tests/quadrature/test_jacobi_series.cpp). Overload (one_minus_x, one_plus_x) takes exact
 //    complements near the ends (u = 1 -+ x is then not re-rounded).
 //  * jacobi_weight(p, q, 1 - x, 1 + x): the weight from the complements, full relative accuracy
 //    at 1e-300 from an end when the complements are exact.
@@ -82,6 +82,12 @@ void check_jacobi_exponents(const char* function, const Real& p, const Real& q) 
   using std::isfinite;
   if (!(p > -1) || !isfinite(p)) throw_bad_parameter(function, "p", p, "(-1, inf)");
   if (!(q > -1) || !isfinite(q)) throw_bad_parameter(function, "q", q, "(-1, inf)");
+}
+
+// A complement 1 - x or 1 + x of a point x of [-1, 1] must lie in [0, 2] (NaN fails too).
+template <class Real>
+void check_complement(const char* function, const char* parameter, const Real& value) {
+  if (!(value >= 0) || !(value <= 2)) throw_bad_parameter(function, parameter, value, "[0, 2]");
 }
 
 // Coefficients of P_{k+1} = (A_k x + B_k) P_k - C_k P_{k-1}  (DLMF 18.9.1-2).
@@ -157,6 +163,21 @@ Real jacobi_p_recurrence(std::size_t n, const Real& p, const Real& q, const Real
 /// small D_k (the analogue of the Goertzel-Reinsch modification of Chebyshev sums). The
 /// normalisation by pi_k removes the cancellation of the unnormalised form when p is near -1
 /// (P_k(1) = (p+1)_k/k! is then 1e-3 of the intermediate terms).
+/// Step k >= 1 of that difference form: D_{k+1} = b D_k - a u R_k with
+///   b = C_k (k+1) k / ((k+1+p)(k+p)),  a = A_k (k+1)/(k+1+p);
+/// shared by jacobi_p_visit_near_one and jacobi_series (which stores them for many x).
+template <class Real>
+struct difference_form_step {
+  Real a, b;
+};
+
+template <class Real>
+difference_form_step<Real> difference_form_coefficients(std::size_t k, const Real& p, const Real& q) {
+  const auto r = jacobi_recurrence_coefficients(k, p, q);
+  const Real K = Real(k);
+  return {r.A * (K + 1) / (K + 1 + p), r.C * (K + 1) * K / ((K + 1 + p) * (K + p))};
+}
+
 template <class Real, class Visit>
 void jacobi_p_visit_near_one(std::size_t n_max, const Real& p, const Real& q, const Real& u, Visit&& visit) {
   Real R = 1, pi_k = 1;
@@ -167,12 +188,10 @@ void jacobi_p_visit_near_one(std::size_t n_max, const Real& p, const Real& q, co
   pi_k = p + 1;
   visit(std::size_t(1), Real(pi_k * R));
   for (std::size_t k = 1; k < n_max; ++k) {
-    const auto r = detail::jacobi_recurrence_coefficients(k, p, q);
-    const Real K = Real(k);
-    const Real b = r.C * (K + 1) * K / ((K + 1 + p) * (K + p));
-    D = b * D - r.A * u * (K + 1) / (K + 1 + p) * R;
+    const auto step = difference_form_coefficients(k, p, q);
+    D = step.b * D - step.a * u * R;
     R += D;
-    pi_k *= (K + 1 + p) / (K + 1);
+    pi_k *= (Real(k) + 1 + p) / (Real(k) + 1);
     visit(k + 1, Real(pi_k * R));
   }
 }
@@ -407,8 +426,8 @@ Real jacobi_integral_below(std::size_t m, const Real& p, const Real& q, const Re
   using std::pow;
   constexpr const char* name = "jacobi_integral_below";
   detail::check_jacobi_exponents(name, p, q);
-  if (!(one_minus_x0 >= 0) || !(one_minus_x0 <= 2)) detail::throw_bad_parameter(name, "one_minus_x0", one_minus_x0, "[0, 2]");
-  if (!(one_plus_x0 >= 0) || !(one_plus_x0 <= 2)) detail::throw_bad_parameter(name, "one_plus_x0", one_plus_x0, "[0, 2]");
+  detail::check_complement(name, "one_minus_x0", one_minus_x0);
+  detail::check_complement(name, "one_plus_x0", one_plus_x0);
   if (m == 0) {
     // 2^(p+q+1) B_u(q+1, p+1), u = (1 + x0)/2; for u > 1/2 the complement form
     // B_u(a, b) = B(a, b) - B_{1-u}(b, a) = betac(b, a, 1 - u) keeps full accuracy near x0 = 1.
@@ -437,8 +456,8 @@ std::vector<Real> jacobi_step_coefficients(std::size_t n, const Real& p, const R
   // Validated here so that a bad argument is reported under this function's own name.
   constexpr const char* name = "jacobi_step_coefficients";
   detail::check_jacobi_exponents(name, p, q);
-  if (!(one_minus_x0 >= 0) || !(one_minus_x0 <= 2)) detail::throw_bad_parameter(name, "one_minus_x0", one_minus_x0, "[0, 2]");
-  if (!(one_plus_x0 >= 0) || !(one_plus_x0 <= 2)) detail::throw_bad_parameter(name, "one_plus_x0", one_plus_x0, "[0, 2]");
+  detail::check_complement(name, "one_minus_x0", one_minus_x0);
+  detail::check_complement(name, "one_plus_x0", one_plus_x0);
   std::vector<Real> c(n);
   for (std::size_t m = 0; m < n; ++m)
     c[m] = jacobi_integral_below(m, p, q, one_minus_x0, one_plus_x0) / jacobi_norm_squared(m, p, q);
@@ -475,10 +494,10 @@ template <class Real>
 std::vector<Real> jacobi_ramp_coefficients(std::size_t n, const Real& p, const Real& q, const Real& one_minus_x0,
                                            const Real& one_plus_x0) {
   // Validated here so that a bad argument is reported under this function's own name.
-  constexpr const char* name = "jacobi_step_coefficients";
+  constexpr const char* name = "jacobi_ramp_coefficients";
   detail::check_jacobi_exponents(name, p, q);
-  if (!(one_minus_x0 >= 0) || !(one_minus_x0 <= 2)) detail::throw_bad_parameter(name, "one_minus_x0", one_minus_x0, "[0, 2]");
-  if (!(one_plus_x0 >= 0) || !(one_plus_x0 <= 2)) detail::throw_bad_parameter(name, "one_plus_x0", one_plus_x0, "[0, 2]");
+  detail::check_complement(name, "one_minus_x0", one_minus_x0);
+  detail::check_complement(name, "one_plus_x0", one_plus_x0);
   std::vector<Real> c(n);
   for (std::size_t m = 0; m < n; ++m)
     c[m] = jacobi_ramp_moment(m, p, q, one_minus_x0, one_plus_x0) / jacobi_norm_squared(m, p, q);
@@ -534,10 +553,8 @@ class jacobi_series {
   /// The sum at x given the complements one_minus_x = 1 - x and one_plus_x = 1 + x (both in
   /// [0, 2]); near an end the small complement is used as it is.
   Real operator()(const Real& one_minus_x, const Real& one_plus_x) const {
-    if (!(one_minus_x >= 0) || !(one_minus_x <= 2))
-      detail::throw_bad_parameter("jacobi_series", "one_minus_x", one_minus_x, "[0, 2]");
-    if (!(one_plus_x >= 0) || !(one_plus_x <= 2))
-      detail::throw_bad_parameter("jacobi_series", "one_plus_x", one_plus_x, "[0, 2]");
+    detail::check_complement("jacobi_series", "one_minus_x", one_minus_x);
+    detail::check_complement("jacobi_series", "one_plus_x", one_plus_x);
     if (c_.empty()) return Real(0);
     if (one_minus_x <= Real(0.5)) return near_end(upper_, p_, q_, one_minus_x, false);
     if (one_plus_x <= Real(0.5)) return near_end(lower_, q_, p_, one_plus_x, true);
@@ -556,11 +573,10 @@ class jacobi_series {
     e.pi.assign(K, Real(1));
     if (K >= 2) e.pi[1] = p + 1;
     for (std::size_t k = 1; k + 1 < K; ++k) {
-      const auto r = detail::jacobi_recurrence_coefficients(k, p, q);
-      const Real n = Real(k);
-      e.b[k] = r.C * (n + 1) * n / ((n + 1 + p) * (n + p));
-      e.a[k] = r.A * (n + 1) / (n + 1 + p);
-      e.pi[k + 1] = e.pi[k] * ((n + 1 + p) / (n + 1));  // the same products as jacobi_p_visit_near_one
+      const auto step = detail::difference_form_coefficients(k, p, q);
+      e.a[k] = step.a;
+      e.b[k] = step.b;
+      e.pi[k + 1] = e.pi[k] * ((Real(k) + 1 + p) / (Real(k) + 1));  // the same products as jacobi_p_visit_near_one
     }
   }
 
