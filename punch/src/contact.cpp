@@ -20,11 +20,9 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
-#include <tuple>
 
 namespace rhabel::punch {
 
@@ -91,18 +89,6 @@ void jacobi_all_unchecked(std::size_t n_max, double p, double q, double x, std::
   }
 }
 
-// Gauss-Jacobi rules are reused many times inside one solve: cache them.
-const quadrature::quadrature_rule<double>& cached_rule(std::size_t n, double p, double q) {
-  thread_local std::map<std::tuple<std::size_t, double, double>, quadrature::quadrature_rule<double>> cache;
-  const auto key = std::make_tuple(n, p, q);
-  auto it = cache.find(key);
-  if (it == cache.end()) {
-    if (cache.size() > 256) cache.clear();
-    it = cache.emplace(key, quadrature::gauss_jacobi<double>(n, p, q)).first;
-  }
-  return it->second;
-}
-
 // Position s of [a, b] -> (x, 1 + x, 1 - x) with both distances computed directly.
 struct mapped {
   double x, one_plus, one_minus;
@@ -134,7 +120,9 @@ image_expansion image_coefficients(double a, double b, const edge_exponents& e, 
   if (p > -1 && q > -1) {
     // Orthogonal projection with the (integrable) image weight (1 - y)^p (1 + y)^q.
     if (F.smooth) {
-      const auto& rule = cached_rule(M + 8, p, q);
+      // abel's process-wide rule cache; the shared_ptr keeps the rule alive while in use.
+      const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(M + 8, p, q);
+      const auto& rule = *rule_ptr;
       for (std::size_t i = 0; i < rule.size(); ++i) {
         const double y = rule.x[i];
         const double s = rule.x_minus_lo[i] <= rule.hi_minus_x[i] ? a + (b - a) * rule.x_minus_lo[i] / 2
@@ -166,7 +154,8 @@ image_expansion image_coefficients(double a, double b, const edge_exponents& e, 
       // unresolved, so the adaptive degree is judged on it alone.
       std::vector<double> smooth_only(M + 1, 0.0);
       if (F.smooth) {
-        const auto& rule = cached_rule(M + 8, p, q);
+        const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(M + 8, p, q);
+        const auto& rule = *rule_ptr;
         for (std::size_t i = 0; i < rule.size(); ++i) {
           const double s = rule.x_minus_lo[i] <= rule.hi_minus_x[i] ? a + (b - a) * rule.x_minus_lo[i] / 2
                                                                     : b - (b - a) * rule.hi_minus_x[i] / 2;
@@ -1210,7 +1199,8 @@ scene_result solve(const scene& s, const solve_options& options) {
           case kind::flat: return 0.0;
           case kind::general: {
             // int_a^x f' by Gauss-Legendre (f' smooth on the contact).
-            const auto& rule = cached_rule(32, 0.0, 0.0);
+            const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(32, 0.0, 0.0);
+            const auto& rule = *rule_ptr;
             double sum = 0;
             for (std::size_t q = 0; q < rule.size(); ++q)
               sum += rule.weight[q] * own_slope(st[i], g.jacobi.lo + (x - g.jacobi.lo) * (1 + rule.x[q]) / 2);
@@ -1224,7 +1214,8 @@ scene_result solve(const scene& s, const solve_options& options) {
       // the apex part; the datum (log-singular at t = a) by tanh-sinh on the whole own interval.
       auto height_moment = [&](const contact_density& d, double x) {
         if (d.line_load) return d.line_weight * psi(d.jacobi.lo, x, cx.alpha, omk_over_alpha, cx.kappa);
-        const auto& rule = cached_rule(std::max<std::size_t>(d.jacobi.coefficients.size() + 64, 96), d.jacobi.del, d.jacobi.gam);
+        const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(std::max<std::size_t>(d.jacobi.coefficients.size() + 64, 96), d.jacobi.del, d.jacobi.gam);
+        const auto& rule = *rule_ptr;
         double sum = 0;
         for (std::size_t q = 0; q < rule.size(); ++q) {
           const double t = rule.x_minus_lo[q] <= rule.hi_minus_x[q] ? d.jacobi.lo + d.length() * rule.x_minus_lo[q] / 2
