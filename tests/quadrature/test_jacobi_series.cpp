@@ -8,6 +8,9 @@
 
 #include <rhabel/quadrature.hpp>
 
+#include <cmath>
+#include <limits>
+
 #include "quadrature/support.hpp"
 
 #include <boost/multiprecision/cpp_bin_float.hpp>
@@ -105,10 +108,15 @@ TEST_CASE("jacobi_series of a Legendre sum matches the 50-digit sum to O(K eps)"
   }
 }
 
-TEST_CASE("jacobi_series rejects bad exponents and complements") {
+TEST_CASE("jacobi_series and jacobi_clenshaw reject bad exponents, complements and non-finite x") {
   CHECK_THROWS_AS(rq::jacobi_series<double>(std::vector<double>{1.0}, -1.0, 0.0), std::domain_error);
   const rq::jacobi_series<double> s(std::vector<double>{1.0, 2.0}, 0.0, 0.0);
   CHECK_THROWS_AS(s(-0.1, 2.0), std::domain_error);
   CHECK_THROWS_AS(s(1.0, 3.0), std::domain_error);
+  // Regression: a NaN or infinite x returned NaN instead of an error.
+  rhabel_test::check_domain_error_mentions([&] { (void)s(std::nan("")); }, {"jacobi_series", "x = ", "finite"});
+  rhabel_test::check_domain_error_mentions(
+      [] { (void)rq::jacobi_clenshaw(std::vector<double>{1.0, 2.0}, 0.0, 0.0, std::numeric_limits<double>::infinity()); },
+      {"jacobi_clenshaw", "x = ", "finite"});
   CHECK(rq::jacobi_series<double>()(0.3) == 0.0);
 }

@@ -297,7 +297,9 @@ Real jacobi_norm_squared(std::size_t n, const Real& p, const Real& q) {
 /// p = q = -0.999, K = 7, which the difference form avoids).
 template <class Real>
 Real jacobi_clenshaw(const std::vector<Real>& c, const Real& p, const Real& q, const Real& x) {
+  using std::isfinite;
   detail::check_jacobi_exponents("jacobi_clenshaw", p, q);
+  if (!isfinite(x)) detail::throw_bad_parameter("jacobi_clenshaw", "x", x, "finite");
   if (c.empty()) return Real(0);
   if ((x >= Real(0.5) && x <= 1) || (x <= Real(-0.5) && x >= -1)) {
     const bool upper = x > 0;
@@ -542,8 +544,10 @@ class jacobi_series {
   const Real& q() const { return q_; }
   std::size_t size() const { return c_.size(); }
 
-  /// The sum at x (any finite x; the difference form is used for 1/2 <= |x| <= 1).
+  /// The sum at x (any finite x, else std::domain_error; the difference form is used for 1/2 <= |x| <= 1).
   Real operator()(const Real& x) const {
+    using std::isfinite;
+    if (!isfinite(x)) detail::throw_bad_parameter("jacobi_series", "x", x, "finite");
     if (c_.empty()) return Real(0);
     if (x >= Real(0.5) && x <= 1) return near_end(upper_, p_, q_, Real(1 - x), false);
     if (x <= Real(-0.5) && x >= -1) return near_end(lower_, q_, p_, Real(1 + x), true);
