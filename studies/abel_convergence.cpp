@@ -19,9 +19,16 @@
 //    against the degree-257 enriched solution; n = points the adaptive loop used.
 //  * step_apex_eps_<eps>: adaptive solve_step with the apex at eps = (t0 - a)/L, 1e-6 .. 1 - 1e-6
 //    (alpha = 0.3, beta = 0.2): int g against Rodrigues, residual (with points next to the apex).
+//  * step_apex_rh_eps_<eps>: wedge data satisfying the orthogonality condition (nu = -1), apex at
+//    eps = 0.5 .. 0.999 (alpha = 0.3, beta = 0.2) and the punch layer's alpha = 0.2, 1e-3, 0,
+//    k = 0.5 wedge (eps = 0.84): int g and int_a^apex g against riemann::solve_abel_rh (the
+//    independent Riemann-Hilbert route), at 65, 195, 585 points and adaptive ("_adaptive").
 //  * kink (F = |s - t0|): int_a^t0 g against the degree-2048 solution (algebraic reference).
 // Timing: median of repeated solves (residual switched off), steady_clock.
 #include "rhabel/abel.hpp"
+#include "rhabel/riemann.hpp"
+
+#include <boost/math/constants/constants.hpp>
 
 #include <boost/math/special_functions/beta.hpp>
 
@@ -279,6 +286,54 @@ int main(int argc, char** argv) {
       out << "step_apex_eps_" << eps_apex << "," << alpha << "," << beta << "," << e.nu << "," << sol.degree << ","
           << std::abs(sol.density.integral() - exact_total) / std::abs(exact_total) << "," << sol.residual << ","
           << seconds << "\n";
+    }
+  }
+
+  // ---- apex near an edge, wedge data (nu = -1, orthogonality satisfied), against the RH route ----
+  // F = 1 before the apex, 1 - 1/(1 - I_eps((1+beta)/2, (1-2alpha-beta)/2)) after it (closed form:
+  // the data satisfy the orthogonality condition exactly). Reference: riemann::solve_abel_rh
+  // (independent route; int g and int_a^apex g good to ~1e-13 per its header). Rows
+  // step_apex_rh_eps_<eps>: error = max of the relative errors of int g and int_a^apex g (relative
+  // to int g), n = points (fixed 65, 195, 585; "adaptive" rows: default options), residual,
+  // seconds (median, residual off). Status, Taylor/edge-damped degree and tail to stderr.
+  {
+    const double beta_k = 2 / boost::math::constants::pi<double>() * std::atan(0.5 * 0.4 / 1.4);  // k = 0.5, nu = 0.3
+    struct apex_case {
+      double alpha, beta, eps;
+    };
+    std::vector<apex_case> cases;
+    for (double e : {0.5, 0.8, 0.9, 0.97, 0.99, 0.999, 0.03, 0.001}) cases.push_back({0.3, 0.2, e});
+    for (double a : {0.2, 1e-3, 0.0}) cases.push_back({a, beta_k, 0.84});
+    for (const auto& c : cases) {
+      const double lo = -c.eps, hi = 1 - c.eps;
+      abel_operator<double> op(c.alpha, c.beta, lo, hi);
+      const double J = 1 / (1 - boost::math::ibeta((1 + c.beta) / 2, (1 - 2 * c.alpha - c.beta) / 2, c.eps));
+      auto F = [&](double s) { return s < 0.0 ? 1.0 : 1.0 - J; };
+      rhabel::riemann::piecewise_function<double> PF{[](double) { return 1.0; }, {rhabel::riemann::step<double>{0.0, -J}}};
+      const auto rh = rhabel::riemann::solve_abel_rh(c.alpha, c.beta, lo, hi, PF, rhabel::riemann::edge::bounded,
+                                                     rhabel::riemann::edge::bounded);
+      const double total = rh.total().value, partial = rh.integral(0.0).value;
+      auto error_of = [&](const enriched_solution<double>& sol) {
+        return std::max(std::abs(sol.density.integral() / total - 1),
+                        std::abs(sol.density.integral_to(0.0) - partial) / std::abs(total));
+      };
+      std::ostringstream name;
+      name << "step_apex_rh_eps_" << c.eps;
+      for (std::size_t n : {65, 195, 585, 0}) {
+        solve_options<double> options;
+        options.degree = n;
+        const auto sol = solve_step(op, edge::bounded, edge::bounded, F, 0.0, options);
+        options.residual_points = 0;
+        const double seconds = median_seconds([&] { (void)solve_step(op, edge::bounded, edge::bounded, F, 0.0, options); }, n == 0 ? 5 : 3);
+        if (n == 0)
+          std::cerr << name.str() << " alpha=" << c.alpha << " adaptive: K=" << sol.taylor_degree
+                    << (sol.density.edge_power != 0 ? " (edge-damped)" : " (Taylor)") << " n=" << sol.degree
+                    << " status=" << (sol.status == solve_status::converged ? "converged" : "not_converged")
+                    << " tail=" << sol.coefficient_tail << " floor=" << sol.rounding_floor
+                    << " RH error estimates " << rh.total().error_estimate << ", " << rh.integral(0.0).error_estimate << "\n";
+        out << name.str() << (n == 0 ? "_adaptive," : ",") << c.alpha << "," << c.beta << ",-1," << sol.degree << ","
+            << error_of(sol) << "," << sol.residual << "," << seconds << "\n";
+      }
     }
   }
 

@@ -16,12 +16,17 @@
 //   * C_f: rhabel::riemann::solve_abel_rh at order 16 (Riemann problem + Abel inversion: no spectral
 //     relation, no enrichment), C_f = (S1 int_a^apex g - S2 int_apex^b g) / int g. Independent of
 //     the solver where it uses abel::solve_step (status "ok"); where the apex is within 0.1 L of an
-//     edge the solver itself takes C_f from the same route (status says so): err_Cf = 0 there
-//     checks nothing. err_Cf is relative to max(|C_f|, min(S1, S2)) (C_f = 0 for alpha = k = 0).
+//     edge the solver itself takes C_f from the same route (status says so): err_Cf there checks
+//     only the rounding of the interval. err_Cf is relative to max(|C_f|, min(S1, S2)) (C_f = 0 for
+//     alpha = k = 0).
 //   * pressure: riemann's g(y) at every 10th of the 1000 samples (its accuracy: ~1e-14..1e-13
 //     relative for alpha <= 0.5, riemann/abel_solver.hpp; samples where its two orders disagree by
-//     more than 1e-12 relative are skipped); error = max |p - p_ref| / max |p_ref| over those samples
-//     (p is infinite at the apex: the max is the sample nearest to it).
+//     more than 1e-12 relative are skipped: since the far-panel fix of session 3 this happens only
+//     with the apex within ~1e-10 L of an edge, n_pressure_ref says how many were kept); error =
+//     max |p - p_ref| / max |p_ref| over those samples (p is infinite at the apex: the max is the
+//     sample nearest to it). Where the apex is within 0.1 L of an edge the solver's samples come
+//     from the same route (pointwise here, interpolated there): this checks the interpolation
+//     only; study_wedge_near_edge has independent references for those scenes.
 //   * Where 1 - eps < 1e-14 the solver reports eps = 1 (contact ending at the apex): err_eps = 1
 //     there by construction; where 1 - eps < 1e-30 it reports C_f = S1, and the reference (int_a^y g
 //     for y within 1e-30 L of b, riemann's known weak spot) is not trustworthy either.

@@ -34,8 +34,13 @@ constexpr double boundary_width = 1e-12;  // |alpha + beta/2 - 1/2| below this i
 // accuracy degrades as the apex approaches an edge (its Taylor factor q has radius 1 - |x0|).
 // Measured (alpha = 0.2, beta = 0, tolerance 1e-14, C_f against the Riemann-Hilbert route):
 // 1.6e-13 at min(eps, 1 - eps) = 0.25, 4e-9 (degree 129) at 0.042, 2e-3 at 5e-4; alpha = 0: 1e-4
-// at 0.02. So: at or below near_edge the isolated wedge takes C_f from the Riemann-Hilbert route;
-// at or below enrich_limit the density is the plain Jacobi series instead of the enriched one.
+// at 0.02. The pressure samples of the enriched density (tolerance 1e-10, against the
+// Riemann-Hilbert density): 2e-11 .. 1e-10 of the peak at min(eps, 1 - eps) in [0.105, 0.15]
+// (2.8e-10 once: alpha 0.05, k 0.5, 0.15), 1.3e-6 at 0.028, 1e-4 at 1e-3; the Riemann-Hilbert
+// samples cost 14-24 ms against ~1-2 ms for the whole enriched solve. So: at or below near_edge
+// the isolated wedge takes C_f and the pressure samples from the Riemann-Hilbert route (wedge_by_rh,
+// rh_pressure); at or below enrich_limit the density is the plain Jacobi series instead of the
+// enriched one (residual and displacement only, for an isolated wedge).
 constexpr double near_edge = 0.1;
 constexpr double enrich_limit = 1e-3;
 
@@ -74,20 +79,10 @@ double del_smooth(double beta) { return (1 + beta) / 2; }
 
 // ---------------------------------------------------------------------------------------------
 // Jacobi polynomials for exponents that may be <= -1 (the image family of the nu = -1 class above
-// the boundary has p = gam - 1 < -1): the recurrence itself is valid as long as no denominator
-// vanishes, which math.md section 4's families guarantee for alpha not an integer >= 1.
-void jacobi_all_unchecked(std::size_t n_max, double p, double q, double x, std::vector<double>& v) {
-  v.assign(n_max + 1, 0.0);
-  v[0] = 1;
-  if (n_max >= 1) v[1] = (p + q + 2) / 2 * x + (p - q) / 2;
-  for (std::size_t k = 1; k < n_max; ++k) {
-    const double n = static_cast<double>(k), s = 2 * n + p + q;
-    const double den = 2 * (n + 1) * (n + p + q + 1) * s;
-    const double A = (s + 1) * (s + 2) * s / den, B = (s + 1) * (p * p - q * q) / den,
-                 C = 2 * (n + p) * (n + q) * (s + 2) / den;
-    v[k + 1] = (A * x + B) * v[k] - C * v[k - 1];
-  }
-}
+// the boundary has p = gam - 1 < -1): abel::detail::plain_jacobi_values, the plain three-term
+// recurrence, valid as long as no denominator vanishes, which math.md section 4's families
+// guarantee for alpha not an integer >= 1.
+using abel::detail::plain_jacobi_values;
 
 // Position s of [a, b] -> (x, 1 + x, 1 - x) with both distances computed directly.
 struct mapped {
@@ -101,11 +96,14 @@ mapped map_to_reference(double s, double a, double b) {
 
 // ---------------------------------------------------------------------------------------------
 // Image coefficients: F(s) = sum_m d_m P_m^(p, q)(y) on [a, b], p = gam + nu (at y = +1),
-// q = del + nu (at y = -1). Returns d_0 .. d_M. Kept here (not abel::solve_piecewise) for forcings
-// with steps and for d_0 alone (the orthogonality root of coupled wedges and general profiles with
-// corners, the plain series of a wedge whose apex is next to an edge): the steps' coefficients in
-// closed form (Rodrigues), M + 8 Gauss-Jacobi nodes for the smooth part, and the Chebyshev fallback
-// for a non-integrable image weight (nu = -1 above the boundary), which solve_piecewise rejects.
+// q = del + nu (at y = -1). Returns d_0 .. d_M. Not abel::solve_piecewise (which overlaps it), for
+// four reasons: (1) the steps' coefficients here are in closed form (Rodrigues), where
+// solve_piecewise integrates each piece by Gauss-Jacobi (M/2 + 24 nodes per piece); (2) d_0 alone
+// (M = 0) is what the orthogonality root of coupled wedges and of general profiles with corners
+// evaluates ~30 times per solve, while solve_piecewise always builds the full solution; (3) the
+// adaptive degree is judged on the smooth part's tail alone (image_expansion::tail); (4) the
+// Chebyshev fallback for a non-integrable image weight (nu = -1 above the boundary), which
+// solve_piecewise rejects. The smooth part: M + 8 Gauss-Jacobi nodes.
 struct image_expansion {
   std::vector<double> d;
   double tail = 0;
@@ -115,23 +113,24 @@ image_expansion image_coefficients(double a, double b, const edge_exponents& e, 
                                    std::size_t M) {
   const double p = e.gam + e.nu, q = e.del + e.nu;
   image_expansion out;
-  out.d.assign(M + 1, 0.0);
-  std::vector<double> P;
   if (p > -1 && q > -1) {
-    // Orthogonal projection with the (integrable) image weight (1 - y)^p (1 + y)^q.
+    // Orthogonal projection with the (integrable) image weight (1 - y)^p (1 + y)^q: the smooth part
+    // by M + 8 Gauss-Jacobi nodes (abel's process-wide rule cache; the shared_ptr keeps the rule
+    // alive while in use), kept apart because the adaptive degree is judged on it alone (the step
+    // coefficients below are exact).
+    std::vector<double> smooth(M + 1, 0.0);
     if (F.smooth) {
-      // abel's process-wide rule cache; the shared_ptr keeps the rule alive while in use.
       const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(M + 8, p, q);
       const auto& rule = *rule_ptr;
       for (std::size_t i = 0; i < rule.size(); ++i) {
-        const double y = rule.x[i];
         const double s = rule.x_minus_lo[i] <= rule.hi_minus_x[i] ? a + (b - a) * rule.x_minus_lo[i] / 2
                                                                   : b - (b - a) * rule.hi_minus_x[i] / 2;
         const double f = F.smooth(s) * rule.weight[i];
-        jacobi_all_unchecked(M, p, q, y, P);
-        for (std::size_t m = 0; m <= M; ++m) out.d[m] += f * P[m];
+        const auto P = plain_jacobi_values(M, p, q, rule.x[i]);
+        for (std::size_t m = 0; m <= M; ++m) smooth[m] += f * P[m];
       }
     }
+    out.d = smooth;
     // Steps H(s - s_k): int_{y_k}^1 w' P_m, by Rodrigues' formula (DLMF 18.9.16) for m >= 1 and by
     // the incomplete beta function for m = 0.
     for (const auto& [position, jump] : F.steps) {
@@ -143,59 +142,43 @@ image_expansion image_coefficients(double a, double b, const edge_exponents& e, 
       const mapped y = map_to_reference(position, a, b);
       out.d[0] += jump * std::pow(2.0, p + q + 1) * boost::math::beta(p + 1, q + 1, y.one_minus / 2);
       if (M >= 1) {
-        jacobi_all_unchecked(M - 1, p + 1, q + 1, y.x, P);
+        const auto P = plain_jacobi_values(M - 1, p + 1, q + 1, y.x);
         const double W = std::pow(y.one_minus, p + 1) * std::pow(y.one_plus, q + 1);
         for (std::size_t m = 1; m <= M; ++m) out.d[m] += jump * W * P[m - 1] / (2.0 * static_cast<double>(m));
       }
     }
-    for (std::size_t m = 0; m <= M; ++m) out.d[m] /= quadrature::jacobi_norm_squared<double>(m, p, q);
-    if (!F.steps.empty()) {
-      // The step coefficients are exact (closed form); only the smooth part's projection can be
-      // unresolved, so the adaptive degree is judged on it alone.
-      std::vector<double> smooth_only(M + 1, 0.0);
-      if (F.smooth) {
-        const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(M + 8, p, q);
-        const auto& rule = *rule_ptr;
-        for (std::size_t i = 0; i < rule.size(); ++i) {
-          const double s = rule.x_minus_lo[i] <= rule.hi_minus_x[i] ? a + (b - a) * rule.x_minus_lo[i] / 2
-                                                                    : b - (b - a) * rule.hi_minus_x[i] / 2;
-          const double f = F.smooth(s) * rule.weight[i];
-          jacobi_all_unchecked(M, p, q, rule.x[i], P);
-          for (std::size_t m = 0; m <= M; ++m) smooth_only[m] += f * P[m];
-        }
-      }
-      double largest = 0, tail = 0;
-      for (std::size_t m = 0; m <= M; ++m) {
-        const double v = std::abs(smooth_only[m] / quadrature::jacobi_norm_squared<double>(m, p, q));
-        largest = std::max(largest, std::abs(out.d[m]));
-        if (4 * m >= 3 * M && m > 0) tail = std::max(tail, v);
-      }
-      out.tail = largest > 0 ? tail / largest : 0;
-      return out;
+    double largest = 0, tail = 0;
+    for (std::size_t m = 0; m <= M; ++m) {
+      const double norm = quadrature::jacobi_norm_squared<double>(m, p, q);
+      out.d[m] /= norm;
+      largest = std::max(largest, std::abs(out.d[m]));
+      if (4 * m >= 3 * M && m > 0) tail = std::max(tail, std::abs(smooth[m] / norm));
     }
-  } else {
-    // Non-integrable image weight (nu = -1 above the boundary): interpolate F at Chebyshev points
-    // in the image basis. The expansion of a polynomial is still unique (the family has exact
-    // degrees), and d_0 = 0 is the analytic continuation of the orthogonality condition.
-    const std::size_t n = M + 1;
-    Eigen::MatrixXd V(n, n);
-    Eigen::VectorXd rhs(n);
-    for (std::size_t i = 0; i < n; ++i) {
-      const double theta = pi * (static_cast<double>(i) + 0.5) / static_cast<double>(n);
-      const double y = std::cos(theta);
-      const double s = a + (b - a) * (1 + y) / 2;
-      double f = F.smooth ? F.smooth(s) : 0.0;
-      for (const auto& [position, jump] : F.steps)
-        if (s > position) f += jump;
-      rhs[static_cast<Eigen::Index>(i)] = f;
-      jacobi_all_unchecked(M, p, q, y, P);
-      for (std::size_t m = 0; m < n; ++m) V(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(m)) = P[m];
-    }
-    const Eigen::VectorXd d = V.partialPivLu().solve(rhs);
-    for (std::size_t m = 0; m < n; ++m) out.d[m] = d[static_cast<Eigen::Index>(m)];
+    out.tail = largest > 0 ? tail / largest : 0;
+    return out;
   }
+  // Non-integrable image weight (nu = -1 above the boundary): interpolate F at Chebyshev points
+  // in the image basis. The expansion of a polynomial is still unique (the family has exact
+  // degrees), and d_0 = 0 is the analytic continuation of the orthogonality condition.
+  const std::size_t n = M + 1;
+  Eigen::MatrixXd V(n, n);
+  Eigen::VectorXd rhs(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double theta = pi * (static_cast<double>(i) + 0.5) / static_cast<double>(n);
+    const double y = std::cos(theta);
+    const double s = a + (b - a) * (1 + y) / 2;
+    double f = F.smooth ? F.smooth(s) : 0.0;
+    for (const auto& [position, jump] : F.steps)
+      if (s > position) f += jump;
+    rhs[static_cast<Eigen::Index>(i)] = f;
+    const auto P = plain_jacobi_values(M, p, q, y);
+    for (std::size_t m = 0; m < n; ++m) V(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(m)) = P[m];
+  }
+  const Eigen::VectorXd d = V.partialPivLu().solve(rhs);
+  out.d.assign(n, 0.0);
   double largest = 0, tail = 0;
-  for (std::size_t m = 0; m <= M; ++m) {
+  for (std::size_t m = 0; m < n; ++m) {
+    out.d[m] = d[static_cast<Eigen::Index>(m)];
     largest = std::max(largest, std::abs(out.d[m]));
     if (4 * m >= 3 * M && m > 0) tail = std::max(tail, std::abs(out.d[m]));
   }
@@ -321,6 +304,10 @@ struct indentor_state {
   std::optional<double> epsilon;
   std::optional<double> friction;  // C_f when it does not come from g (wedge, apex next to an edge)
   double friction_error = 0;       // its error estimate
+  // Isolated wedge with the apex within near_edge L of an edge: its Riemann-Hilbert solution on
+  // the unit interval, the source of the pressure samples (see wedge_by_rh).
+  std::shared_ptr<const riemann::abel_rh_solution<double>> rh_unit;
+  double rh_one_minus_eps = 0;  // its interval is [-eps, rh_one_minus_eps]
   bool solved = false;
 };
 
@@ -381,26 +368,34 @@ void set_load(contact_density& g, double load) {
   g.jacobi.coefficients[0] = (load - g.apex_integral) / (g.length() / 2 * h0);
 }
 
-// C_f of an isolated wedge below the boundary by the Riemann-Hilbert route (riemann::solve_abel_rh,
+// The isolated wedge below the boundary by the Riemann-Hilbert route (riemann::solve_abel_rh,
 // order 16: Riemann problem + Abel inversion, graded toward the apex), on the unit interval
-// [-eps, 1 - eps] (C_f does not depend on the scale). Used when the apex is next to an edge, where
-// abel::solve_step's Taylor factor limits it: int_a^apex g is integrated directly, so C_f keeps its
-// accuracy for eps -> 0; for eps -> 1, int_apex^b g = total - int_a^apex g loses ~1e-16 of the
-// total, i.e. ~1e-16 (S1 + S2) absolute in C_f (and riemann's int_a^y loses accuracy for y within
-// 1e-9 of b: riemann/abel_solver.hpp). Returns (C_f, estimate of its error).
-std::pair<double, double> wedge_friction_rh(const context& cx, double S1, double S2, double eps, double one_minus_eps) {
+// [-eps, 1 - eps] with the apex at 0 (C_f does not depend on the scale; g_L(t) = L^-alpha
+// g_1((t - apex)/L)). Used when the apex is next to an edge, where abel::solve_step's Taylor
+// factor limits it: int_a^apex g is integrated directly, so C_f keeps its accuracy for eps -> 0;
+// for eps -> 1, int_apex^b g = total - int_a^apex g loses ~1e-16 of the total, i.e. ~1e-16
+// (S1 + S2) absolute in C_f (and riemann's int_a^y loses accuracy for y within 1e-9 of b:
+// riemann/abel_solver.hpp). The solution is kept for the pressure samples (abel_rh_solution::
+// densities). friction_error: estimate of the error of C_f.
+struct wedge_rh {
+  double friction = 0, friction_error = 0;
+  std::shared_ptr<const riemann::abel_rh_solution<double>> unit;  // on [-eps, 1 - eps], apex at 0
+};
+
+wedge_rh wedge_by_rh(const context& cx, double S1, double S2, double eps, double one_minus_eps) {
   const double gf = cx.gamma_factor;
   riemann::piecewise_function<double> F{[S1, gf](double) { return S1 / gf; }, {{0.0, -(S1 + S2) / gf}}};
   riemann::abel_rh_options<double> o;
   o.order = 16;
-  const auto sol = riemann::solve_abel_rh(cx.alpha, cx.beta, -eps, one_minus_eps, F, riemann::edge::bounded,
-                                          riemann::edge::bounded, o);
-  const auto total = sol.total(), ahead = sol.integral(0.0);
+  wedge_rh out;
+  out.unit = std::make_shared<const riemann::abel_rh_solution<double>>(riemann::solve_abel_rh(
+      cx.alpha, cx.beta, -eps, one_minus_eps, F, riemann::edge::bounded, riemann::edge::bounded, o));
+  const auto total = out.unit->total(), ahead = out.unit->integral(0.0);
   const double behind = total.value - ahead.value;
-  const double cf = (S1 * ahead.value - S2 * behind) / total.value;
-  const double err = (S1 + S2) * (ahead.error_estimate + total.error_estimate) / std::abs(total.value) +
-                     (S1 + S2) * 4 * std::numeric_limits<double>::epsilon();
-  return {cf, err};
+  out.friction = (S1 * ahead.value - S2 * behind) / total.value;
+  out.friction_error = (S1 + S2) * (ahead.error_estimate + total.error_estimate) / std::abs(total.value) +
+                       (S1 + S2) * 4 * std::numeric_limits<double>::epsilon();
+  return out;
 }
 
 // Own slope f' of an indentor at absolute position s.
@@ -712,9 +707,9 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
     if (one_minus_eps > 1e-30) {
       // The apex singularity still carries weight (its amplitude grows with S1 + S2): C_f from the
       // Riemann-Hilbert route on the true interval. Closer still, C_f = S1 to double precision.
-      const auto [cf, cf_err] = wedge_friction_rh(cx, S1, S2, eps, one_minus_eps);
-      st.friction = cf;
-      st.friction_error = cf_err;
+      const auto rh = wedge_by_rh(cx, S1, S2, eps, one_minus_eps);
+      st.friction = rh.friction;
+      st.friction_error = rh.friction_error;
       st.status += "; C_f by the Riemann-Hilbert route";
     }
     return;
@@ -743,12 +738,14 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
         if (4 * n >= 3 * N) tail = std::max(tail, std::abs(st.g.jacobi.coefficients[n]));
       }
       st.g.tail = largest > 0 ? tail / largest : 0;
-      st.status = "apex next to an edge (or wedge_apex_split disabled): plain Jacobi series, pressure "
-                  "unresolved next to the apex; C_f by the Riemann-Hilbert route";
+      st.status = "apex next to an edge (or wedge_apex_split disabled): plain Jacobi series for the "
+                  "residual and the displacement; C_f and the pressure grid by the Riemann-Hilbert route";
     }
-    const auto [cf, cf_err] = wedge_friction_rh(cx, S1, S2, eps, one_minus_eps);
-    st.friction = cf;
-    st.friction_error = cf_err;
+    const auto rh = wedge_by_rh(cx, S1, S2, eps, one_minus_eps);
+    st.friction = rh.friction;
+    st.friction_error = rh.friction_error;
+    st.rh_unit = rh.unit;
+    st.rh_one_minus_eps = one_minus_eps;
     st.g.scale(std::pow(L, -alpha));
     st.g.set_interval(st.apex - eps * L, st.apex + one_minus_eps * L);
     st.epsilon = eps;
@@ -775,11 +772,13 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
     st.g.set_interval(st.apex - eps * L, st.apex + one_minus_eps * L);
     st.epsilon = eps;
     if (edge_distance <= near_edge) {
-      const auto [cf, cf_err] = wedge_friction_rh(cx, S1, S2, eps, one_minus_eps);
-      st.friction = cf;
-      st.friction_error = cf_err;
-      st.status = "apex within 0.1 L of an edge: C_f by the Riemann-Hilbert route; pressure from the "
-                  "enriched density (error_estimate)";
+      const auto rh = wedge_by_rh(cx, S1, S2, eps, one_minus_eps);
+      st.friction = rh.friction;
+      st.friction_error = rh.friction_error;
+      st.rh_unit = rh.unit;
+      st.rh_one_minus_eps = one_minus_eps;
+      st.status = "apex within 0.1 L of an edge: C_f and the pressure grid by the Riemann-Hilbert route; "
+                  "residual and displacement from the enriched density (error_estimate)";
     }
     return;
   }
@@ -867,6 +866,111 @@ double enrichment_at(const abel::enriched_density<double>& e, double one_plus, d
 boost::math::quadrature::tanh_sinh<double>& tanh_sinh_rule() {
   thread_local boost::math::quadrature::tanh_sinh<double> rule;
   return rule;
+}
+
+// Pressure samples of an isolated wedge from its Riemann-Hilbert solution g_1 on the unit interval
+// [lo, hi] = [-eps, 1 - eps], apex at 0 (wedge_by_rh): p(t) = scale g_1((t - apex)/L), scale =
+// (pi/2) E_U L^-alpha. g_1 costs ~50-100 us per point even from abel_rh_solution::densities (A~
+// interpolated once; most of it the far part next to the apex), so 1000 samples come from a
+// piecewise Chebyshev interpolant of g_1 built from one densities call at its ~100-200 nodes.
+// Structure of g_1 (the class nu = -1 with F constant next to either edge, math.md sections 3-5):
+// (t - lo)^gam times an analytic function next to lo, (hi - t)^del times one next to hi, and
+// |t|^-alpha A(t) + B(t) (log|t| A + B at alpha = 0) with A, B analytic on either side of the apex.
+// Panels: [lo, lo/2] carrying (t - lo)^gam, [hi/2, hi] carrying (hi - t)^del, and [lo/2, 0],
+// [0, hi/2] graded geometrically (ratio 1/2) towards the apex; each panel sees its nearest
+// singularity at a distance >= its length (Bernstein ratio >= 3 + sqrt 8), so 16 first-kind
+// points resolve g_1 to ~1e-13 of the panel's scale (measured: 2e-14 .. 7e-14 of the peak against
+// the pointwise density, tests/punch/test_wedge.cpp, study_wedge_near_edge). Samples nearer to the
+// apex than the innermost panel take g_1 directly, and so do the samples of a side of the apex that
+// has fewer of them than interpolation nodes; the apex itself gets +inf (|t - apex|^-alpha, log at
+// alpha = 0).
+// Returns the largest error estimate of the g_1 values used (densities' two orders), relative to
+// max g_1.
+double rh_pressure(const riemann::abel_rh_solution<double>& unit, double lo, double hi, double gam, double del,
+                   double apex, double L, double scale, indentor_result& r) {
+  constexpr std::size_t points = 16;
+  struct panel {
+    double u, v;
+    int weight;  // -1: (t - lo)^gam, +1: (hi - t)^del, 0: none
+    std::vector<double> c;  // Chebyshev coefficients on [u, v]
+  };
+  // Unit abscissae of the samples. The graded panels stop at 2^-6 of the segment (or half the
+  // nearest sample's distance from the apex): the few samples nearer to the apex are taken
+  // directly, which is cheaper than the 16 nodes of each further panel (g_1 costs most next to
+  // the apex, where densities() grades its far part deeply towards the log singularity of A~).
+  std::vector<double> u(r.grid_x.size());
+  double nearest_left = -lo, nearest_right = hi;
+  for (std::size_t k = 0; k < u.size(); ++k) {
+    u[k] = (r.grid_x[k] - apex) / L;
+    if (u[k] < 0) nearest_left = std::min(nearest_left, -u[k]);
+    if (u[k] > 0) nearest_right = std::min(nearest_right, u[k]);
+  }
+  std::vector<panel> left{{lo, lo / 2, -1, {}}};
+  for (double e = lo / 2; -e / 2 >= std::max(nearest_left / 2, -lo * 0x1p-6); e /= 2) left.push_back({e, e / 2, 0, {}});
+  std::vector<panel> right;
+  for (double e = hi / 2; e / 2 >= std::max(nearest_right / 2, hi * 0x1p-6); e /= 2) right.push_back({e / 2, e, 0, {}});
+  std::reverse(right.begin(), right.end());  // increasing abscissae, as in left
+  right.push_back({hi / 2, hi, 1, {}});
+  // A side with fewer samples than interpolation nodes (the short side of an apex next to an
+  // edge; any side of a small grid) takes its samples directly: a sample costs as much as a node.
+  const auto on_left = static_cast<std::size_t>(std::count_if(u.begin(), u.end(), [](double t) { return t < 0; }));
+  const bool interpolate_left = on_left > left.size() * points;
+  const bool interpolate_right = u.size() - on_left > right.size() * points;
+  // Abscissae served by the interpolant: (lo, covered_left) and (covered_right, hi).
+  const double covered_left = interpolate_left ? left.back().v : lo;
+  const double covered_right = interpolate_right ? right.front().u : hi;
+  std::vector<panel> panels;
+  if (interpolate_left) panels = left;
+  if (interpolate_right) panels.insert(panels.end(), right.begin(), right.end());
+  // Nodes of every panel (abel's first-kind grid, offsets from the nearer end), then the samples
+  // outside the panels, in one densities call.
+  const abel::detail::chebyshev_grid<double> grid(points);
+  std::vector<double> nodes;
+  for (const auto& p : panels) {
+    const double half = (p.v - p.u) / 2;
+    for (std::size_t j = 0; j < points; ++j)
+      nodes.push_back(grid.one_plus_x[j] <= grid.one_minus_x[j] ? p.u + half * grid.one_plus_x[j] : p.v - half * grid.one_minus_x[j]);
+  }
+  std::vector<std::size_t> direct;
+  for (std::size_t k = 0; k < u.size(); ++k) {
+    if (u[k] == 0) {
+      r.pressure[k] = std::numeric_limits<double>::infinity();
+    } else if (u[k] > lo && u[k] < hi && u[k] >= covered_left && u[k] <= covered_right) {
+      direct.push_back(k);
+      nodes.push_back(u[k]);
+    }
+  }
+  const auto g = unit.densities(nodes);
+  double largest = 0, estimate = 0;
+  for (const auto& v : g) {
+    largest = std::max(largest, std::abs(v.value));
+    estimate = std::max(estimate, v.error_estimate);
+  }
+  auto weight = [&](const panel& p, double t) {
+    return p.weight < 0 ? std::pow(t - lo, gam) : (p.weight > 0 ? std::pow(hi - t, del) : 1.0);
+  };
+  std::vector<double> values(points);
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    for (std::size_t j = 0; j < points; ++j) values[j] = g[i * points + j].value / weight(panels[i], nodes[i * points + j]);
+    panels[i].c = abel::detail::chebyshev_coefficients(values);
+  }
+  for (std::size_t j = 0; j < direct.size(); ++j) r.pressure[direct[j]] = scale * g[panels.size() * points + j].value;
+  for (std::size_t k = 0; k < u.size(); ++k) {
+    const double t = u[k];
+    if (!(t > lo && t < hi) || (t >= covered_left && t <= covered_right)) continue;
+    const auto it = std::upper_bound(panels.begin(), panels.end(), t, [](double x, const panel& p) { return x < p.v; });
+    if (it == panels.end()) continue;
+    // sum_k c_k T_k(s) by Clenshaw's recurrence
+    const double x = ((t - it->u) - (it->v - t)) / (it->v - it->u);
+    double b1 = 0, b2 = 0;
+    for (std::size_t n = it->c.size(); n-- > 1;) {
+      const double b0 = 2 * x * b1 - b2 + it->c[n];
+      b2 = b1;
+      b1 = b0;
+    }
+    r.pressure[k] = scale * weight(*it, t) * (x * b1 - b2 + it->c[0]);
+  }
+  return largest > 0 ? estimate / largest : estimate;
 }
 
 // Peak pressure on [a, b] of a bounded density: sampling + Brent refinement.
@@ -1163,6 +1267,7 @@ scene_result solve(const scene& s, const solve_options& options) {
       for (std::size_t k = 0; k < n; ++k) {
         const double t = g.jacobi.lo + g.length() * (static_cast<double>(k) + 0.5) / static_cast<double>(n);
         r.grid_x[k] = t;
+        if (st[i].rh_unit) continue;  // filled by rh_pressure below
         if (g.line_load || !(t > g.a()) || !(t < g.b())) {
           r.pressure[k] = 0.0;
           continue;
@@ -1175,6 +1280,14 @@ scene_result solve(const scene& s, const solve_options& options) {
           inner += g.apex.enrichment * g.apex.q_at(x) * (u > 0 ? g.apex.E_full(u, true) : g.apex.E_full(-u, false));
         }
         r.pressure[k] = ps * (std::pow(one_minus_x, g.jacobi.del) * std::pow(one_plus_x, g.jacobi.gam) * inner);
+      }
+      if (st[i].rh_unit) {
+        const double estimate = rh_pressure(*st[i].rh_unit, -*st[i].epsilon, st[i].rh_one_minus_eps, g.jacobi.gam,
+                                            g.jacobi.del, st[i].apex, g.length(), ps * std::pow(g.length(), -cx.alpha), r);
+        std::ostringstream os;
+        os.precision(2);
+        os << "; pressure grid error estimate " << estimate << " of the peak";
+        r.status += os.str();
       }
       if (g.line_load) r.status += "; pressure grid is empty of meaning for a line load (all zeros)";
     }

@@ -7,6 +7,9 @@
 #include "rhabel/abel.hpp"
 #include "support.hpp"
 
+#include <boost/multiprecision/cpp_bin_float.hpp>
+#include <boost/multiprecision/eigen.hpp>
+
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -15,6 +18,21 @@
 
 using namespace rhabel::abel;
 using namespace abel_test;
+
+namespace {
+
+/// The nearly-touching configuration of the tests: [-1, 0] and [gap, 1] (lengths ~1, so gap is
+/// relative), both with the given edge classes.
+std::vector<interval_spec<double>> unit_pair(double gap, edge leading, edge trailing) {
+  return {{-1.0, 0.0, leading, trailing}, {gap, 1.0, leading, trailing}};
+}
+
+/// F = -s (a parabola-like profile) on each of `count` intervals.
+std::vector<std::function<double(double)>> minus_s(std::size_t count) {
+  return std::vector<std::function<double(double)>>(count, [](double s) { return -s; });
+}
+
+}  // namespace
 
 TEST_CASE("two separated intervals, mixed classes: independent residual and loads") {
   for (double alpha : {0.0, 0.3, 0.7}) {
@@ -31,7 +49,8 @@ TEST_CASE("two separated intervals, mixed classes: independent residual and load
     const auto sol = solve_union(par, intervals, F, options);
     INFO("alpha=" << alpha);
     CHECK(sol.residual < 1e-12);
-    CHECK(sol.condition < 1e3);
+    // condition of the collocation matrix (1/rcond): measured 1.1e3 (alpha 0.3) and 9.1e3 (0.7).
+    CHECK(sol.condition < 1e5);
     if (sol.exponents[1].nu == 1) CHECK(sol.densities[1].integral() == doctest::Approx(0.7).epsilon(8 * eps));
   }
 }
@@ -94,9 +113,8 @@ TEST_CASE("homogeneous directions (nu = +1) solve the coupled system with zero d
 
 TEST_CASE("nearly touching intervals (gap 1e-6): reported residual is honest and improves with degree") {
   abel_parameters<double> par(0.3, 0.2);
-  std::vector<interval_spec<double>> intervals{{-1.0, 0.0, edge::bounded, edge::bounded},
-                                               {1e-6, 1.0, edge::bounded, edge::bounded}};
-  std::vector<std::function<double(double)>> F{[](double s) { return -s; }, [](double s) { return -s; }};
+  const auto intervals = unit_pair(1e-6, edge::bounded, edge::bounded);
+  const auto F = minus_s(2);
   double previous = 1e300;
   for (std::size_t degree : {16, 32, 64}) {
     multi_solve_options<double> options;
@@ -118,14 +136,13 @@ TEST_CASE("nearly touching intervals (gap 1e-6): reported residual is honest and
 TEST_CASE("nearly touching intervals (gap 1e-2): the residual is never sampled at the collocation points") {
   abel_parameters<double> par(0.3, 0.2);
   const double gap = 1e-2;
-  std::vector<interval_spec<double>> intervals{{-1.0, 0.0, edge::bounded, edge::bounded},
-                                               {gap, 1.0, edge::bounded, edge::bounded}};
-  std::vector<std::function<double(double)>> F{[](double s) { return -s; }, [](double s) { return -s; }};
+  const auto intervals = unit_pair(gap, edge::bounded, edge::bounded);
+  const auto F = minus_s(2);
   multi_solve_options<double> options;
   options.degree = 128;
   const auto fine = solve_union(par, intervals, F, options);
-  // 1e-12: measured residual 2.4e-14 at degree 128 (1e-10 at 96 would not be; the cross terms are
-  // nearly singular on the scale of the gap).
+  // 1e-12: measured residual 2.3e-14 at degree 128 (2.1e-11 at 96; the cross terms are nearly
+  // singular on the scale of the gap).
   CHECK(fine.residual < 1e-12);
   CHECK(fine.status == solve_status::converged);
   for (std::size_t points : {16, 32}) {
@@ -140,22 +157,164 @@ TEST_CASE("nearly touching intervals (gap 1e-2): the residual is never sampled a
   }
 }
 
-// Gaps 1e-4 and 1e-6 (relative to lengths 1): the target residual 1e-10 is NOT reached by the
-// global Jacobi representation (the densities have a boundary layer of the width of the gap at
-// the facing ends; measured residual 2.6e-6 at degree 256 for gap 1e-4). The solver must say so:
-// status not_converged, residual above the tolerance and decreasing with the degree.
-TEST_CASE("nearly touching intervals (gaps 1e-4, 1e-6): not_converged with an honest residual") {
+// Gap 1e-6 (relative to lengths 1): the polynomial degree the boundary layer needs (~ 8e3,
+// extrapolated from the rate at gap 1e-4) is out of reach of the dense collocation. The solver
+// must say so: status not_converged, the residual above the tolerance, and the adaptive loop
+// stops at max_degree with the last degree reported.
+TEST_CASE("gap 1e-6, alpha 0.3: not_converged with an honest residual, adaptive loop stops at max_degree") {
   abel_parameters<double> par(0.3, 0.2);
-  for (double gap : {1e-4, 1e-6}) {
-    std::vector<interval_spec<double>> intervals{{-1.0, 0.0, edge::bounded, edge::bounded},
-                                                 {gap, 1.0, edge::bounded, edge::bounded}};
-    std::vector<std::function<double(double)>> F{[](double s) { return -s; }, [](double s) { return -s; }};
-    multi_solve_options<double> options;
-    options.degree = 48;
-    const auto sol = solve_union(par, intervals, F, options);
-    INFO("gap=" << gap << " residual=" << sol.residual);
-    CHECK(sol.status == solve_status::not_converged);
-    CHECK(sol.residual > options.residual_tolerance);
+  const double gap = 1e-6;
+  const auto intervals = unit_pair(gap, edge::bounded, edge::bounded);
+  const auto F = minus_s(2);
+  multi_solve_options<double> options;
+  options.degree = 48;
+  options.max_degree = 108;  // 48 -> 72 -> 108
+  const auto sol = solve_union(par, intervals, F, options);
+  INFO("residual=" << sol.residual);
+  CHECK(sol.degree == 108);
+  CHECK(sol.status == solve_status::not_converged);
+  // Measured 2.6e-2 at degree 108 (study_union_convergence: 1e-1 ... 2e-7 at degree 512 over
+  // alpha in [0, 0.9]); 1e-3 leaves room for a better method without hiding a false convergence.
+  CHECK(sol.residual > 1e-3);
+}
+
+// Closed form (Muskhelishvili, finite Hilbert transform on a union of intervals): at alpha = 0,
+// beta = 0 the operator is PV int g(t)/(t - s) dt on the union, and its null space with both
+// intervals unbounded at both ends (nu = +1 on each) is sigma_i (c0 + c1 t)/sqrt|R(t)|,
+// R = (t - a1)(t - b1)(t - a2)(t - b2), sigma_i = -1 on I_1, +1 on I_2 (the boundary values
+// of 1/sqrt(R(z)) alternate in sign from cut to cut). The coupled homogeneous direction of
+// interval 1 (unit load on I_1, zero on I_2) must be of that form: q(t) = sigma H(t) sqrt|R(t)|
+// is ONE straight line across both intervals. The density has a boundary layer of width gap at
+// the facing ends (the 1/sqrt(t - b1) factor on I_2 and 1/sqrt(a2 - t) on I_1).
+TEST_CASE("gap 1e-4, alpha 0, beta 0: the coupled homogeneous density is (c0 + c1 t)/sqrt|R| (closed form)") {
+  abel_parameters<double> par(0.0, 0.0);
+  const double gap = 1e-4;
+  const double a1 = -1.0, b1 = 0.0, a2 = gap, b2 = 1.0;
+  std::vector<interval_spec<double>> intervals{{a1, b1, edge::unbounded, edge::unbounded},
+                                               {a2, b2, edge::unbounded, edge::unbounded}};
+  std::vector<std::function<double(double)>> F{[](double) { return 0.0; }, [](double) { return 0.0; }};
+  multi_solve_options<double> options;
+  options.degree = 1024;
+  options.residual_points = 0;  // the closed form is the oracle here
+  const auto sol = solve_union(par, intervals, F, options);
+  REQUIRE(sol.homogeneous[0].size() == 2);
+  const auto& H = sol.homogeneous[0];
+  CHECK(H[0].integral() == doctest::Approx(1.0).epsilon(16 * eps));
+  CHECK(std::abs(H[1].integral()) < 16 * eps);
+  // sqrt|R| from the distances to the four ends (no cancellation next to an end).
+  auto q = [&](std::size_t i, double from_lo, double to_hi) {
+    const auto& g = H[i];
+    const double t = g.lo + from_lo;
+    const double R = i == 0 ? from_lo * to_hi * (a2 - t) * (b2 - t) : (t - a1) * (t - b1) * from_lo * to_hi;
+    return (i == 0 ? -1.0 : 1.0) * g.value_at_distance(from_lo, to_hi) * std::sqrt(std::abs(R));
+  };
+  // The line through one point of each interval, checked at points spread over both intervals,
+  // including 0.3 gap and 3 gap from the facing ends (inside the boundary layer).
+  const double t_p = -0.5, t_r = 0.5 + gap / 2;
+  const double q_p = q(0, t_p - a1, b1 - t_p), q_r = q(1, t_r - a2, b2 - t_r);
+  const double slope = (q_r - q_p) / (t_r - t_p);
+  const double size = std::max(std::abs(q_p), std::abs(q_r));
+  struct probe {
+    std::size_t i;
+    double d;        // distance to the end named by from_lo
+    bool from_lo;
+  };
+  const std::vector<probe> probes{{0, 1e-3, true},  {0, 0.3, false},    {0, 3 * gap, false}, {0, 0.3 * gap, false},
+                                  {1, 0.3 * gap, true}, {1, 3 * gap, true}, {1, 0.25, true},    {1, 1e-3, false}};
+  double worst = 0;
+  for (const auto& pr : probes) {
+    const double L = H[pr.i].hi - H[pr.i].lo;
+    const double u = pr.from_lo ? pr.d : L - pr.d, v = pr.from_lo ? L - pr.d : pr.d;
+    const double t = pr.from_lo ? H[pr.i].lo + u : H[pr.i].hi - v;
+    worst = std::max(worst, std::abs(q(pr.i, u, v) - (q_p + slope * (t - t_p))) / size);
+  }
+  INFO("max deviation from one line: " << worst);
+  // 1e-9: measured 1.9e-11 at degree 768 (1e-4 at degree 128); the line itself is O(1).
+  CHECK(worst < 1e-9);
+  CHECK(std::abs(slope) * 1 > 1e-3 * size);  // a genuine line, not a constant (c1 != 0)
+}
+
+// Regression "gap 1e-4": before session 3 the cross blocks were built by interpolation and
+// re-expansion at O(degree^3) per block (degree 256 took 1.5 s) and the degree was not
+// adaptive, so the layer of width 1e-4 was never resolved (residual 2.6e-6 at degree 256; with
+// points graded toward the facing ends it was in fact 3e-5). Now collocation with one matrix
+// product per cross block reaches it. Oracle for int g: the same case at degree 1536 (residual
+// 1.6e-14, against 1.8e-12 at degree 1024): a long-degree run, recorded here; reproduce with
+// `build/bin/study_union_convergence out.csv 1536`, column loads of the row
+// 2,1e-04,0.25,0.3,nu-1,1536.
+TEST_CASE("gap 1e-4, alpha 0.25, beta 0.3, bounded ends: residual <= 1e-9 and int g to 1e-9 at degree 768") {
+  abel_parameters<double> par(0.25, 0.3);
+  const double gap = 1e-4;
+  const auto intervals = unit_pair(gap, edge::bounded, edge::bounded);
+  const auto F = minus_s(2);
+  multi_solve_options<double> options;
+  options.degree = 768;
+  options.residual_points = 16;
+  const auto sol = solve_union(par, intervals, F, options);
+  const double reference[2] = {0.40988240595917425, 0.23221830030750071};  // degree 1536
+  INFO("residual=" << sol.residual);
+  // 1e-9: measured residual 3e-10 and int g errors 7e-11 at degree 768 (5e-8 and 2e-8 at 546).
+  CHECK(sol.residual < 1e-9);
+  for (std::size_t i = 0; i < 2; ++i) CHECK(std::abs(sol.densities[i].integral() / reference[i] - 1) < 1e-9);
+}
+
+// The adaptive degree (max_degree): three intervals, gap 1e-2, alpha 0.9, beta 0.3 (bounded
+// leading, unbounded trailing edges: nu = 0), F = 1 - s^2/4. From degree 32 the loop must stop
+// at the first degree whose independent residual is below the tolerance, and report it.
+TEST_CASE("gap 1e-2, three intervals, alpha 0.9: the adaptive degree reaches the residual tolerance") {
+  abel_parameters<double> par(0.9, 0.3);
+  const double gap = 1e-2;
+  std::vector<interval_spec<double>> intervals{{-1.0, 0.0, edge::bounded, edge::unbounded},
+                                               {gap, 1.0, edge::bounded, edge::unbounded},
+                                               {1.0 + gap, 2.0, edge::bounded, edge::unbounded}};
+  std::vector<std::function<double(double)>> F(3, [](double s) { return 1 - s * s / 4; });
+  multi_solve_options<double> options;
+  options.degree = 32;
+  options.max_degree = 512;
+  options.residual_points = 16;
+  const auto sol = solve_union(par, intervals, F, options);
+  INFO("degree=" << sol.degree << " residual=" << sol.residual);
+  CHECK(sol.status == solve_status::converged);
+  CHECK(sol.residual <= options.residual_tolerance);
+  CHECK(sol.degree > 32);    // degree 32 is not enough at this gap (measured residual ~ 1e-6) ...
+  CHECK(sol.degree < 512);   // ... and the loop stops well before the cap
+  // The previous rung (degree / 1.5) must not have converged: the loop stopped at the first success.
+  multi_solve_options<double> previous = options;
+  previous.degree = sol.degree * 2 / 3;
+  previous.max_degree = 0;
+  CHECK(solve_union(par, intervals, F, previous).status == solve_status::not_converged);
+}
+
+// 50 digits (regression: Eigen's rcond estimator needs NumTraits<Real>::infinity(), which the
+// Boost.Multiprecision bindings lack, so solve_union did not compile for cpp_bin_float_50).
+// Separated intervals (gap 0.5, lengths 1 and 0.5): the cross data are analytic in an ellipse
+// of parameter ~ 3.7 around I_j, so degree 40 gives ~ 1e-25; the independent residual says so
+// and int g agree with the double solve to double precision.
+TEST_CASE("50 digits: separated intervals converge far below double precision") {
+  using R = boost::multiprecision::cpp_bin_float_50;
+  abel_parameters<R> par(R(3) / 10, R(1) / 5);
+  std::vector<interval_spec<R>> intervals{{R(-1), R(0), edge::bounded, edge::unbounded},
+                                          {R(1) / 2, R(1), edge::bounded, edge::unbounded}};
+  std::vector<std::function<R(R)>> F{[](R s) { return -s; }, [](R s) { return -s; }};
+  multi_solve_options<R> options;
+  options.degree = 40;
+  options.residual_points = 6;
+  options.residual_tolerance = R(1e-20);
+  const auto sol = solve_union(par, intervals, F, options);
+  // 1e-20: measured 7.7e-26 at degree 40.
+  CHECK(sol.residual < R(1e-20));
+  CHECK(sol.status == solve_status::converged);
+  abel_parameters<double> par_d(0.3, 0.2);
+  std::vector<interval_spec<double>> intervals_d{{-1.0, 0.0, edge::bounded, edge::unbounded},
+                                                 {0.5, 1.0, edge::bounded, edge::unbounded}};
+  std::vector<std::function<double(double)>> F_d{[](double s) { return -s; }, [](double s) { return -s; }};
+  multi_solve_options<double> options_d;
+  options_d.degree = 40;
+  const auto sol_d = solve_union(par_d, intervals_d, F_d, options_d);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const double exact = static_cast<double>(sol.densities[i].integral());
+    // 16 eps: the double solve's rounding (collocation condition ~ 1e3; measured 1 eps).
+    CHECK(std::abs(sol_d.densities[i].integral() - exact) <= 16 * eps * std::abs(exact));
   }
 }
 
@@ -166,4 +325,12 @@ TEST_CASE("union: bad input") {
   CHECK_THROWS_AS(solve_union(par, overlapping, F), std::domain_error);
   std::vector<interval_spec<double>> one{{0.0, 1.0}};
   CHECK_THROWS_AS(solve_union(par, one, F), std::domain_error);
+  std::vector<interval_spec<double>> two{{0.0, 1.0}, {1.5, 2.0}};
+  multi_solve_options<double> options;
+  options.degree = 64;
+  options.max_degree = 32;  // below degree
+  CHECK_THROWS_AS(solve_union(par, two, F, options), std::domain_error);
+  options.max_degree = 128;
+  options.residual_points = 0;  // nothing to drive the adaptive degree
+  CHECK_THROWS_AS(solve_union(par, two, F, options), std::domain_error);
 }

@@ -12,17 +12,22 @@
 // on both sides of the boundary/interior switch), 10^6, the regression cases, and a "corner"
 // group with both exponents near -1 (issue #2). Also: the private eigenvalue routine against
 // the Chebyshev closed form and Eigen, and the weight constants on both sides of their
-// product | gamma-ratio switch against 50-digit gamma functions. Runtime ~3.5 s CPU in Release,
-// most of it the n = 10^6 rules.
+// product | gamma-ratio switch against 50-digit gamma functions; the batch endpoint factor
+// s^a c^b of the interior weights (detail/gauss_jacobi_power.hpp) against long double powl
+// (x87 format: 2^-63, 2000 times finer than the tolerance); and jacobi_weight's range checks.
+// Runtime ~3.5 s CPU in Release, most of it the n = 10^6 rules.
 #include <doctest/doctest.h>
 
 #include <rhabel/quadrature/gauss_jacobi.hpp>
+
+#include "quadrature/support.hpp"
 
 #include <boost/math/special_functions/beta.hpp>
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <iomanip>
 #include <limits>
@@ -45,7 +50,8 @@ constexpr double eps = std::numeric_limits<double>::epsilon();
 // min(1 - x, 1 + x), for n <= 10^6 and p, q in (-1, 5].
 constexpr double contract_tolerance = 45 * eps;
 // For p or q = 30 the documented bound: a weight is proportional to s^(2p+1), s = sin(t/2), so
-// the one-ulp rounding of the node (and of s) is amplified up to 2p + 1 = 61 times (measured: 43 eps).
+// the one-ulp rounding of the node (and of s) is amplified up to 2p + 1 = 61 times (measured:
+// 62 eps at n = 100, 64 eps at n = 10^4, 49 eps at n = 10^6).
 constexpr double large_exponent_tolerance = 128 * eps;
 
 struct reference_row {
@@ -527,4 +533,112 @@ TEST_CASE("gauss_jacobi: weight constants K_n / P_n(1)^2 on both sides of the pr
       }
     }
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// detail::endpoint_power: s^a c^b for a batch (anchor + series), against long double powl.
+namespace {
+
+// Two pows and their product are within 1.5 ulp (<= 1.5 eps relative); the anchor form adds
+// the series' rounding (<= 0.4 eps): named tolerance 2 eps relative (measured 1.4 eps).
+constexpr double endpoint_power_tolerance = 2 * eps;
+
+// Worst relative error of endpoint_power{a, b} over the points, in eps, against powl (points
+// whose exact value is not a normal double are skipped: pow itself underflows there).
+// The whole range: s from subnormal to 1, exponents -1 + 1e-3 ... 61.
+double endpoint_power_worst(double a, double b, const std::vector<double>& s, const std::vector<double>& c) {
+  const rhabel::quadrature::detail::endpoint_power power(a, b);
+  std::vector<double> out(s.size());
+  power(s.size(), s.data(), c.data(), out.data());
+  double worst = 0;
+  for (std::size_t i = 0; i < s.size(); ++i) {
+    using L = long double;
+    const L exact = std::pow(L(s[i]), L(a)) * std::pow(L(c[i]), L(b));
+    if (!(exact >= L(std::numeric_limits<double>::min()) && exact <= L(std::numeric_limits<double>::max()))) continue;
+    // Where the factor s^a alone overflows the product of two pows does too (the routine is
+    // defined as that product where it does not take its series): s subnormal, a near -1.
+    if (!std::isfinite(std::pow(s[i], a)) || !std::isfinite(std::pow(c[i], b))) continue;
+    const double error = static_cast<double>(std::fabs((L(out[i]) - exact) / exact)) / eps;
+    worst = std::max(worst, error);
+  }
+  return worst;
+}
+
+// The points of a rule's half: s = sin(t/2), c = cos(t/2), t = (k - 0.3) pi / n, k = 1 ... n/2,
+// scaled by `scale` (down to subnormal-adjacent s).
+void node_like_points(std::size_t n, double scale, std::vector<double>& s, std::vector<double>& c) {
+  s.clear();
+  c.clear();
+  for (std::size_t k = 1; k <= n / 2; ++k) {
+    const double t = (static_cast<double>(k) - 0.3) * 3.141592653589793 / static_cast<double>(n);
+    s.push_back(std::sin(t / 2) * scale);
+    c.push_back(std::cos(t / 2));
+  }
+}
+
+const std::vector<double> endpoint_exponents = {-1 + 1e-3, -0.8, -0.5, 0.001, 0.6, 1.6, 2.5, 10.0, 11.0, 61.0};
+
+}  // namespace
+
+TEST_CASE("endpoint_power: node-like batches against powl, exponents -1 + 1e-3 ... 61") {
+  std::vector<double> s, c;
+  double worst = 0;
+  for (std::size_t n : {100, 10000}) {
+    node_like_points(n, 1.0, s, c);
+    for (double a : endpoint_exponents) {
+      for (double b : endpoint_exponents) worst = std::max(worst, endpoint_power_worst(a, b, s, c));
+    }
+  }
+  MESSAGE("endpoint_power, node-like points: worst " << worst << " eps");
+  CHECK(worst <= endpoint_power_tolerance / eps);
+  CHECK(worst > 0);  // the comparison is live (exact agreement everywhere would be suspicious)
+}
+
+TEST_CASE("endpoint_power: whole input range (subnormal-adjacent s, random order, special values)") {
+  std::vector<double> s, c;
+  double worst = 0;
+  // Smooth sequences scaled towards the bottom of the normal range, and across it.
+  for (double scale : {1e-300, 0x1p-1000, 1e-10}) {
+    node_like_points(1000, scale, s, c);
+    for (double a : endpoint_exponents) worst = std::max(worst, endpoint_power_worst(a, 1.5 - a, s, c));
+  }
+  // Random order (most points fail the series' ratio test and take pow): s = 2^-e, e in
+  // [0, 1074) by a fixed linear congruential sequence, including subnormal s.
+  s.clear();
+  c.clear();
+  std::uint64_t state = 12345;
+  for (int i = 0; i < 4096; ++i) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    const double u = static_cast<double>(state >> 11) * 0x1p-53;
+    s.push_back(std::ldexp(1 + u, -static_cast<int>(u * 1074)));
+    c.push_back(1 - u / 4);
+  }
+  for (double a : endpoint_exponents) worst = std::max(worst, endpoint_power_worst(a, 0.7, s, c));
+  MESSAGE("endpoint_power, whole range: worst " << worst << " eps");
+  CHECK(worst <= endpoint_power_tolerance / eps);
+  // Exact cases: x^1 = x, x^0 = 1, (2^-k)^2 = 2^-2k through the series (a batch of powers of two
+  // near one anchor is not: their ratios are 2; these take pow), and pow's own special values.
+  const rhabel::quadrature::detail::endpoint_power identity(1.0, 0.0), square(2.0, 0.0), generic(0.3, -0.7);
+  std::vector<double> points = {0.5, 0.51, 0.52, 0.53, 0.54}, ones(points.size(), 1.0), out(points.size());
+  identity(points.size(), points.data(), ones.data(), out.data());
+  for (std::size_t i = 0; i < points.size(); ++i) CHECK(out[i] == points[i]);
+  generic(points.size(), ones.data(), ones.data(), out.data());
+  for (double value : out) CHECK(value == 1);
+  CHECK(square(0x1p-300, 1.0) == 0x1p-600);
+  CHECK(generic(0.0, 1.0) == 0);                      // pow(0, 0.3) = 0
+  CHECK(std::isinf(generic(1.0, 0.0)));                // pow(0, -0.7) = inf
+  CHECK(std::isnan(generic(std::nan(""), 1.0)));     // NaN propagates, never a number
+}
+
+TEST_CASE("jacobi_weight: regression, complements above 2 and NaN are rejected (the message said [0, 2])") {
+  using rhabel::quadrature::jacobi_weight;
+  using rhabel_test::check_domain_error_mentions;
+  check_domain_error_mentions([] { jacobi_weight(0.5, 0.5, 2.5, 0.1); }, {"jacobi_weight", "one_minus_x", "2.5", "[0, 2]"});
+  check_domain_error_mentions([] { jacobi_weight(0.5, 0.5, 0.1, 2.0000000000000004); },
+                              {"jacobi_weight", "one_plus_x", "[0, 2]"});
+  check_domain_error_mentions([] { jacobi_weight(0.5, 0.5, std::nan(""), 1.0); }, {"jacobi_weight", "one_minus_x", "nan"});
+  check_domain_error_mentions([] { jacobi_weight(0.5, 0.5, 1.0, -1e-300); }, {"jacobi_weight", "one_plus_x"});
+  // The ends of the range are accepted: (1 - x)^p (1 + x)^q at x = -1 and at 1e-300 from +1.
+  CHECK(jacobi_weight(0.5, 2.0, 2.0, 0.0) == 0);
+  CHECK(jacobi_weight(-0.5, 0.0, 1e-300, 2.0) == doctest::Approx(1e150).epsilon(4 * eps));
 }

@@ -7,8 +7,7 @@
 // test_abel_solver.cpp; this table also serves where it is the weaker side (alpha = beta = 0.9).
 #include <doctest/doctest.h>
 
-#include "data/riemann_density_reference.hpp"
-#include "rhabel/riemann/abel_solver.hpp"
+#include "density_table_support.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -19,7 +18,7 @@ using namespace rhabel::riemann;
 
 TEST_CASE("g(y), int_a^y g, int g against the 50-digit table: every class, alpha to 0.9, 1e-6 from the ends") {
   constexpr double eps = std::numeric_limits<double>::epsilon();
-  const double a = -0.8, b = 1.3, L = b - a;
+  const double a = rhabel::riemann::test::density_table_a, b = rhabel::riemann::test::density_table_b, L = b - a;
   // int g, int_a^y g: issue #3 target, relative to |int g| (measured <= 133 eps)
   constexpr double integral_tolerance = 1e-13;
   // g(y), relative to max(|g(y)|, |int g|/L), d = min(y - a, b - y):
@@ -37,13 +36,8 @@ TEST_CASE("g(y), int_a^y g, int g against the 50-digit table: every class, alpha
     CAPTURE(c.alpha);
     CAPTURE(c.beta);
     CAPTURE(c.cls);
-    const double lambda = c.lambda;
-    const piecewise_function<double> F{[lambda](double s) { return std::exp(0.5 * s) - s * s + 0.3 + lambda; }, {}};
-    abel_rh_options<double> options;
-    if (c.cls == 3) options.load = 1.7;
     const bool bounded_at_b = (c.cls & 2) == 0;
-    const auto sol = solve_abel_rh(c.alpha, c.beta, a, b, F, (c.cls & 1) ? edge::unbounded : edge::bounded,
-                                   bounded_at_b ? edge::bounded : edge::unbounded, options);
+    const auto sol = rhabel::riemann::test::solve_density_table_case(c);
     const double total = std::stod(c.total);
     CHECK(std::abs(sol.total().value - total) <= integral_tolerance * std::abs(total));
     for (int k = 0; k < 7; ++k) {

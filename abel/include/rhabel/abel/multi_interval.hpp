@@ -10,41 +10,83 @@
 // (so its own nu_j) and its own data F_j. The cross terms are smooth on I_j when the intervals
 // are disjoint; they become nearly singular at the facing ends when the gap is small.
 //
-// Method (block system in Jacobi coefficients). g_i = w_i sum_n c^i_n P_n^(del_i, gam_i).
-// On I_j the data (L_j/2)^(-alpha) F_j and every cross-term column (the image of one basis
-// function of I_i, evaluated by composite Gauss-Jacobi quadrature graded geometrically toward
-// the end of I_i facing I_j, so uniform in the gap) are interpolated at `degree` Chebyshev
-// points and re-expanded exactly in the image basis P_m^(gam_j+nu_j, del_j+nu_j). The diagonal
-// blocks are the eigenvalues of the spectral relation. Per interval:
-//   nu_j = -1: row m = 0 is the solvability condition, dropped from the solve and reported as
-//              solvability_defects[j] (same normalisation as abel_solution::solvability_defect);
+// Method (collocation in Jacobi bases). g_i = w_i sum_n c^i_n P_n^(del_i, gam_i), degree M per
+// interval (options.degree). The equation is imposed at the M Chebyshev points of the first kind
+// of every interval I_j (in units of (L_j/2)^alpha):
+//   own term:   A_j(w P_n) = (L_j/2)^alpha lambda_n P_{n-nu_j}^(gam_j+nu_j, del_j+nu_j)
+//               (spectral relation, exact; lambda_n from the recurrence lambda_n/lambda_{n-1} = (n-alpha)/n);
+//   cross term: B(k, n) = int_{I_i} w_i P_n K(t - s_k) dt by composite Gauss-Jacobi quadrature
+//               graded geometrically toward the end of I_i facing I_j (uniform in the gap), with
+//               panel node counts that follow the resolution P_n needs (detail/union_assembly.hpp),
+//               evaluated as ONE matrix product (kernel values x basis values) per block.
+// Collocation at M points of a degree-(M-1) image is the same linear system as interpolating
+// the data at those points and re-expanding it in the image basis (the method of the
+// single-interval solver), without the O(M^3)-per-block re-expansion: cost O(M^2 x nodes) per
+// cross block plus the LU, so degrees of 10^3 take seconds. Per interval:
+//   nu_j = -1: the data has one component outside the range; an unknown d_j (the coefficient
+//              of P_0 of the image family) takes it: A g + d_j (L_j/2)^alpha = F on I_j, and
+//              d_j is reported as solvability_defects[j] (same normalisation as
+//              abel_solution::solvability_defect);
 //   nu_j = +1: c^j_0 is the free constant, fixed by options.loads[j] (int_{I_j} g_j) or 0;
 //              homogeneous[k] is the COUPLED solution with F = 0 and unit load on interval k
 //              (zero load on the other nu = +1 intervals): g + sum_k (P_k - int_{I_k} g) H_k
 //              has loads P_k on every nu = +1 interval; homogeneous_defects[k][j] is the
 //              solvability defect that H_k produces on a nu = -1 interval j (so that a caller can
 //              impose loads and solvability together: defect_j + sum_k x_k defect_kj = 0).
-// The square system is solved by LU with partial pivoting; `condition` is the reciprocal of
-// Eigen's rcond estimate (1-norm), an estimate. The residual is computed independently at
-// residual_points Chebyshev points of every interval (never at the collocation points: a grid of
-// another power of 2, detail::residual_grid_size; at the collocation points it is ~ rounding
-// whatever the error): own term by apply_by_quadrature, cross terms by direct quadrature with the
-// kernel evaluated pointwise (no interpolation). status = not_converged when it exceeds
-// options.residual_tolerance (1e-10).
+// The square system (M unknowns and M equations per interval) is solved by LU with partial
+// pivoting: a direct block solve. Block Gauss-Seidel between the intervals (solve each alone
+// with the neighbour's image subtracted) was measured and rejected (study_union_convergence
+// out.csv 1024 gauss_seidel: contraction factor of int g_1 per sweep, two intervals, beta 0.3):
+// 0.16 ... 0.34 for alpha in [0.25, 0.5] at every gap, 0.84 ... 0.89 at alpha = 0.9, 0.56 at
+// alpha = 0, gap 1e-2, and DIVERGENT at alpha = 0 for smaller gaps (factor -1.24 at 1e-4, -1.40
+// at 1e-6). `condition` is the 1-norm condition number of the collocation matrix: Eigen's rcond
+// estimate in float/double, exact (via the inverse) for multiprecision types. It grows like
+// M^2 ... M^3 and with alpha (1e4 at M = 256, alpha = 0; 1e9 at alpha = 0.9, bounded ends); at
+// that conditioning the measured int g still agree with a higher degree to within ~50 x the
+// residual (study below).
 //
-// Accuracy: spectral in `degree` for well-separated intervals. For gap/length -> 0 the densities
-// develop a boundary layer of the width of the gap at the facing ends (the forcing from the
-// neighbour is nearly singular there), which the global Jacobi representation resolves only
-// algebraically. Measured (two intervals of length 1, alpha = 0.3, beta = 0.2, F = -s, both
-// bounded; 16 residual points; tests/abel/test_multi_interval.cpp pins gaps 1e-2, 1e-4, 1e-6):
-//     gap 1e-2: residual 3e-5 (degree 32), 2e-8 (64), 2.4e-14 (128; ~0.2 s)
-//     gap 1e-4: residual 7e-3 (32), 1e-3 (64), 1e-4 (128), 2.6e-6 (256; ~1.5 s)
-//     gap 1e-6: residual 8e-3 (32), 2e-3 (64), 3.5e-4 (128), 5.7e-5 (256)
-// i.e. the target 1e-10 at gap 1e-4 is NOT reached (open: a layer-resolving basis or graded
-// collocation toward the facing ends is needed); the solver reports not_converged there.
+// Residual (the evidence; an estimate, not a bound): the ORIGINAL equation at residual_points
+// Chebyshev points of every interval (a grid of another power of 2 than the collocation points,
+// detail::residual_grid_size: at the collocation points it is ~ rounding whatever the error)
+// AND at points 0.37 gap 3^k (k = 0, 1, ...) from every facing end (the boundary layer, which a
+// coarse grid steps over), relative to max |F_j| on the grid; own term by direct quadrature
+// (apply_by_quadrature), cross terms by make_cross_nodes quadrature of the density (another node
+// set than the assembly's). status = not_converged when it exceeds options.residual_tolerance.
+// Adaptive degree: with options.max_degree > degree the solve is repeated at degree x 1.5 until
+// the residual is below the tolerance or max_degree is reached (the last solve dominates the
+// cost); default max_degree = 0: one solve at `degree`.
+//
+// Accuracy and cost. Nearly touching intervals: the neighbour's density behaves like
+// (t - lo_i)^gam_i at its facing end, so the cross data on I_j have a branch point at distance
+// gap outside I_j, and the densities a boundary layer of width ~ gap at the facing ends. A
+// polynomial of degree M resolves it once M sqrt(gap/L) is large: measured, the residual falls
+// by about a decade per sqrt(L/gap) degrees (per ~10 degrees at gap 1e-2, per ~100 at 1e-4),
+// so the degree for 1e-10 grows like sqrt(L/gap).
+// Measured (build-union4/bin/study_union_convergence, intervals [-1,0], [gap,1] (, [1+gap,2]),
+// F = -s, classes bounded/unbounded (nu = 0) and bounded/bounded (nu = -1), alpha in
+// {0, 0.25, 0.5, 0.9}, beta in {0, 0.3}; 16 residual points; one core of a shared machine):
+//   gap 1e-2: residual <= 1e-10 at degree 72 ... 108 in all 32 cases (2 and 3 intervals),
+//             <= 1e-13 at 256; int g within 2.3e-11 of degree 256 at the first converged degree;
+//             0.02 s per solve (degree 108, 2 or 3 intervals).
+//   gap 1e-4: residual <= 1e-10 at degree 546 (alpha 0.9, nu = 0) ... 819 (alpha >= 0.25) ...
+//             1024 (alpha 0, bounded ends; alpha 0.25, nu = 0); alpha = 0 with the unbounded
+//             end facing the neighbour (nu = 0): 1.1e-10 ... 3.5e-10 at 1024, 3.7e-12 at 1228
+//             (adaptive from 32 with max_degree 2048: 5.2 s CPU for the whole ladder). int g
+//             within 1.6e-10 of degree 1024 at the first converged degree. One solve
+//             with its residual: 0.45 s at degree 546, 1.1 s at 819, 2 s at 1024 for two
+//             intervals, about 3x that for three; the adaptive ladder 32 -> 819 (alpha 0.5,
+//             beta 0.3, nu = 0): 2.1 s CPU for two intervals, 4.5 s for three.
+//   gap 1e-6: NOT reached. Residual 4e-1 (alpha 0, unbounded facing ends) ... 2e-7 (alpha 0.9) at
+//             degree 512; at a decade per ~1000 degrees 1e-10 would need degree ~ 8e3 ... 1e4,
+//             i.e. a 1.6e4-unknown dense system (2 GB, minutes): out of reach of this method. The
+//             solver reports not_converged with that residual. Open: a basis that builds the
+//             layer in (poles or graded panels at the facing ends).
+// Memory: 8 (K M)^2 bytes for the matrix (K intervals): 34 MB at K = 2, M = 1024; 300 MB at
+// K = 3, M = 2048. Choose max_degree accordingly.
 #pragma once
 
 #include "rhabel/abel/abel_solver.hpp"
+#include "rhabel/abel/detail/union_assembly.hpp"
 
 #include <Eigen/Dense>
 
@@ -53,6 +95,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 namespace rhabel::abel {
@@ -66,7 +109,11 @@ struct interval_spec {
 
 template <class Real>
 struct multi_solve_options {
-  std::size_t degree = 32;              ///< image coefficients (= Chebyshev points) per interval
+  std::size_t degree = 32;              ///< collocation points (= unknowns) per interval; the first degree tried
+  /// Adaptive degree: while the residual exceeds residual_tolerance the degree grows by 1.5x up
+  /// to max_degree (0: no adaptation, only `degree`). Needs residual_points > 0. Memory and time
+  /// grow like max_degree^2 and ^3 (header: 2 s and 34 MB at 1024 for two intervals).
+  std::size_t max_degree = 0;
   std::size_t residual_points = 8;      ///< per interval; 0 = skip the residual
   std::vector<std::optional<Real>> loads;  ///< per interval, used for nu = +1 intervals only
   /// status = not_converged when the independent residual exceeds this (only if it is computed).
@@ -81,8 +128,10 @@ struct multi_solution {
   std::vector<std::vector<jacobi_density<Real>>> homogeneous;  ///< per interval: empty unless nu = +1
   std::vector<std::vector<Real>> homogeneous_defects;  ///< [k][j]: defect of homogeneous[k] on nu = -1 interval j
   Real residual = std::numeric_limits<Real>::quiet_NaN();  ///< max relative residual, independent route
-  Real condition = 0;                                ///< 1/rcond of the block matrix (estimate)
-  std::size_t degree = 0;
+  /// 1-norm condition number of the collocation matrix: Eigen's rcond estimate for float and
+  /// double, exact for other types (see the header).
+  Real condition = 0;
+  std::size_t degree = 0;                            ///< collocation points per interval of the returned solve
   /// not_converged: residual > options.residual_tolerance (typically nearly touching intervals,
   /// see the header); converged otherwise, or when no residual was computed.
   solve_status status = solve_status::converged;
@@ -99,12 +148,9 @@ Real cross_kernel(const abel_parameters<Real>& par, const Real& t_minus_s) {
 }
 
 /// Nodes of I_i (physical t, weight including w_i and dt = (L/2) dx, reference x) graded toward
-/// the end of I_i facing the point set at distance `gap` (left if facing_left).
-template <class Real>
-struct cross_nodes {
-  std::vector<Real> x, weight, t_minus_lo, hi_minus_t;
-};
-
+/// the end of I_i facing the point set at distance `gap` (left if facing_left); `nodes` per
+/// panel (cross_nodes: detail/union_assembly.hpp). The independent route of the residual (the
+/// assembly uses degree_graded_cross_nodes).
 template <class Real>
 cross_nodes<Real> make_cross_nodes(const jacobi_density<Real>& g, const Real& gap, bool facing_left, std::size_t nodes) {
   const Real h = g.half_length();
@@ -133,15 +179,245 @@ Real apply_union(const abel_parameters<Real>& par, const std::vector<jacobi_dens
   return total;
 }
 
+namespace detail {
+
+/// Signed distance bookkeeping of a collocation/residual point s of I_j: distances to lo_j and hi_j.
+template <class Real>
+struct union_point {
+  Real s, from_lo, to_hi;
+};
+
+/// Points of I_j at the Chebyshev grid `grid` (distances to both ends without cancellation).
+template <class Real>
+std::vector<union_point<Real>> union_points(const interval_spec<Real>& iv, const chebyshev_grid<Real>& grid) {
+  const Real h = (iv.hi - iv.lo) / 2;
+  std::vector<union_point<Real>> out;
+  for (std::size_t k = 0; k < grid.x.size(); ++k) {
+    const Real u = h * grid.one_plus_x[k], v = h * grid.one_minus_x[k];
+    out.push_back({u <= v ? iv.lo + u : iv.hi - v, u, v});
+  }
+  return out;
+}
+
+/// Gap between intervals i and j (i != j), sorted and disjoint.
+template <class Real>
+Real union_gap(const std::vector<interval_spec<Real>>& intervals, std::size_t i, std::size_t j) {
+  return i > j ? intervals[i].lo - intervals[j].hi : intervals[j].lo - intervals[i].hi;
+}
+
+/// One solve of the coupled system at `degree` collocation points per interval (no residual).
+template <class Real>
+multi_solution<Real> solve_union_at_degree(const abel_parameters<Real>& par,
+                                           const std::vector<interval_spec<Real>>& intervals,
+                                           const std::vector<std::function<Real(Real)>>& F,
+                                           const multi_solve_options<Real>& options, std::size_t M) {
+  using std::pow;
+  const std::size_t K = intervals.size();
+  const Real alpha = par.alpha();
+  multi_solution<Real> sol;
+  sol.degree = M;
+  std::vector<abel_operator<Real>> ops;
+  // Unknowns of interval i: the coefficients c^i_n (n_basis[i] of them; for nu = +1 c^i_0 is
+  // fixed by the load and not an unknown) and, for nu = -1, the defect d_i. Rows: the M
+  // collocation equations of interval i. Both number M per interval: the system is square.
+  std::vector<std::size_t> n_basis(K), offset(K);
+  for (std::size_t i = 0; i < K; ++i) {
+    ops.emplace_back(par, intervals[i].lo, intervals[i].hi);
+    const auto e = par.exponents(intervals[i].leading, intervals[i].trailing);
+    sol.exponents.push_back(e);
+    n_basis[i] = e.nu == -1 ? M - 1 : (e.nu == 0 ? M : M + 1);
+    offset[i] = i * M;
+    jacobi_density<Real> g;
+    g.lo = intervals[i].lo;
+    g.hi = intervals[i].hi;
+    g.gam = e.gam;
+    g.del = e.del;
+    g.coefficients.assign(n_basis[i], Real(0));
+    sol.densities.push_back(g);
+  }
+  const std::size_t total = K * M;
+  auto unknown_index = [&](std::size_t i, std::size_t n) -> long {
+    if (sol.exponents[i].nu == 1) return n == 0 ? -1 : static_cast<long>(offset[i] + n - 1);
+    return static_cast<long>(offset[i] + n);
+  };
+  // Column of the defect d_i (nu = -1): the last unknown of the block.
+  auto defect_index = [&](std::size_t i) { return static_cast<Eigen::Index>(offset[i] + M - 1); };
+  auto fixed_c0 = [&](std::size_t i) -> Real {
+    if (sol.exponents[i].nu != 1) return Real(0);
+    if (i < options.loads.size() && options.loads[i]) {
+      const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[i].del, sol.exponents[i].gam);
+      return *options.loads[i] / (ops[i].half_length() * h0);
+    }
+    return Real(0);
+  };
+  using matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
+  using vector = Eigen::Matrix<Real, Eigen::Dynamic, 1>;
+  const auto T = static_cast<Eigen::Index>(total);
+  matrix A = matrix::Zero(T, T);
+  vector rhs = vector::Zero(T);
+  std::vector<vector> c0_columns(K, vector::Zero(T));  // image of the fixed c_0 of nu = +1 intervals
+  const chebyshev_grid<Real> grid(M);
+  for (std::size_t j = 0; j < K; ++j) {
+    const auto& e = sol.exponents[j];
+    const Real scale = pow(ops[j].half_length(), -alpha);  // equations in units of h_j^alpha
+    const Real p = e.gam + Real(e.nu), q = e.del + Real(e.nu);
+    const auto pts = union_points(intervals[j], grid);
+    const auto row0 = static_cast<Eigen::Index>(offset[j]);
+    std::vector<Real> lambda(n_basis[j]);  // lambda_n = lambda_{n-1} (n - alpha)/n: O(n) in all
+    for (std::size_t n = 0; n < n_basis[j]; ++n)
+      lambda[n] = n == 0 ? ops[j].eigenvalue(0, e) : lambda[n - 1] * (Real(n) - alpha) / Real(n);
+    for (std::size_t k = 0; k < M; ++k) {
+      const auto r = row0 + static_cast<Eigen::Index>(k);
+      const Real v = F[j](pts[k].s);
+      check_finite_value("rhabel::abel::solve_union", v, pts[k].s);
+      rhs[r] = scale * v;
+      // Own block: A(w P_n) = h^alpha lambda_n P_{n - nu}^(gam + nu, del + nu) (spectral relation).
+      const auto image = jacobi_values_any(M, p, q, grid.x[k]);
+      for (std::size_t n = 0; n < n_basis[j]; ++n) {
+        const long m = static_cast<long>(n) - e.nu;
+        if (m < 0) continue;  // nu = +1, n = 0: the homogeneous solution, image 0
+        const long c = unknown_index(j, n);
+        if (c >= 0) A(r, c) += lambda[n] * image[static_cast<std::size_t>(m)];
+      }
+      // nu = -1: F - A g = d_j P_0 (the part of the data outside the range).
+      if (e.nu == -1) A(r, defect_index(j)) += Real(1);
+    }
+    for (std::size_t i = 0; i < K; ++i) {
+      if (i == j) continue;
+      const bool right = i > j;
+      std::vector<Real> dist(M);
+      for (std::size_t k = 0; k < M; ++k) dist[k] = right ? pts[k].to_hi : pts[k].from_lo;
+      const auto B = cross_block(sol.densities[i], union_gap(intervals, i, j), right, dist, n_basis[i], scale,
+                                 [&](const Real& t_minus_s) { return cross_kernel(par, t_minus_s); });
+      for (std::size_t n = 0; n < n_basis[i]; ++n) {
+        const long c = unknown_index(i, n);
+        const auto col = static_cast<Eigen::Index>(n);
+        if (c >= 0)
+          A.block(row0, c, static_cast<Eigen::Index>(M), 1) += B.col(col);
+        else
+          c0_columns[i].segment(row0, static_cast<Eigen::Index>(M)) += B.col(col);
+      }
+    }
+  }
+  Eigen::PartialPivLU<matrix> lu(A);
+  if constexpr (std::is_floating_point_v<Real>) {
+    sol.condition = 1 / lu.rcond();
+  } else {
+    // Eigen's estimator needs NumTraits<Real>::infinity(), which the Boost.Multiprecision
+    // bindings lack: the exact 1-norm condition instead (O(size^3), like the LU itself).
+    const matrix inverse = lu.inverse();
+    sol.condition = A.cwiseAbs().colwise().sum().maxCoeff() * inverse.cwiseAbs().colwise().sum().maxCoeff();
+  }
+  vector b = rhs;
+  std::vector<Real> c0(K, Real(0));
+  for (std::size_t i = 0; i < K; ++i) {
+    c0[i] = fixed_c0(i);
+    if (sol.exponents[i].nu == 1) b -= c0[i] * c0_columns[i];
+  }
+  auto unpack = [&](const vector& x, const std::vector<Real>& c0s) {
+    std::vector<jacobi_density<Real>> out = sol.densities;
+    for (std::size_t i = 0; i < K; ++i)
+      for (std::size_t n = 0; n < n_basis[i]; ++n) {
+        const long u = unknown_index(i, n);
+        out[i].coefficients[n] = u >= 0 ? x[u] : c0s[i];
+      }
+    return out;
+  };
+  auto defects = [&](const vector& x) {
+    std::vector<Real> out(K, Real(0));
+    for (std::size_t j = 0; j < K; ++j)
+      if (sol.exponents[j].nu == -1) out[j] = x[defect_index(j)];
+    return out;
+  };
+  const vector c = lu.solve(b);
+  sol.densities = unpack(c, c0);
+  sol.solvability_defects = defects(c);
+  sol.homogeneous.assign(K, {});
+  sol.homogeneous_defects.assign(K, std::vector<Real>(K, Real(0)));
+  for (std::size_t k = 0; k < K; ++k) {
+    if (sol.exponents[k].nu != 1) continue;
+    const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[k].del, sol.exponents[k].gam);
+    const Real unit = 1 / (ops[k].half_length() * h0);
+    const vector x = lu.solve(-unit * c0_columns[k]);
+    std::vector<Real> c0k(K, Real(0));
+    c0k[k] = unit;
+    sol.homogeneous[k] = unpack(x, c0k);
+    sol.homogeneous_defects[k] = defects(x);
+  }
+  return sol;
+}
+
+/// Independent residual of the original equation (see the header): max over the intervals of
+/// max_s |A g(s) - (F(s) - h^alpha d_j)| / max_s |F(s)|, at Chebyshev points of another power of
+/// 2 than the collocation grid and at points graded toward every facing end.
+template <class Real>
+Real union_residual(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
+                    const std::vector<std::function<Real(Real)>>& F, const multi_solution<Real>& sol,
+                    std::size_t points) {
+  using std::abs;
+  using std::max;
+  using std::pow;
+  const std::size_t K = intervals.size();
+  const Real alpha = par.alpha();
+  Real worst = 0;
+  for (std::size_t j = 0; j < K; ++j) {
+    const auto& gj = sol.densities[j];
+    const abel_operator<Real> op(par, intervals[j].lo, intervals[j].hi);
+    const typename abel_operator<Real>::quadrature_evaluator own(op, gj.gam, gj.del, gj.coefficients.size());
+    const Real h = op.half_length();
+    const Real defect = sol.exponents[j].nu == -1 ? pow(h, alpha) * sol.solvability_defects[j] : Real(0);
+    // Never at the collocation points (residual_grid_size): there the residual is ~ rounding.
+    auto pts = union_points(intervals[j], chebyshev_grid<Real>(residual_grid_size(points, sol.degree)));
+    // Points at distances 0.37 gap 3^k (k = 0, 1, ... while < h/2) from each facing end: the
+    // boundary layer of width ~ gap that a coarse Chebyshev grid would step over. (0.37: no
+    // coincidence with collocation points or panel breaks.)
+    for (int side = 0; side < 2; ++side) {
+      if ((side == 0 && j == 0) || (side == 1 && j + 1 == K)) continue;
+      const Real gap = side == 0 ? union_gap(intervals, j - 1, j) : union_gap(intervals, j + 1, j);
+      for (Real d = Real(0.37) * gap; d < h / 2; d *= 3)
+        pts.push_back(side == 0 ? union_point<Real>{intervals[j].lo + d, d, 2 * h - d}
+                                : union_point<Real>{intervals[j].hi - d, 2 * h - d, d});
+    }
+    std::vector<cross_nodes<Real>> nodes(K);
+    for (std::size_t i = 0; i < K; ++i)
+      if (i != j)
+        nodes[i] = make_cross_nodes(sol.densities[i], union_gap(intervals, i, j), i > j,
+                                    sol.densities[i].coefficients.size() / 2 + 24);
+    // g_i at the cross nodes once (the residual is O(points x nodes), the series O(nodes x degree)).
+    std::vector<std::vector<Real>> series(K);
+    for (std::size_t i = 0; i < K; ++i)
+      for (const auto& x : nodes[i].x) series[i].push_back(sol.densities[i].series(x));
+    Real worst_j = 0, scale_j = 0;
+    for (const auto& pt : pts) {
+      Real value = own([&](const Real& x) { return gj.series(x); }, pt.s);
+      for (std::size_t i = 0; i < K; ++i) {
+        if (i == j) continue;
+        const bool right = i > j;
+        const Real gap = union_gap(intervals, i, j);
+        for (std::size_t qn = 0; qn < nodes[i].x.size(); ++qn) {
+          const Real t_minus_s = right ? (nodes[i].t_minus_lo[qn] + gap + pt.to_hi)
+                                       : -(nodes[i].hi_minus_t[qn] + gap + pt.from_lo);
+          value += nodes[i].weight[qn] * cross_kernel(par, t_minus_s) * series[i][qn];
+        }
+      }
+      const Real Fs = F[j](pt.s);
+      worst_j = max(worst_j, abs(value - (Fs - defect)));
+      scale_j = max(scale_j, abs(Fs));
+    }
+    worst = max(worst, scale_j > 0 ? worst_j / scale_j : worst_j);
+  }
+  return worst;
+}
+
+}  // namespace detail
+
 /// Solves the coupled system (paper 41) on the union of `intervals` (sorted, disjoint) with data
-/// F[j] on interval j. See the header comment for the evidence returned.
+/// F[j] on interval j. See the header comment for the method, the evidence returned and the
+/// measured accuracy and cost.
 template <class Real>
 multi_solution<Real> solve_union(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
                                  const std::vector<std::function<Real(Real)>>& F,
                                  const multi_solve_options<Real>& options = {}) {
-  using std::abs;
-  using std::max;
-  using std::pow;
   const std::size_t K = intervals.size();
   if (K == 0) detail::throw_bad_parameter("rhabel::abel::solve_union", "number of intervals", 0, "[1, inf)");
   if (F.size() != K)
@@ -154,219 +430,23 @@ multi_solution<Real> solve_union(const abel_parameters<Real>& par, const std::ve
       detail::throw_bad_parameter("rhabel::abel::solve_union", "interval lo", intervals[i].lo,
                                   "> hi of the previous interval (sorted, disjoint intervals)");
   }
-  const std::size_t M = std::max<std::size_t>(options.degree, 2);
-  const Real alpha = par.alpha();
-
-  multi_solution<Real> sol;
-  sol.degree = M;
-  std::vector<abel_operator<Real>> ops;
-  std::vector<std::size_t> n_basis(K), offset(K), n_unknown(K);
-  std::size_t total_unknowns = 0;
-  for (std::size_t i = 0; i < K; ++i) {
-    ops.emplace_back(par, intervals[i].lo, intervals[i].hi);
-    const auto e = par.exponents(intervals[i].leading, intervals[i].trailing);
-    sol.exponents.push_back(e);
-    n_basis[i] = e.nu == -1 ? M - 1 : (e.nu == 0 ? M : M + 1);
-    n_unknown[i] = e.nu == -1 ? M - 1 : M;  // nu = +1: c_0 fixed
-    offset[i] = total_unknowns;
-    total_unknowns += n_unknown[i];
-    jacobi_density<Real> g;
-    g.lo = intervals[i].lo;
-    g.hi = intervals[i].hi;
-    g.gam = e.gam;
-    g.del = e.del;
-    g.coefficients.assign(n_basis[i], Real(0));
-    sol.densities.push_back(g);
+  if (options.max_degree != 0 && options.max_degree < options.degree)
+    detail::throw_bad_parameter("rhabel::abel::solve_union", "options.max_degree", options.max_degree,
+                                "0 (no adaptation) or >= options.degree");
+  if (options.max_degree > options.degree && options.residual_points == 0)
+    detail::throw_bad_parameter("rhabel::abel::solve_union", "options.residual_points", 0,
+                                "> 0 when options.max_degree > options.degree (the residual drives the degree)");
+  std::size_t M = std::max<std::size_t>(options.degree, 2);
+  const std::size_t M_max = std::max(M, options.max_degree);
+  for (;;) {
+    auto sol = detail::solve_union_at_degree(par, intervals, F, options, M);
+    if (options.residual_points == 0) return sol;
+    sol.residual = detail::union_residual(par, intervals, F, sol, options.residual_points);
+    if (sol.residual <= options.residual_tolerance) return sol;
+    sol.status = solve_status::not_converged;
+    if (M >= M_max) return sol;
+    M = std::min(M_max, M + M / 2);  // x 1.5: the last solve dominates the cost (~ M^3)
   }
-  auto unknown_index = [&](std::size_t i, std::size_t n) -> long {
-    if (sol.exponents[i].nu == 1) return n == 0 ? -1 : static_cast<long>(offset[i] + n - 1);
-    return static_cast<long>(offset[i] + n);
-  };
-  auto fixed_c0 = [&](std::size_t i) -> Real {
-    if (sol.exponents[i].nu != 1) return Real(0);
-    if (i < options.loads.size() && options.loads[i]) {
-      const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[i].del, sol.exponents[i].gam);
-      return *options.loads[i] / (ops[i].half_length() * h0);
-    }
-    return Real(0);
-  };
-
-  using matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
-  using vector = Eigen::Matrix<Real, Eigen::Dynamic, 1>;
-  matrix A = matrix::Zero(static_cast<Eigen::Index>(total_unknowns), static_cast<Eigen::Index>(total_unknowns));
-  vector rhs = vector::Zero(static_cast<Eigen::Index>(total_unknowns));
-  // Column of the fixed c_0 of each nu = +1 interval (for the homogeneous directions), and the
-  // row-0 images (defect rows) of every column for nu = -1 intervals.
-  std::vector<vector> c0_columns(K, vector::Zero(static_cast<Eigen::Index>(total_unknowns)));
-  std::vector<std::vector<Real>> defect_row(K);  // per nu = -1 interval j: coefficient of each unknown in d^j_0
-  std::vector<std::vector<Real>> defect_c0(K);   // and of each fixed c_0 (per interval i)
-  std::vector<Real> data_d0(K, Real(0));
-  // Row of image coefficient m of interval j in the system.
-  auto row_index = [&](std::size_t j, std::size_t m) -> long {
-    if (sol.exponents[j].nu == -1) return m == 0 ? -1 : static_cast<long>(offset[j] + m - 1);
-    return static_cast<long>(offset[j] + m);
-  };
-
-  for (std::size_t j = 0; j < K; ++j) {
-    const auto& e = sol.exponents[j];
-    const Real h = ops[j].half_length();
-    const Real scale = pow(h, -alpha);
-    const Real p = e.gam + Real(e.nu), q = e.del + Real(e.nu);
-    const detail::chebyshev_grid<Real> grid(M);
-    std::vector<Real> s_points(M);
-    for (std::size_t k = 0; k < M; ++k)
-      s_points[k] = grid.one_plus_x[k] <= grid.one_minus_x[k] ? intervals[j].lo + h * grid.one_plus_x[k]
-                                                              : intervals[j].hi - h * grid.one_minus_x[k];
-    auto to_image = [&](const std::vector<Real>& values) {
-      return detail::chebyshev_to_jacobi(detail::chebyshev_coefficients(values), p, q);
-    };
-    // Data.
-    {
-      std::vector<Real> values(M);
-      for (std::size_t k = 0; k < M; ++k) {
-        const Real v = F[j](s_points[k]);
-        detail::check_finite_value("rhabel::abel::solve_union", v, s_points[k]);
-        values[k] = scale * v;
-      }
-      const auto d = to_image(values);
-      for (std::size_t m = 0; m < M; ++m) {
-        const long r = row_index(j, m);
-        if (r >= 0) rhs[r] = d[m];
-        else data_d0[j] = d[m];
-      }
-    }
-    if (e.nu == -1) {
-      defect_row[j].assign(total_unknowns, Real(0));
-      defect_c0[j].assign(K, Real(0));
-    }
-    // Diagonal block: A(w P_n) = h^alpha lambda_n P_{n - nu}: in scaled units lambda_n.
-    for (std::size_t n = 0; n < n_basis[j]; ++n) {
-      const long m_signed = static_cast<long>(n) - e.nu;
-      if (m_signed < 0) continue;  // nu = +1, n = 0: homogeneous
-      const long r = row_index(j, static_cast<std::size_t>(m_signed));
-      const long c = unknown_index(j, n);
-      const Real lambda = ops[j].eigenvalue(n, e);
-      if (r >= 0 && c >= 0) A(r, c) += lambda;
-    }
-    // Cross blocks.
-    for (std::size_t i = 0; i < K; ++i) {
-      if (i == j) continue;
-      const bool i_right_of_j = i > j;
-      const Real gap = i_right_of_j ? intervals[i].lo - intervals[j].hi : intervals[j].lo - intervals[i].hi;
-      const auto nodes = detail::make_cross_nodes(sol.densities[i], gap, i_right_of_j, n_basis[i] / 2 + 16);
-      // values[n][k] = scale * int_{I_i} w_i P_n K(t - s_k) dt
-      std::vector<std::vector<Real>> values(n_basis[i], std::vector<Real>(M, Real(0)));
-      for (std::size_t qn = 0; qn < nodes.x.size(); ++qn) {
-        const auto P = rhabel::quadrature::jacobi_p_all(n_basis[i] - 1, sol.densities[i].del, sol.densities[i].gam, nodes.x[qn]);
-        for (std::size_t k = 0; k < M; ++k) {
-          // t - s without cancellation: distances through the facing ends.
-          const Real t_minus_s = i_right_of_j ? (nodes.t_minus_lo[qn] + gap + (intervals[j].hi - s_points[k]))
-                                              : -(nodes.hi_minus_t[qn] + gap + (s_points[k] - intervals[j].lo));
-          const Real kw = scale * nodes.weight[qn] * detail::cross_kernel(par, t_minus_s);
-          for (std::size_t n = 0; n < n_basis[i]; ++n) values[n][k] += kw * P[n];
-        }
-      }
-      for (std::size_t n = 0; n < n_basis[i]; ++n) {
-        const auto d = to_image(values[n]);
-        const long c = unknown_index(i, n);
-        for (std::size_t m = 0; m < M; ++m) {
-          const long r = row_index(j, m);
-          if (r >= 0) {
-            if (c >= 0) A(r, c) += d[m];
-            else c0_columns[i][r] += d[m];
-          } else {
-            if (c >= 0) defect_row[j][static_cast<std::size_t>(c)] += d[m];
-            else defect_c0[j][i] += d[m];
-          }
-        }
-      }
-    }
-  }
-  Eigen::PartialPivLU<matrix> lu(A);
-  sol.condition = 1 / lu.rcond();
-  // Particular solution with the fixed c_0 moved to the right side.
-  vector b = rhs;
-  for (std::size_t i = 0; i < K; ++i)
-    if (sol.exponents[i].nu == 1) b -= fixed_c0(i) * c0_columns[i];
-  const vector c = lu.solve(b);
-  auto unpack = [&](const vector& x, const std::vector<Real>& c0) {
-    std::vector<jacobi_density<Real>> out = sol.densities;
-    for (std::size_t i = 0; i < K; ++i)
-      for (std::size_t n = 0; n < n_basis[i]; ++n) {
-        const long u = unknown_index(i, n);
-        out[i].coefficients[n] = u >= 0 ? x[u] : c0[i];
-      }
-    return out;
-  };
-  std::vector<Real> c0(K, Real(0));
-  for (std::size_t i = 0; i < K; ++i) c0[i] = fixed_c0(i);
-  sol.densities = unpack(c, c0);
-  auto defects = [&](const vector& x, const std::vector<Real>& c0s, bool with_data) {
-    std::vector<Real> out(K, Real(0));
-    for (std::size_t j = 0; j < K; ++j) {
-      if (sol.exponents[j].nu != -1) continue;
-      Real d0 = with_data ? data_d0[j] : Real(0);
-      for (std::size_t u = 0; u < total_unknowns; ++u) d0 -= defect_row[j][u] * x[static_cast<Eigen::Index>(u)];
-      for (std::size_t i = 0; i < K; ++i) d0 -= defect_c0[j][i] * c0s[i];
-      out[j] = d0;
-    }
-    return out;
-  };
-  sol.solvability_defects = defects(c, c0, true);
-  sol.homogeneous.assign(K, {});
-  sol.homogeneous_defects.assign(K, std::vector<Real>(K, Real(0)));
-  for (std::size_t k = 0; k < K; ++k) {
-    if (sol.exponents[k].nu != 1) continue;
-    const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[k].del, sol.exponents[k].gam);
-    const Real unit = 1 / (ops[k].half_length() * h0);
-    const vector x = lu.solve(-unit * c0_columns[k]);
-    std::vector<Real> c0k(K, Real(0));
-    c0k[k] = unit;
-    sol.homogeneous[k] = unpack(x, c0k);
-    sol.homogeneous_defects[k] = defects(x, c0k, false);
-  }
-  // Independent residual.
-  if (options.residual_points > 0) {
-    Real worst = 0;
-    for (std::size_t j = 0; j < K; ++j) {
-      const auto& gj = sol.densities[j];
-      const typename abel_operator<Real>::quadrature_evaluator own(ops[j], gj.gam, gj.del, gj.coefficients.size());
-      // Never at the collocation points (residual_grid_size): there the residual is ~ rounding.
-      const detail::chebyshev_grid<Real> grid(detail::residual_grid_size(options.residual_points, M));
-      const Real h = ops[j].half_length();
-      const Real defect = sol.exponents[j].nu == -1 ? pow(h, alpha) * sol.solvability_defects[j] : Real(0);
-      Real worst_j = 0, scale_j = 0;
-      std::vector<detail::cross_nodes<Real>> nodes(K);
-      for (std::size_t i = 0; i < K; ++i) {
-        if (i == j) continue;
-        const bool right = i > j;
-        const Real gap = right ? intervals[i].lo - intervals[j].hi : intervals[j].lo - intervals[i].hi;
-        nodes[i] = detail::make_cross_nodes(sol.densities[i], gap, right, sol.densities[i].coefficients.size() / 2 + 24);
-      }
-      for (std::size_t k = 0; k < grid.x.size(); ++k) {
-        const Real s = grid.one_plus_x[k] <= grid.one_minus_x[k] ? intervals[j].lo + h * grid.one_plus_x[k]
-                                                                 : intervals[j].hi - h * grid.one_minus_x[k];
-        Real value = own([&](const Real& x) { return gj.series(x); }, s);
-        for (std::size_t i = 0; i < K; ++i) {
-          if (i == j) continue;
-          const bool right = i > j;
-          const Real gap = right ? intervals[i].lo - intervals[j].hi : intervals[j].lo - intervals[i].hi;
-          for (std::size_t qn = 0; qn < nodes[i].x.size(); ++qn) {
-            const Real t_minus_s = right ? (nodes[i].t_minus_lo[qn] + gap + (intervals[j].hi - s))
-                                         : -(nodes[i].hi_minus_t[qn] + gap + (s - intervals[j].lo));
-            value += nodes[i].weight[qn] * detail::cross_kernel(par, t_minus_s) * sol.densities[i].series(nodes[i].x[qn]);
-          }
-        }
-        const Real Fs = F[j](s);
-        worst_j = max(worst_j, abs(value - (Fs - defect)));
-        scale_j = max(scale_j, abs(Fs));
-      }
-      worst = max(worst, scale_j > 0 ? worst_j / scale_j : worst_j);
-    }
-    sol.residual = worst;
-    if (!(worst <= options.residual_tolerance)) sol.status = solve_status::not_converged;
-  }
-  return sol;
 }
 
 }  // namespace rhabel::abel

@@ -15,9 +15,11 @@
 //     K_left - K_right = psi(1-alpha) - psi(alpha) = pi cot(pi alpha),
 //     J_E = (pi / sin(pi alpha)) (1 - 2 kappa cos(pi alpha) + kappa^2)        (> 0 for alpha in (0,1)).
 // So step data is matched by g = C phi + w sum_n c_n P_n^(del,gam), where
-//     phi(x) = w(x) q(x) E(x),  q = Taylor polynomial (degree K) of w(x0)/w(x) at x0,
-// so that w q = w(x0) + O((x-x0)^(K+1)) creates no jump-type terms of order 1..K, and w keeps
-// the edge behaviour of the class (the image of phi is smooth at the ends). C = jump(F~)/(w(x0) J_E);
+//     phi(x) = w(x) q(x) E(x),  q analytic on [-1, 1] with w q = w(x0) + O((x-x0)^(K+1)),
+// so that phi creates no jump-type terms of order 1..K, and w keeps the edge behaviour of the
+// class (the image of phi is smooth at the ends). Two choices of q (see "Taylor degree" below):
+// the Taylor polynomial (degree K) of w(x0)/w(x) at x0, or, for an apex near an edge, the
+// edge-damped factor. C = jump(F~)/(w(x0) J_E);
 // the remainder F~ - C A[phi] has only jump-type terms of order >= K+1 at x0 and is solved by the
 // spectral method of abel_solver.hpp (Chebyshev interpolation, adaptive). A[phi] at the
 // interpolation points is computed by composite Gauss-Jacobi quadrature, split at x0, at the
@@ -38,11 +40,21 @@
 //
 // Sampling grid. The remainder F~ - C A[phi] is continuous at x0 but its two terms are not: F is
 // evaluated on one side and A[phi](x0) is a principal value, not the mean of its one-sided limits.
-// So x0 must never be a sampling point; the odd first-kind grids (17, 33, 65, ...) always contain
+// So x0 must never be a sampling point; the odd first-kind grids (65, 195, ...) always contain
 // the centre x = 0. solve_step uses m or m + 1 points (detail::grid_size_avoiding: the two grids
 // interlace, so x0 is about half a spacing from every node of one of them); `degree` reports the
 // size used (even sizes occur). Before this, a symmetric wedge gave 0.396 instead of 0.5 for the
 // trailing share of the load (tests: "apex on a Chebyshev node").
+// Adaptive levels (nested): 65 points (initial_step_sampling_size), then 3x as many: the
+// first-kind grid of size 3m contains the grid of size m (node j is node 3j + 1), so each level
+// reuses the remainder values already computed and evaluates A[phi] at 2m new points only;
+// 65 -> 195 -> 585, and a last level of exactly max_degree points (not nested) when 3m would
+// exceed it. (Before: 17 -> 33 -> 65 -> 129 ..., every level from scratch: 115 evaluations of
+// A[phi] to reach 65 points, 244 to reach 129; now 65 and 195.) A level at which grid_size_avoiding
+// picks m + 1 is not nested and is computed in full. The loop stops when the tail (the last m/8
+// Chebyshev coefficients, relative to max|F~|) is below options.tolerance, below 4 rounding_floor,
+// or below 1024 eps and no longer decaying (against the previous level or against the second
+// half of the coefficients of this one: a rounding plateau).
 //
 // Taylor degree and rounding floor. q has radius of convergence 1 - |x0| and max|q| on [-1, 1]
 // grows like ((1 + |x0|)/(1 - |x0|))^K. The smooth part of g cancels C phi far from the apex, so
@@ -50,29 +62,75 @@
 // taylor_degree = 0 (default) picks the largest K <= 12 with max|q| <= 1e4
 // (max_taylor_amplification), at least 1; the adaptive loop stops as converged once the tail is
 // below 4 rounding_floor (before, asymmetric cases ran to max_degree and reported not_converged).
+// Edge-damped factor (apex near an edge: automatic K < 5 = min_taylor_degree, i.e. eps = (t0 -
+// a)/L beyond ~0.87 or below ~0.13). The Taylor factor then leaves jump-type terms of order K + 1
+// <= 5 with coefficients ~ (1 - |x0|)^-(K+1), and the error decayed only like n^-(2K+2-2alpha).
+// Instead, with K = 5 (edge_damped_degree; K + 1 even) and u = x - x0, d+- = 1 -+ x0,
+//     q = (d+/D+)^del (d-/D-)^gam,   D+- = (1 -+ x) + sigma d+- (u/d+-)^(K+1),   sigma = 1,
+// so w q = w(x0) ((1-x)/D+)^del ((1+x)/D-)^gam. D+- > 0 on [-1, 1] (both terms >= 0 and not both
+// 0), so q is analytic there; (1 -+ x)/D+- = 1 + O(u^(K+1)) at x0 (no jump-type terms of order
+// 1..K); (1 -+ x)/D+- lies in [0, 1], so for del, gam >= 0 (the wedge class nu = -1) max|q| <= 1
+// (no amplification at all), and near each end D+- ~ sigma d+- keeps w's edge behaviour. The
+// price: the zeros of D+ lie at u ~ d+ e^(+-i 21 deg) (0.85 d+ from x0, 0.3 d+ off the axis, for
+// K = 5), so the images are analytic only in a region of size ~ d+ around the apex and the
+// error decays geometrically at a rate ~ sqrt(d+) (points ~ 1/sqrt(1 - |x0|)) instead of
+// algebraically; and the quadratures of phi need K/2 + 28 nodes per panel instead of K/2 + 16
+// (with 16 the images stalled at ~1e-9). K = 5 against K = 3, 7 (eps = 0.97, 257 points): 4e-11
+// against 2.5e-9, 5e-9; sigma = 0.1 gave 7.7e-11, sigma = 10 1e-8. If a negative edge exponent makes max|q|
+// exceed max_taylor_amplification (the class unbounded at the near edge, (1/D)^del growing where
+// D is large), the Taylor factor is kept. With the edge-damped factor rounding_floor is
+// max(max|q|, 64) eps: the tails of its images plateau at 1e-14 .. 1e-13 (measured).
 //
-// Accuracy and cost (build-abel3/bin/study_abel_convergence, CSV rows step_adaptive_* and
-// step_apex_eps_*; default options, as the punch layer calls it; 2 shared cores, so times are
-// +-30%). Step at t0 = 0.1 on [-1, 1], beta = 0.2, relative error of int g against the exact
-// Rodrigues value:
-//     alpha = 0, 1e-3 (normalized path):   65 points, <= 7e-16,           1.8-2.2 ms (7 ms loaded)
-//     alpha = 0.01:                         65-129 points, <= 1.3e-13,    0.5-1.0 ms
-//     alpha = 0.049, 0.05, 0.25, 0.5, 0.9:  65-129 points, <= 1.2e-14,    0.5-1.0 ms (1.7 loaded)
-// (the target, 1e-12 in under 1 ms, is met for alpha >= 0.01 at 65 points; the
-// normalized path below 0.01 costs ~4x the plain one)
-// and int_a^t0 g agrees with the degree-257 solution to the same level (<= 2e-13). The error
-// decays like n^-(2K + 2 - 2 alpha) until the rounding floor.
-// Apex position eps = (t0 - a)/L (alpha = 0.3, beta = 0.2, both classes), error of int g:
-//     eps in [0.3, 0.7]:       converged, 65-129 points, <= 2.5e-12, ~0.5-2 ms
-//     eps = 0.1, 0.9:          converged at the rounding floor, 129-513 points, <= 7e-12, 1-15 ms
-//     eps = 0.01, 0.99:        not_converged at 513 points, error 4e-11 .. 3e-8, residual 3e-7 .. 3e-6
-//     eps = 1e-3, 0.999:       not_converged, error 8e-8 .. 2.5e-5, residual 6e-5 .. 5e-4
-//     eps = 1e-6, 1 - 1e-6:    not_converged, error up to O(1), residual ~ 0.2 .. 2
-// LIMIT (apex within ~1e-2 L of an edge): the solution then has a boundary layer of width
-// d = min(eps, 1 - eps) L (locally the step solution of a half-line problem, which is not built
-// in); the global interpolation resolves it only algebraically. The solver reports it: status
-// not_converged and a residual sampled next to the apex (x0 -+ d/2 and d/4, 3d/4 of the way to
-// the near edge), measured >= error(int g)/10 in every case above.
+// Accuracy and cost (command: build-step4/bin/study_abel_convergence out.csv, CSV rows
+// step_adaptive_*, step_apex_eps_*, step_apex_rh_eps_*; default options as the punch layer calls
+// it; median wall time, residual off, measured with the machine's 2 cores shared by ~5 jobs
+// (load 5), so times are +-30%).
+// Step at t0 = 0.1 on [-1, 1], beta = 0.2, relative error of int g against the exact Rodrigues
+// value (int_a^t0 g against the degree-257 solution: same level):
+//     alpha = 0, 1e-3 (normalized path):      65 points, <= 1.1e-15,   0.83-0.97 ms
+//     alpha = 1e-8 (not in the study; thread CPU time of the same solve): 65 points, 0.85 ms
+//     alpha = 0.01:                             65 / 195 points (nu = 0 / -1), <= 1.2e-13,  0.28 / 0.92 ms
+//     alpha = 0.049, 0.05:                      65 / 195 points, <= 1.2e-14,  0.28 / 0.91 ms
+//     alpha = 0.25, 0.5, 0.9:                   65 points, <= 9.5e-15,   0.28 ms
+// so the target (1e-12 in under 1 ms) is met for every alpha. Before this session (same
+// machine, thread CPU time): 0.51 ms at 65 points (17 + 33 + 65 evaluated), 2.0-2.4 ms at alpha <=
+// 1e-3. The gains: nested levels starting at 65 (1.7x), and on the normalized path K/2 + 10
+// nodes per panel instead of K/2 + 16 and no pow in E_full (|u|^-alpha = 1 + alpha core) and a
+// series for exprel at tiny arguments (2.3-2.8x).
+// Apex position eps = (t0 - a)/L, wedge data of the class nu = -1 satisfying the orthogonality
+// condition (alpha = 0.3, beta = 0.2; rows step_apex_rh_*), max relative error of int g and
+// int_a^t0 g against the independent Riemann-Hilbert route riemann::solve_abel_rh (its error
+// estimates <= 1e-15 here); n = points, factor = Taylor (K) or edge-damped (K = 5):
+//     eps      factor      65 pts     195 pts    585 pts    adaptive (default options)
+//     0.5      Taylor 12   1.2e-15    1.2e-15    1.2e-15     66 pts, 1.2e-15, 0.28 ms
+//     0.8      Taylor 7    2.5e-11    7.5e-13    8.4e-13    195 pts, 7.5e-13, 0.91 ms
+//     0.9      edge 5      2.5e-7     8.6e-12    6.4e-15    585 pts, 6.4e-15, 15 ms
+//     0.97     edge 5      1.6e-4     5.1e-9     2.6e-13   1024 pts, 1.1e-14, 44 ms
+//     0.99     edge 5      1.4e-3     5.8e-6     9.5e-12   1024 pts, 1.6e-13, 49 ms (not_converged)
+//     0.999    edge 5      8.3e-2     3.1e-3     1.1e-5    1024 pts, 2.7e-9,  95 ms (not_converged)
+//     0.03     edge 5      1.6e-6     1.1e-10    3.5e-14   1024 pts, 2.5e-14, 88 ms
+//     0.001    edge 5      5.1e-3     8.1e-5     2.6e-8    1024 pts, 4.6e-11, 130 ms (not_converged)
+// Before (Taylor factor only, doubling levels to 513 points; probe of this session against the
+// same RH reference): eps = 0.9: 6.8e-12 at 513 points; 0.97: 1.6e-9 (not_converged); 0.99:
+// 3.3e-8; 0.999: 2.5e-5. The punch layer's hardest wedge (alpha = 0.2, k = 0.5, S1 = S2: eps =
+// 0.84, Taylor K = 6) converges at 195 points to 1.8e-12 (alpha = 0.2), 1.8e-13 (alpha = 1e-3),
+// 1.1e-13 (alpha = 0), in 1.6 / 9 / 9 ms wall (thread CPU: 0.86 / 2.6 / 2.3 ms; before: 257
+// points, 4.2 / 12.1 / 11.4 ms CPU). The edge-damped points cost ~2.3x the Taylor ones (K/2 + 28
+// nodes per panel and exp/log of D+-).
+// The same study with F = +-1 in both classes (rows step_apex_eps_*, error of int g only):
+// eps in [0.3, 0.7] converged at 65-66 points, <= 1.5e-12; eps = 0.1, 0.9 converged at 195-585
+// points, <= 1.7e-12; eps = 0.01, 0.99 <= 1.6e-13 at 1024 points except nu = 0 at 0.99 (Taylor
+// kept: del < 0) 1.4e-12; eps = 1e-3, 0.999: 1e-13 .. 2.7e-9, residual 2e-9 .. 4e-6,
+// not_converged; eps = 1e-6, 1 - 1e-6: not_converged, error up to 0.27, residual 0.02 .. 0.7.
+// LIMIT (apex within ~1e-2 L of an edge): the solution then varies on the scale d = min(eps,
+// 1 - eps) L next to the apex (locally the step solution of a half-line problem, which is not
+// built in); any global polynomial representation needs ~ 1/sqrt(d/L) points to resolve it (the
+// Chebyshev spacing there is ~ sqrt(d L)/n). The edge-damped factor makes the convergence
+// geometric at that rate (1e-12 needs 585 points at 1 - eps = 0.03, ~1000 at 0.01, more than
+// the default max_degree 1024 at 1e-3) instead of algebraic. The solver reports what it did not reach: status not_converged and a residual
+// sampled next to the apex (x0 -+ d/2 and d/4, 3d/4 of the way to the near edge), measured
+// >= error(int g)/10 in every case above. For eps within 1e-3 of an edge use the Riemann-Hilbert
+// route (as the punch layer does).
 //
 // Residual: direct quadrature of the one-sided integrals at interior Chebyshev points (never at
 // a sampling node nor at x0) plus the four points next to the apex; for the phi part this is the
@@ -91,6 +149,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -103,7 +162,9 @@ struct enriched_density {
   Real enrichment = 0;           ///< C
   Real x0 = 0;                   ///< breakpoint in the reference variable
   Real kappa = 0, alpha = 0;
-  std::vector<Real> q;           ///< Taylor coefficients of w(x0)/w(x) in powers of (x - x0)
+  /// Taylor coefficients of w(x0)/w(x) in powers of (x - x0); edge-damped mode (edge_power > 0):
+  /// {1, 0, ..., 0} of size K + 1 (q is then 1 times edge_factor). Evaluate q with q_at.
+  std::vector<Real> q;
   /// alpha < 0.01: E is replaced by (E - 1)/alpha (uniform to alpha = 0, where it is
   /// -log|x - x0| - pi tan(beta pi/2) [x > x0]); the "-1/alpha" part is w q, a smooth density.
   bool normalized = false;
@@ -117,9 +178,10 @@ struct enriched_density {
     using std::pow;
     if (!normalized) return right ? kappa * pow(dist, -alpha) : pow(dist, -alpha);
     // (|u|^-alpha - 1)/alpha = -L exprel(-alpha L), L = log|u|; right: + (kappa - 1)/alpha |u|^-alpha.
+    // dist^-alpha = 1 + alpha core (no second transcendental call).
     const Real L = log(dist);
     const Real core = -L * detail::exprel(-alpha * L);
-    return right ? core - one_minus_kappa_over_alpha * pow(dist, -alpha) : core;
+    return right ? core - one_minus_kappa_over_alpha * (1 + alpha * core) : core;
   }
   /// Gauss-Jacobi exponent used at x0 for pieces that end there (the rest is E_over_weight).
   Real x0_exponent() const { return normalized ? Real(0) : -alpha; }
@@ -135,12 +197,9 @@ struct enriched_density {
   /// phi(x) with distances 1 + x, 1 - x (reference variable).
   Real phi(const Real& one_plus_x, const Real& one_minus_x) const {
     using std::pow;
-    const Real x = one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x;
-    const Real u = x - x0;
-    Real qq = 0;
-    for (std::size_t k = q.size(); k-- > 0;) qq = qq * u + q[k];
+    const Real u = one_plus_x <= one_minus_x ? one_plus_x - (1 + x0) : (1 - x0) - one_minus_x;
     const Real E = u > 0 ? E_full(u, true) : E_full(-u, false);
-    return pow(one_minus_x, smooth.del) * pow(one_plus_x, smooth.gam) * qq * E;
+    return pow(one_minus_x, smooth.del) * pow(one_plus_x, smooth.gam) * q_at(one_plus_x, one_minus_x) * E;
   }
 
   /// g(t), lo < t < hi, t != t0.
@@ -161,11 +220,34 @@ struct enriched_density {
   Real integral() const { return smooth.integral() + enrichment * half_length() * phi_integral_to(Real(1)); }
 
   /// q(x) (the Taylor polynomial) at x.
-  Real q_at(const Real& x) const {
+  Real q_at(const Real& x) const { return q_at(1 + x, 1 - x); }
+  /// q at the point with distances 1 + x, 1 - x to the ends (accurate next to an end).
+  Real q_at(const Real& one_plus_x, const Real& one_minus_x) const {
+    const Real u = one_plus_x <= one_minus_x ? one_plus_x - (1 + x0) : (1 - x0) - one_minus_x;
     Real qq = 0;
-    for (std::size_t k = q.size(); k-- > 0;) qq = qq * (x - x0) + q[k];
-    return qq;
+    for (std::size_t k = q.size(); k-- > 0;) qq = qq * u + q[k];
+    if (edge_power == 0) return qq;
+    return qq * edge_factor(one_plus_x, one_minus_x, u);
   }
+  /// Edge-damped mode (edge_power = K + 1 > 0, even): q = ((1-x0)/D+)^del ((1+x0)/D-)^gam,
+  /// D+- = (1 -+ x) + sigma (1 -+ x0) (u/(1 -+ x0))^(K+1) (see header).
+  Real edge_factor(const Real& one_plus_x, const Real& one_minus_x, const Real& u) const {
+    using std::exp;
+    using std::log;
+    const Real dp = 1 - x0, dm = 1 + x0;
+    Real tp = u / dp, tm = u / dm, pp = 1, pm = 1;
+    for (std::size_t k = 0; k < edge_power; ++k) pp *= tp, pm *= tm;
+    // D+-/d+- = (1 -+ x)/d+- + sigma t^(K+1): a sum of two non-negative terms (no cancellation).
+    // One exp and two logs instead of two pow calls (pow of a base near 1 was 70% of the cost).
+    return exp(-smooth.del * log(one_minus_x / dp + edge_sigma * pp) - smooth.gam * log(one_plus_x / dm + edge_sigma * pm));
+  }
+  std::size_t edge_power = 0;   ///< 0: q is the Taylor polynomial; K + 1 (even): edge-damped q
+  Real edge_sigma = 1;
+  /// Gauss nodes per panel of the quadratures of phi (split_integrator callers use 4 fewer):
+  /// K/2 + 16 for the Taylor factor; K/2 + 10 in normalized mode (alpha < 0.01: measured
+  /// <= 1e-15 in int g, 20% faster); K/2 + 28 for the edge-damped factor, whose complex zeros of
+  /// D+- lie ~0.3 (1 - |x0|) from the real axis (with K/2 + 16 the images stalled at 1e-9).
+  std::size_t quadrature_nodes() const { return q.size() / 2 + (edge_power != 0 ? 28 : (normalized ? 10 : 16)); }
   /// Leading-edge intensity lim g (t-a)^(-gam): smooth part plus C 2^del q(-1) E(-1), times (2/L)^gam.
   Real intensity_leading() const {
     using std::pow;
@@ -199,10 +281,12 @@ struct enriched_solution {
   Real coefficient_tail = 0;
   std::size_t degree = 0;
   solve_status status = solve_status::converged;
-  std::size_t taylor_degree = 0;  ///< K, the order of the local expansion built into phi
-  /// Estimated relative rounding floor of the Chebyshev tail, max|q| eps (see
-  /// detail::taylor_amplification): the adaptive loop stops (converged) once the tail is at this
-  /// floor even if options.tolerance is smaller. An estimate, not a bound.
+  /// K, the order of the local expansion built into phi (Taylor or edge-damped factor: see
+  /// density.edge_power).
+  std::size_t taylor_degree = 0;
+  /// Estimated relative rounding floor of the Chebyshev tail, max|q| eps over [-1, 1] (edge-damped
+  /// factor: max(max|q|, 64) eps, its quadrature plateau): the adaptive loop stops (converged) once
+  /// the tail is below 4x this even if options.tolerance is smaller. An estimate, not a bound.
   Real rounding_floor = 0;
 };
 
@@ -222,6 +306,21 @@ Real max_taylor_amplification() {
   return Real(10000);
 }
 
+/// First sampling grid of solve_step's adaptive loop (first-kind Chebyshev points; the next
+/// levels have 3x as many and contain it).
+inline std::size_t initial_step_sampling_size() { return 65; }
+
+/// Below this automatic Taylor degree solve_step switches to the edge-damped factor.
+template <class Real>
+std::size_t min_taylor_degree() {
+  return 5;
+}
+/// K of the edge-damped factor (odd: K + 1 even keeps D+- > 0 on [-1, 1]).
+template <class Real>
+std::size_t edge_damped_degree() {
+  return 5;
+}
+
 namespace detail {
 
 /// Composite quadrature of int_{-1}^{1} over pieces split at the sorted points, with the
@@ -230,6 +329,7 @@ template <class Real>
 class split_integrator {
  public:
   explicit split_integrator(std::size_t nodes) : nodes_(nodes) {}
+  std::size_t nodes() const { return nodes_; }
 
   /// points: sorted interior break/singular points in (-1, 1) with the exponent of the
   /// singularity there on its left side and right side; ends with exponents (q at -1, p at +1).
@@ -322,8 +422,12 @@ Real taylor_amplification(const std::vector<Real>& q, const Real& x0) {
 
 /// A~[phi](y) (reference interval, without (L/2)^alpha) by split composite quadrature.
 template <class Real>
-Real enrichment_image(const enriched_density<Real>& d, const abel_parameters<Real>& par, const split_integrator<Real>& si,
+Real enrichment_image(const enriched_density<Real>& d, const abel_parameters<Real>& par, const split_integrator<Real>& si_in,
                       const Real& y) {
+  // The edge-damped factor needs more nodes than a caller sized for a Taylor polynomial may give.
+  std::optional<split_integrator<Real>> own;
+  if (si_in.nodes() + 4 < d.quadrature_nodes()) own.emplace(d.quadrature_nodes() - 4);
+  const split_integrator<Real>& si = own ? *own : si_in;
   using std::pow;
   const Real alpha = par.alpha(), kappa = par.kappa();
   const Real x0 = d.x0;
@@ -343,7 +447,6 @@ Real enrichment_image(const enriched_density<Real>& d, const abel_parameters<Rea
   right_exp = {exponent_of(kind[0]), exponent_of(kind[1]), d.smooth.del};
   return si.integrate(cuts, left_exp, right_exp, [&](std::size_t k, const Real& u, const Real& v) {
     // Node at distance u from cuts[k], v from cuts[k+1].
-    const Real x = u <= v ? cuts[k] + u : cuts[k + 1] - v;
     // Distances to every singular point, accurate near the piece ends.
     auto distance_to = [&](std::size_t point) -> Real {  // point index into cuts
       if (point == k) return u;
@@ -366,10 +469,7 @@ Real enrichment_image(const enriched_density<Real>& d, const abel_parameters<Rea
         value *= is_end ? coef : coef * pow(distance_to(point), alpha - 1);
       }
     }
-    const Real uu = x - x0;
-    Real qq = 0;
-    for (std::size_t j = d.q.size(); j-- > 0;) qq = qq * uu + d.q[j];
-    return value * qq;
+    return value * d.q_at(one_plus_x, one_minus_x);
   });
 }
 
@@ -391,7 +491,8 @@ namespace detail {
 /// |u|^-alpha is entire. The rest is
 /// graded toward x0 from distance delta (a few panels). This replaces the former geometric
 /// grading down to a gap of 1e-18 (~60 panels per piece) and cuts the cost of the small-alpha
-/// path by ~5 (26 -> 5 ms at alpha = 0, measured with the Gauss-Jacobi rule cache; now ~2 ms).
+/// path by ~5 (26 -> 5 ms at alpha = 0, measured with the Gauss-Jacobi rule cache; now ~0.9 ms
+/// for a whole 65-point solve, see the header).
 enum class piece_end { interval_end, x0, interior };
 
 /// Composite Gauss-Jacobi part of enrichment_piece (no log-type end). k is called with the
@@ -405,7 +506,7 @@ Real enrichment_piece_panels(const enriched_density<Real>& d, const Real& a, con
   const bool right_side = a >= d.x0;
   const Real qa = a_end == piece_end::interval_end ? d.smooth.gam : (a_end == piece_end::x0 ? d.x0_exponent() : Real(0));
   const Real pb = b_end == piece_end::interval_end ? d.smooth.del : (b_end == piece_end::x0 ? d.x0_exponent() : Real(0));
-  const panel_integrator<Real> rule(pb, qa, d.q.size() / 2 + 16);
+  const panel_integrator<Real> rule(pb, qa, d.quadrature_nodes());
   return rule.integrate(b - a, d_left, d_right, [&](const Real& u, const Real& v) {
     const Real one_plus_x = (a + 1) + u, one_minus_x = (1 - b) + v;
     const Real x = one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x;
@@ -415,7 +516,7 @@ Real enrichment_piece_panels(const enriched_density<Real>& d, const Real& a, con
     const Real dist = right_side ? (a - d.x0) + u : (d.x0 - b) + v;
     const bool at_x0 = right_side ? a_end == piece_end::x0 : b_end == piece_end::x0;
     value *= at_x0 ? d.E_over_weight(dist, right_side) : d.E_full(dist, right_side);
-    return value * d.q_at(x) * k(x, u + offset_a, v + offset_b);
+    return value * d.q_at(one_plus_x, one_minus_x) * k(x, u + offset_a, v + offset_b);
   });
 }
 
@@ -443,7 +544,7 @@ Real enrichment_piece(const enriched_density<Real>& d, const Real& a, const Real
     const Real one_plus_x = (a + 1) + u, one_minus_x = (1 - b) + v;
     const Real x = one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x;
     const Real value = pow(one_plus_x, d.smooth.gam) * pow(one_minus_x, d.smooth.del) * d.E_full(dist, x0_at_a);
-    near += lag.weight[i] * value * d.q_at(x) * k(x, u, v);
+    near += lag.weight[i] * value * d.q_at(one_plus_x, one_minus_x) * k(x, u, v);
   }
   near *= delta;
   if (x0_at_a)
@@ -541,7 +642,7 @@ Real enrichment_image_uniform(const enriched_density<Real>& d, const abel_parame
   // f at distances (1+x, 1-x): w q E.
   auto f_at = [&](const Real& one_plus_x, const Real& one_minus_x) { return d.phi(one_plus_x, one_minus_x); };
   const Real f_y = f_at(1 + y, 1 - y);
-  const panel_integrator<Real> near(Real(0), alpha, d.q.size() / 2 + 16);
+  const panel_integrator<Real> near(Real(0), alpha, d.quadrature_nodes());
   const Real R = near.integrate(eps, inf, eps, [&](const Real& u, const Real&) {
     return (f_at((1 + y) + u, (1 - y) - u) - f_y) / u;
   });
@@ -586,7 +687,7 @@ Real apply(const abel_operator<Real>& op, const enriched_density<Real>& g, const
   using std::pow;
   const Real h = op.half_length(), alpha = op.parameters().alpha(), kappa = op.parameters().kappa();
   Real value = op.apply(g.smooth, s);
-  const detail::split_integrator<Real> si(g.q.size() / 2 + 12);
+  const detail::split_integrator<Real> si(g.quadrature_nodes() - 4);
   if (s > op.lo() && s < op.hi()) {
     const Real y = -1 + (s - op.lo()) / h;
     return value + pow(h, alpha) * g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, y);
@@ -604,6 +705,13 @@ Real apply(const abel_operator<Real>& op, const enriched_density<Real>& g, const
 }
 
 /// Solves A g = F on [lo, hi] for F smooth except for a jump at t0 in (lo, hi) (see header).
+/// taylor_degree = 0 (default): automatic factor q (Taylor polynomial of the largest K <= 12 with
+/// max|q| <= 1e4, or the edge-damped factor of degree 5 when that K is below 5); taylor_degree =
+/// K > 0 forces the Taylor polynomial of degree K. options.degree != 0 fixes the number of
+/// sampling points (m or m + 1, see grid_size_avoiding); otherwise adaptive, 65 -> 195 -> 585 ->
+/// ... up to options.max_degree points. Returns the density with the evidence: status,
+/// coefficient_tail (estimate of the relative error of the image expansion), rounding_floor,
+/// residual (an estimate, see header), solvability_defect (nu = -1), degree and taylor_degree.
 template <class Real, class F>
 enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, edge trailing, F&& f, const Real& t0,
                                    const solve_options<Real>& options = {}, std::size_t taylor_degree = 0) {
@@ -631,6 +739,7 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   g.x0 = x0;
   g.kappa = kappa;
   g.alpha = alpha;
+  const bool auto_degree = taylor_degree == 0;
   if (taylor_degree == 0) {
     // q has radius of convergence 1 - |x0| and grows like ((1 + |x0|)/(1 - |x0|))^K on the far
     // side, which sets a rounding floor ~ max|q| eps (taylor_amplification). Largest K <= 12
@@ -644,8 +753,32 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
       }
   }
   g.q = detail::inverse_weight_taylor(e.gam, e.del, x0, taylor_degree);
+  auto amplification = [&] {  // max |q| on [-1, 1]: the ends and 64 first-kind Chebyshev points
+    Real amp = std::max(abs(g.q_at(Real(0), Real(2))), abs(g.q_at(Real(2), Real(0))));
+    const detail::chebyshev_grid<Real> grid(64);
+    for (std::size_t j = 0; j < 64; ++j) amp = std::max(amp, Real(abs(g.q_at(grid.one_plus_x[j], grid.one_minus_x[j]))));
+    return amp;
+  };
+  if (auto_degree && taylor_degree < min_taylor_degree<Real>()) {
+    // Apex near an edge: the edge-damped factor (see header) instead of a short Taylor
+    // polynomial, unless it amplifies too (a negative edge exponent: (1/D)^del grows like
+    // D^|del| where D is large, far from the apex); then the Taylor factor stays.
+    const std::vector<Real> taylor = g.q;
+    g.q.assign(edge_damped_degree<Real>() + 1, Real(0));
+    g.q[0] = 1;
+    g.edge_power = edge_damped_degree<Real>() + 1;
+    if (amplification() <= max_taylor_amplification<Real>()) {
+      taylor_degree = edge_damped_degree<Real>();
+    } else {
+      g.q = taylor;
+      g.edge_power = 0;
+    }
+  }
   sol.taylor_degree = taylor_degree;
-  sol.rounding_floor = detail::taylor_amplification(g.q, x0) * std::numeric_limits<Real>::epsilon();
+  // Edge-damped factor: max|q| ~ 1, but the quadrature of its images (complex zeros of D+- near
+  // the real axis) leaves a plateau of the tail at 1e-14 .. 1e-13 (measured): floor >= 64 eps.
+  sol.rounding_floor = (g.edge_power != 0 ? std::max(amplification(), Real(64)) : amplification()) *
+                       std::numeric_limits<Real>::epsilon();
   // Jump of F at t0 from one-sided values (F is evaluated on each side only).
   const Real delta = 64 * std::numeric_limits<Real>::epsilon() * max(abs(t0), op.hi() - op.lo());
   const Real left_value = f(t0 - delta), right_value = f(t0 + delta);
@@ -667,9 +800,9 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   }
   g.enrichment = scale_F * (left_value - right_value) / (w0 * J_E);
 
-  const detail::split_integrator<Real> si(taylor_degree / 2 + 12);
+  const detail::split_integrator<Real> si(g.quadrature_nodes() - 4);
   const Real p = e.gam + Real(e.nu), qI = e.del + Real(e.nu);
-  std::size_t m = options.degree != 0 ? options.degree : 17;
+  std::size_t m = options.degree != 0 ? options.degree : std::min(initial_step_sampling_size(), std::max<std::size_t>(options.max_degree, 2));
   std::vector<Real> a;
   Real tail = 0, previous_tail = std::numeric_limits<Real>::infinity();
   // Sampling points stay at least `margin` away from x0 (reference variable): far enough that the
@@ -678,19 +811,32 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   using std::sqrt;
   const Real margin = sqrt(std::numeric_limits<Real>::epsilon()) * (1 + max(abs(op.lo()), abs(op.hi())) / h);
   std::size_t used = m;
+  // Nested grids: the first-kind grid of size 3m contains the grid of size m (node j is node
+  // 3j + 1), so a level reuses the remainder values of the previous one and computes 2m new ones.
+  std::vector<Real> values, abs_data;
   for (;;) {
+    const std::size_t previous_used = values.size();
     used = detail::grid_size_avoiding(m, x0, margin);
+    const bool nested = previous_used != 0 && used == 3 * previous_used;
     const detail::chebyshev_grid<Real> grid(used);
-    std::vector<Real> values(used);
-    Real biggest = 0;
+    std::vector<Real> next_values(used), next_abs(used);
     for (std::size_t j = 0; j < used; ++j) {
+      if (nested && j % 3 == 1) {
+        next_values[j] = values[j / 3];
+        next_abs[j] = abs_data[j / 3];
+        continue;
+      }
       const Real s = grid.one_plus_x[j] <= grid.one_minus_x[j] ? op.lo() + h * grid.one_plus_x[j]
                                                                : op.hi() - h * grid.one_minus_x[j];
       const Real v = f(s);
       detail::check_finite_value("rhabel::abel::solve_step", v, s);
-      biggest = max(biggest, abs(scale_F * v));
-      values[j] = scale_F * v - g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, grid.x[j]);
+      next_abs[j] = abs(scale_F * v);
+      next_values[j] = scale_F * v - g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, grid.x[j]);
     }
+    values = std::move(next_values);
+    abs_data = std::move(next_abs);
+    Real biggest = 0;
+    for (const Real& v : abs_data) biggest = max(biggest, v);
     a = detail::chebyshev_coefficients(values);
     const std::size_t tail_start = used - std::max<std::size_t>(2, used / 8);
     tail = 0;
@@ -702,13 +848,20 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
     // tail to stagnate was measured: it doubles the points, 65 -> 513 at eps = 0.1, without
     // improving int g.)
     if (tail <= 4 * sol.rounding_floor) break;
-    if (tail <= 1024 * std::numeric_limits<Real>::epsilon() && previous_tail <= 10 * tail) break;
+    // Plateau: a tail below 1024 eps that no longer decays, against the previous level or within
+    // this one (the coefficients of the second half before the tail), is rounding noise.
+    Real middle = 0;
+    for (std::size_t k = used / 2; k < tail_start; ++k) middle = max(middle, abs(a[k]));
+    if (biggest > 0) middle /= biggest;
+    if (tail <= 1024 * std::numeric_limits<Real>::epsilon() && std::min(previous_tail, middle) <= 10 * tail) break;
     previous_tail = tail;
-    if (2 * m - 1 > options.max_degree) {
+    // Next level: 3m (nested) up to options.max_degree points; a last level of exactly
+    // max_degree points (not nested) when 3m would exceed it.
+    if (used >= options.max_degree) {
       sol.status = solve_status::not_converged;
       break;
     }
-    m = 2 * m - 1;
+    m = std::min<std::size_t>(3 * used, options.max_degree);
   }
   Real biggest_a = 0;
   for (const Real& v : a) biggest_a = max(biggest_a, abs(v));

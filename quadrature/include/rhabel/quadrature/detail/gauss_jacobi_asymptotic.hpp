@@ -16,9 +16,10 @@
 //   bound_m = 2^-m / (2 rho + 1)_m sum_l |alpha_l beta_{m-l}| s^-l c^-(m-l),
 // and the evaluation stops at the first m with bound_m < eps / 16. If no m < 30 reaches that,
 // or if the sum of the bounds exceeds 2 (the terms first grow like (p^2/(2 rho t))^m / m! for
-// large p, and cancellation would cost accuracy), the point is outside the interior region and
-// the caller uses the recurrence. Measured at n = 10^6: the interior starts at rho t = 20 for
-// |p| <= 2, 22 for p = 5, and ~650 for p = 30. evaluate_batch sums the same series for up to
+// large p, and cancellation would cost accuracy; (2p + 1)/4 for p > 5, see
+// hahn_admissible_total), the point is outside the interior region and the caller uses the
+// recurrence. Measured at n = 10^6: the interior starts at rho t = 20 for |p| <= 2, 22 for
+// p = 5, 32 for p = 10 and ~165 for p = 30 (~650 with the bound 2). evaluate_batch sums the same series for up to
 // 32 points at once with the number of terms its first point needs (the bounds decrease with t
 // in the interior), so a later point may get a few more terms than it needs, each below eps/16
 // of the amplitude; the caller checks every point's last bound and bound sum.
@@ -51,7 +52,18 @@ namespace rhabel::quadrature::detail {
 inline constexpr int hahn_max_terms = 30;
 // Largest admissible sum of the term bounds: the terms may first grow (by (p^2/(2 rho t))^m/m!)
 // before they decay, and the rounding error of G is about eps times this sum (G has amplitude 1).
+// For exponents a <= hahn_large_exponent (the accuracy contract of gauss_jacobi.hpp).
 inline constexpr double hahn_max_total = 2;
+// Beyond this exponent at the end the admissible sum is (2a + 1)/4 (hahn_admissible_total):
+// the interior weights there already carry s^(2a+1), which turns the rounding of the node
+// into a relative error of up to (2a + 1) ulp (measured 62 eps at a = 30), so a rounding error
+// of G' up to a quarter of that is not visible in the weights; and it moves the first interior
+// node at a = 30 from rho t ~ 650 to ~ 160 (37 instead of 191 boundary nodes, each an O(n)
+// recurrence sweep: n = 10^6 in 0.15 s instead of 0.4 s). Measured at a = 30, n = 4000,
+// against the long double recurrence: the nodes that became interior have weight errors
+// <= 50 eps, below the 55-62 eps of the interior nodes beyond them.
+inline constexpr double hahn_large_exponent = 5;
+inline double hahn_admissible_total(double a) { return a <= hahn_large_exponent ? hahn_max_total : (2 * a + 1) / 4; }
 
 // The weight factor Q of the header comment (symmetric in a, b).
 inline double hahn_weight_factor(std::size_t n, double p, double q) {
@@ -75,7 +87,7 @@ class hahn_expansion {
   // Largest batch of evaluate_batch.
   static constexpr std::size_t batch_size = 32;
 
-  hahn_expansion(std::size_t n, double a, double b) : a_(a) {
+  hahn_expansion(std::size_t n, double a, double b) : a_(a), max_total_(hahn_admissible_total(a)) {
     rho_ = static_cast<double>(n) + (a + b + 1) / 2;
     alpha_.resize(hahn_max_terms);
     beta_.resize(hahn_max_terms);
@@ -90,10 +102,12 @@ class hahn_expansion {
   }
 
   double rho() const { return rho_; }
+  // The largest admissible sum of the term bounds at this end (hahn_admissible_total).
+  double max_total() const { return max_total_; }
 
   // G(t) and G'(t) (value, slope), with s = sin(t/2) and c = cos(t/2). Returns false when
   // the series does not reach the tolerance within hahn_max_terms terms at t, or the sum of
-  // the bounds exceeds hahn_max_total (t is then outside the interior region).
+  // the bounds exceeds max_total() (t is then outside the interior region).
   bool evaluate(double t, double& value, double& slope, double& s, double& c) const {
     s = std::sin(t / 2);
     c = std::cos(t / 2);
@@ -134,7 +148,7 @@ class hahn_expansion {
       value += w * (cos_phi * U + sin_phi * V);
       slope += w * ((2 * rho_ + m) / 2 * (cos_phi * V - sin_phi * U) + cos_phi * dU + sin_phi * dV);
       total += w * bound;
-      if (w * bound < tolerance) return total <= hahn_max_total;
+      if (w * bound < tolerance) return total <= max_total_;
       // phi_{m+1} = phi_m + t/2: rotate by the angle t/2.
       const double next_cos = cos_phi * c - sin_phi * s;
       sin_phi = sin_phi * c + cos_phi * s;
@@ -172,11 +186,18 @@ class hahn_expansion {
     double power_s[hahn_max_terms][batch_size], power_c[hahn_max_terms][batch_size];  // s^-l, c^-j
     double half_cot[batch_size], half_tan[batch_size];
     double U[batch_size], V[batch_size], dU[batch_size], dV[batch_size], bound[batch_size];
+    // Local copies of the in/out arrays: with six pointer arguments the compiler did not
+    // vectorise the accumulation loop below (too many runtime alias checks; it was the hottest
+    // line of the rule at n = 10^4).
+    double cos_phase[batch_size], sin_phase[batch_size], G[batch_size], G_slope[batch_size], sum[batch_size];
+    double last[batch_size];
     for (std::size_t i = 0; i < count; ++i) {
       half_cot[i] = c[i] * c[i] * inverse_sc[i] / 2;
       half_tan[i] = s[i] * s[i] * inverse_sc[i] / 2;
       power_s[0][i] = power_c[0][i] = 1;
-      value[i] = slope[i] = total[i] = 0;
+      G[i] = G_slope[i] = sum[i] = last[i] = 0;
+      cos_phase[i] = cos_phi[i];
+      sin_phase[i] = sin_phi[i];
     }
     for (int m = 1; m < terms; ++m) {
       for (std::size_t i = 0; i < count; ++i) {
@@ -185,38 +206,70 @@ class hahn_expansion {
       }
     }
     for (int m = 0; m < terms; ++m) {
-      for (std::size_t i = 0; i < count; ++i) U[i] = V[i] = dU[i] = dV[i] = bound[i] = 0;
+      // The terms l = 0 (the first of U) and l = 1 (the first of V) initialise the sums, the
+      // others accumulate (zeroing the five arrays per term instead cost 1/6 of this routine
+      // in memset calls at n = 10^4); the order of the additions is that of evaluate_at.
       for (int l = 0; l <= m; ++l) {
         const double coefficient = ((l & 2) ? -1.0 : 1.0) * alpha_[l] * beta_[m - l];
         const double magnitude = std::abs(coefficient);
         const double j = m - l, ll = l;
-        double* sum = (l & 1) ? V : U;
-        double* sum_slope = (l & 1) ? dV : dU;
+        double* partial = (l & 1) ? V : U;
+        double* partial_slope = (l & 1) ? dV : dU;
         const double* ps = power_s[l];
         const double* pc = power_c[m - l];
-        for (std::size_t i = 0; i < count; ++i) {
-          const double power = ps[i] * pc[i];
-          const double product = coefficient * power;
-          sum[i] += product;
-          sum_slope[i] += product * (j * half_tan[i] - ll * half_cot[i]);
-          bound[i] += magnitude * power;
+        if (l == 0) {
+          for (std::size_t i = 0; i < count; ++i) {
+            const double power = ps[i] * pc[i];
+            const double product = coefficient * power;
+            partial[i] = product;
+            partial_slope[i] = product * (j * half_tan[i] - ll * half_cot[i]);
+            bound[i] = magnitude * power;
+          }
+        } else if (l == 1) {
+          for (std::size_t i = 0; i < count; ++i) {
+            const double power = ps[i] * pc[i];
+            const double product = coefficient * power;
+            partial[i] = product;
+            partial_slope[i] = product * (j * half_tan[i] - ll * half_cot[i]);
+            bound[i] += magnitude * power;
+          }
+        } else {
+          for (std::size_t i = 0; i < count; ++i) {
+            const double power = ps[i] * pc[i];
+            const double product = coefficient * power;
+            partial[i] += product;
+            partial_slope[i] += product * (j * half_tan[i] - ll * half_cot[i]);
+            bound[i] += magnitude * power;
+          }
         }
+      }
+      if (m == 0) {
+        for (std::size_t i = 0; i < count; ++i) V[i] = dV[i] = 0;
       }
       const double w = inverse_[m], frequency = (2 * rho_ + m) / 2;
       for (std::size_t i = 0; i < count; ++i) {
-        value[i] += w * (cos_phi[i] * U[i] + sin_phi[i] * V[i]);
-        slope[i] += w * (frequency * (cos_phi[i] * V[i] - sin_phi[i] * U[i]) + cos_phi[i] * dU[i] + sin_phi[i] * dV[i]);
-        total[i] += w * bound[i];
-        last_bound[i] = w * bound[i];
-        const double next_cos = cos_phi[i] * c[i] - sin_phi[i] * s[i];
-        sin_phi[i] = sin_phi[i] * c[i] + cos_phi[i] * s[i];
-        cos_phi[i] = next_cos;
+        G[i] += w * (cos_phase[i] * U[i] + sin_phase[i] * V[i]);
+        G_slope[i] += w * (frequency * (cos_phase[i] * V[i] - sin_phase[i] * U[i]) + cos_phase[i] * dU[i] +
+                           sin_phase[i] * dV[i]);
+        sum[i] += w * bound[i];
+        last[i] = w * bound[i];
+        const double next_cos = cos_phase[i] * c[i] - sin_phase[i] * s[i];
+        sin_phase[i] = sin_phase[i] * c[i] + cos_phase[i] * s[i];
+        cos_phase[i] = next_cos;
       }
+    }
+    for (std::size_t i = 0; i < count; ++i) {
+      value[i] = G[i];
+      slope[i] = G_slope[i];
+      total[i] = sum[i];
+      last_bound[i] = last[i];
+      cos_phi[i] = cos_phase[i];
+      sin_phi[i] = sin_phase[i];
     }
   }
 
  private:
-  double a_, rho_;
+  double a_, max_total_, rho_;
   std::vector<double> alpha_, beta_, inverse_;
 };
 
