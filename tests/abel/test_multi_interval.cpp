@@ -32,6 +32,12 @@ std::vector<std::function<double(double)>> minus_s(std::size_t count) {
   return std::vector<std::function<double(double)>>(count, [](double s) { return -s; });
 }
 
+/// solve_union on the bounded/bounded unit_pair(gap) with F = -s on both intervals.
+multi_solution<double> solve_bounded_pair(const abel_parameters<double>& par, double gap,
+                                          const multi_solve_options<double>& options) {
+  return solve_union(par, unit_pair(gap, edge::bounded, edge::bounded), minus_s(2), options);
+}
+
 }  // namespace
 
 TEST_CASE("two separated intervals, mixed classes: independent residual and loads") {
@@ -113,13 +119,11 @@ TEST_CASE("homogeneous directions (nu = +1) solve the coupled system with zero d
 
 TEST_CASE("nearly touching intervals (gap 1e-6): reported residual is honest and improves with degree") {
   abel_parameters<double> par(0.3, 0.2);
-  const auto intervals = unit_pair(1e-6, edge::bounded, edge::bounded);
-  const auto F = minus_s(2);
   double previous = 1e300;
   for (std::size_t degree : {16, 32, 64}) {
     multi_solve_options<double> options;
     options.degree = degree;
-    const auto sol = solve_union(par, intervals, F, options);
+    const auto sol = solve_bounded_pair(par, 1e-6, options);
     CHECK(std::isfinite(sol.residual));
     CHECK(sol.residual < previous);
     previous = sol.residual;
@@ -136,11 +140,9 @@ TEST_CASE("nearly touching intervals (gap 1e-6): reported residual is honest and
 TEST_CASE("nearly touching intervals (gap 1e-2): the residual is never sampled at the collocation points") {
   abel_parameters<double> par(0.3, 0.2);
   const double gap = 1e-2;
-  const auto intervals = unit_pair(gap, edge::bounded, edge::bounded);
-  const auto F = minus_s(2);
   multi_solve_options<double> options;
   options.degree = 128;
-  const auto fine = solve_union(par, intervals, F, options);
+  const auto fine = solve_bounded_pair(par, gap, options);
   // 1e-12: measured residual 2.3e-14 at degree 128 (2.1e-11 at 96; the cross terms are nearly
   // singular on the scale of the gap).
   CHECK(fine.residual < 1e-12);
@@ -148,7 +150,7 @@ TEST_CASE("nearly touching intervals (gap 1e-2): the residual is never sampled a
   for (std::size_t points : {16, 32}) {
     options.degree = 16;
     options.residual_points = points;
-    const auto coarse = solve_union(par, intervals, F, options);
+    const auto coarse = solve_bounded_pair(par, gap, options);
     const double error = std::abs(coarse.densities[0].integral() / fine.densities[0].integral() - 1);
     INFO("residual points " << points << ": error " << error << ", residual " << coarse.residual);
     CHECK(error > 1e-4);                      // the degree-16 solution is poor ...
@@ -164,12 +166,10 @@ TEST_CASE("nearly touching intervals (gap 1e-2): the residual is never sampled a
 TEST_CASE("gap 1e-6, alpha 0.3: not_converged with an honest residual, adaptive loop stops at max_degree") {
   abel_parameters<double> par(0.3, 0.2);
   const double gap = 1e-6;
-  const auto intervals = unit_pair(gap, edge::bounded, edge::bounded);
-  const auto F = minus_s(2);
   multi_solve_options<double> options;
   options.degree = 48;
   options.max_degree = 108;  // 48 -> 72 -> 108
-  const auto sol = solve_union(par, intervals, F, options);
+  const auto sol = solve_bounded_pair(par, gap, options);
   INFO("residual=" << sol.residual);
   CHECK(sol.degree == 108);
   CHECK(sol.status == solve_status::not_converged);
@@ -245,12 +245,10 @@ TEST_CASE("gap 1e-4, alpha 0, beta 0: the coupled homogeneous density is (c0 + c
 TEST_CASE("gap 1e-4, alpha 0.25, beta 0.3, bounded ends: residual <= 1e-9 and int g to 1e-9 at degree 768") {
   abel_parameters<double> par(0.25, 0.3);
   const double gap = 1e-4;
-  const auto intervals = unit_pair(gap, edge::bounded, edge::bounded);
-  const auto F = minus_s(2);
   multi_solve_options<double> options;
   options.degree = 768;
   options.residual_points = 16;
-  const auto sol = solve_union(par, intervals, F, options);
+  const auto sol = solve_bounded_pair(par, gap, options);
   const double reference[2] = {0.40988240595917425, 0.23221830030750071};  // degree 1536
   INFO("residual=" << sol.residual);
   // 1e-9: measured residual 3e-10 and int g errors 7e-11 at degree 768 (5e-8 and 2e-8 at 546).
