@@ -183,6 +183,12 @@ struct jacobi_density {
     if (coefficients.empty()) return Real(0);
     return rhabel::quadrature::jacobi_clenshaw(coefficients, del, gam, x);
   }
+  /// series(x) for many x: the recurrence coefficients computed once (quadrature::jacobi_series,
+  /// the same sum as series() bit for bit; zero for an empty series).
+  rhabel::quadrature::jacobi_series<Real> series_evaluator() const {
+    return coefficients.empty() ? rhabel::quadrature::jacobi_series<Real>()
+                                : rhabel::quadrature::jacobi_series<Real>(coefficients, del, gam);
+  }
 
   /// int_lo^hi g(t) dt = (L/2) c_0 h_0^(del,gam)  (orthogonality).
   Real integral() const {

@@ -165,9 +165,7 @@ Real independent_residual(const abel_operator<Real>& op, const abel_solution<Rea
                                                                     sol.density.coefficients.size());
   // sol.density.series(x) with the recurrence coefficients computed once (the same sum to a few
   // ulps; quadrature::jacobi_series): it is evaluated at every node of every check point.
-  const auto series = sol.density.coefficients.empty()
-                          ? rhabel::quadrature::jacobi_series<Real>()
-                          : rhabel::quadrature::jacobi_series<Real>(sol.density.coefficients, sol.density.del, sol.density.gam);
+  const auto series = sol.density.series_evaluator();
   Real worst = 0, scale = 0;
   for (std::size_t j = 0; j < points; ++j) {
     const Real s = grid.one_plus_x[j] <= grid.one_minus_x[j] ? op.lo() + h * grid.one_plus_x[j]

@@ -383,13 +383,18 @@ Real union_residual(const abel_parameters<Real>& par, const std::vector<interval
       if (i != j)
         nodes[i] = make_cross_nodes(sol.densities[i], union_gap(intervals, i, j), i > j,
                                     sol.densities[i].coefficients.size() / 2 + 24);
-    // g_i at the cross nodes once (the residual is O(points x nodes), the series O(nodes x degree)).
+    // g_i at the cross nodes once (the residual is O(points x nodes), the series O(nodes x degree)),
+    // each series with its recurrence coefficients computed once (jacobi_density::series_evaluator).
     std::vector<std::vector<Real>> series(K);
-    for (std::size_t i = 0; i < K; ++i)
-      for (const auto& x : nodes[i].x) series[i].push_back(sol.densities[i].series(x));
+    for (std::size_t i = 0; i < K; ++i) {
+      if (i == j) continue;
+      const auto gi = sol.densities[i].series_evaluator();
+      for (const auto& x : nodes[i].x) series[i].push_back(gi(x));
+    }
+    const auto gj_series = gj.series_evaluator();
     Real worst_j = 0, scale_j = 0;
     for (const auto& pt : pts) {
-      Real value = own([&](const Real& x) { return gj.series(x); }, pt.s);
+      Real value = own([&](const Real& x) { return gj_series(x); }, pt.s);
       for (std::size_t i = 0; i < K; ++i) {
         if (i == j) continue;
         const bool right = i > j;

@@ -280,7 +280,7 @@ class index0_abel {
     // the log is integrated exactly against (y-x)^(-alpha) on the panel touching y.
     Real lambda = 0;
     for (const auto& s : F_.steps)
-      if (s.position == y) lambda += c_ * c_ * s.size / (boost::math::constants::pi<Real>() * boost::math::constants::pi<Real>());
+      if (s.position == y) lambda += log_coefficient(s.size);
     Real sum = 0;
     for (const auto& panel : panels(y)) {
       const bool at_a = panel.first == a_, at_y = panel.second == y;
@@ -583,7 +583,7 @@ class index0_abel {
 // (ratio 1/2) towards b until they are shorter than `finest`; every panel is interpolated at
 // `points` Chebyshev points of the first kind (never at a, b or a step). Each panel then sees its
 // nearest singularity at a distance >= its own length (Bernstein ratio >= 3 + sqrt 8: 24 points
-// resolve A~ to rounding). Within finest/2 of b, A~ is computed exactly (index0_abel::reduced).
+// resolve A~ to rounding). Within at most `finest` of b, A~ is computed exactly (index0_abel::reduced).
 // tail(): the largest |c_(points-1)| / max_k |c_k| over the panels, an indication (not a bound)
 // of the interpolation error relative to the panel's scale.
 template <class Real>
