@@ -4,7 +4,7 @@
 //
 // Targets (from the issue; measured, never asserted): n = 10^6 <= 100 ms and n = 10^4 <= 1 ms
 // single-threaded, and >= 100x faster than GSL at n = 4000; small rules (n = 8, the recurrence
-// path) compared with GSL as well. rhabel_other_exponents covers generic exponents (2p + 1 and
+// path) compared with GSL as well. rhabel_other_exponents covers generic exponents (2p + 1 or
 // 2q + 1 outside {0, 1/2, 1, 3/2, 2}: (-0.9, 0.3), (0.3, 0.7), (-0.5, 2.2), (4.5, -0.7)) and
 // large ones ((30, 0), (5, 5)); their accuracy at n = 4000 is printed first.
 //

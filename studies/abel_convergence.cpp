@@ -20,7 +20,7 @@
 //  * step_apex_eps_<eps>: adaptive solve_step with the apex at eps = (t0 - a)/L, 1e-6 .. 1 - 1e-6
 //    (alpha = 0.3, beta = 0.2): int g against Rodrigues, residual (with points next to the apex).
 //  * step_apex_rh_eps_<eps>: wedge data satisfying the orthogonality condition (nu = -1), apex at
-//    eps = 0.5 .. 0.999 (alpha = 0.3, beta = 0.2) and the punch layer's alpha = 0.2, 1e-3, 0,
+//    eps in {0.5, 0.8, 0.9, 0.97, 0.99, 0.999, 0.03, 0.001} (alpha = 0.3, beta = 0.2) and the punch layer's alpha = 0.2, 1e-3, 0,
 //    k = 0.5 wedge (eps = 0.84): int g and int_a^apex g against riemann::solve_abel_rh (the
 //    independent Riemann-Hilbert route), at 65, 195, 585 points and adaptive ("_adaptive").
 //  * kink (F = |s - t0|): int_a^t0 g against the degree-2048 solution (algebraic reference).

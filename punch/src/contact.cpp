@@ -714,9 +714,11 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
     }
     return;
   }
-  // Near an edge (near_edge, enrich_limit at the top): C_f of the isolated wedge from the
-  // Riemann-Hilbert route; very near, the density is the plain series (pressure unresolved next to
-  // the apex; C_f of a coupled wedge then by Richardson extrapolation of the series).
+  // Near an edge (near_edge, enrich_limit at the top): C_f and the pressure samples of the
+  // isolated wedge from the Riemann-Hilbert route; very near, the density is the plain series,
+  // which then serves only the residual and the displacement of an isolated wedge. A coupled
+  // wedge keeps the plain series for everything (pressure unresolved next to the apex; C_f by
+  // Richardson extrapolation of the series).
   const double edge_distance = std::min(eps, one_minus_eps);
   const bool enrich = cx.options.wedge_apex_split && edge_distance > enrich_limit;
   if (isolated && !enrich) {
@@ -870,7 +872,9 @@ boost::math::quadrature::tanh_sinh<double>& tanh_sinh_rule() {
 
 // Pressure samples of an isolated wedge from its Riemann-Hilbert solution g_1 on the unit interval
 // [lo, hi] = [-eps, 1 - eps], apex at 0 (wedge_by_rh): p(t) = scale g_1((t - apex)/L), scale =
-// (pi/2) E_U L^-alpha. g_1 costs ~50-100 us per point even from abel_rh_solution::densities (A~
+// (pi/2) E_U L^-alpha. g_1 costs ~50-130 us per point of these near-edge wedges even from
+// abel_rh_solution::densities (13-115 us per point on 1000-point grids with the apex 0.5 .. 0.01 L from an edge,
+// riemann/abel_solver.hpp; A~
 // interpolated once; most of it the far part next to the apex), so 1000 samples come from a
 // piecewise Chebyshev interpolant of g_1 built from one densities call at its ~100-200 nodes.
 // Structure of g_1 (the class nu = -1 with F constant next to either edge, math.md sections 3-5):

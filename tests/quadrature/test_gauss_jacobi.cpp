@@ -14,13 +14,12 @@
 // the Chebyshev closed form and Eigen, and the weight constants on both sides of their
 // product | gamma-ratio switch against 50-digit gamma functions; the batch endpoint factor
 // s^a c^b of the interior weights (detail/gauss_jacobi_power.hpp) against long double powl
-// (x87 format: 2^-63, 2000 times finer than the tolerance); and jacobi_weight's range checks.
+// (x87 format: 2^-63, 4096 times finer than the tolerance).
 // Runtime ~3.5 s CPU in Release, most of it the n = 10^6 rules.
 #include <doctest/doctest.h>
 
 #include <rhabel/quadrature/gauss_jacobi.hpp>
 
-#include "quadrature/support.hpp"
 
 #include <boost/math/special_functions/beta.hpp>
 #include <boost/multiprecision/cpp_bin_float.hpp>
@@ -616,8 +615,8 @@ TEST_CASE("endpoint_power: whole input range (subnormal-adjacent s, random order
   for (double a : endpoint_exponents) worst = std::max(worst, endpoint_power_worst(a, 0.7, s, c));
   MESSAGE("endpoint_power, whole range: worst " << worst << " eps");
   CHECK(worst <= endpoint_power_tolerance / eps);
-  // Exact cases: x^1 = x, x^0 = 1, (2^-k)^2 = 2^-2k through the series (a batch of powers of two
-  // near one anchor is not: their ratios are 2; these take pow), and pow's own special values.
+  // Exact cases: x^1 = x and (2^-k)^2 = 2^-2k (exponents 0 and 1, 2 take the sqrt/product path,
+  // not the series), 1^a = 1 for a generic pair, and pow's own special values.
   const rhabel::quadrature::detail::endpoint_power identity(1.0, 0.0), square(2.0, 0.0), generic(0.3, -0.7);
   std::vector<double> points = {0.5, 0.51, 0.52, 0.53, 0.54}, ones(points.size(), 1.0), out(points.size());
   identity(points.size(), points.data(), ones.data(), out.data());
@@ -628,17 +627,4 @@ TEST_CASE("endpoint_power: whole input range (subnormal-adjacent s, random order
   CHECK(generic(0.0, 1.0) == 0);                      // pow(0, 0.3) = 0
   CHECK(std::isinf(generic(1.0, 0.0)));                // pow(0, -0.7) = inf
   CHECK(std::isnan(generic(std::nan(""), 1.0)));     // NaN propagates, never a number
-}
-
-TEST_CASE("jacobi_weight: regression, complements above 2 and NaN are rejected (the message said [0, 2])") {
-  using rhabel::quadrature::jacobi_weight;
-  using rhabel_test::check_domain_error_mentions;
-  check_domain_error_mentions([] { jacobi_weight(0.5, 0.5, 2.5, 0.1); }, {"jacobi_weight", "one_minus_x", "2.5", "[0, 2]"});
-  check_domain_error_mentions([] { jacobi_weight(0.5, 0.5, 0.1, 2.0000000000000004); },
-                              {"jacobi_weight", "one_plus_x", "[0, 2]"});
-  check_domain_error_mentions([] { jacobi_weight(0.5, 0.5, std::nan(""), 1.0); }, {"jacobi_weight", "one_minus_x", "nan"});
-  check_domain_error_mentions([] { jacobi_weight(0.5, 0.5, 1.0, -1e-300); }, {"jacobi_weight", "one_plus_x"});
-  // The ends of the range are accepted: (1 - x)^p (1 + x)^q at x = -1 and at 1e-300 from +1.
-  CHECK(jacobi_weight(0.5, 2.0, 2.0, 0.0) == 0);
-  CHECK(jacobi_weight(-0.5, 0.0, 1e-300, 2.0) == doctest::Approx(1e150).epsilon(4 * eps));
 }

@@ -316,3 +316,16 @@ TEST_CASE("jacobi_p and jacobi_clenshaw on both sides of their algorithm switche
     }
   }
 }
+
+TEST_CASE("jacobi_weight: regression, complements above 2 and NaN are rejected (the message said [0, 2])") {
+  using rhabel::quadrature::jacobi_weight;
+  using rhabel_test::check_domain_error_mentions;
+  check_domain_error_mentions([] { jacobi_weight(0.5, 0.5, 2.5, 0.1); }, {"jacobi_weight", "one_minus_x", "2.5", "[0, 2]"});
+  check_domain_error_mentions([] { jacobi_weight(0.5, 0.5, 0.1, 2.0000000000000004); },
+                              {"jacobi_weight", "one_plus_x", "[0, 2]"});
+  check_domain_error_mentions([] { jacobi_weight(0.5, 0.5, std::nan(""), 1.0); }, {"jacobi_weight", "one_minus_x", "nan"});
+  check_domain_error_mentions([] { jacobi_weight(0.5, 0.5, 1.0, -1e-300); }, {"jacobi_weight", "one_plus_x"});
+  // The ends of the range are accepted: (1 - x)^p (1 + x)^q at x = -1 and at 1e-300 from +1.
+  CHECK(jacobi_weight(0.5, 2.0, 2.0, 0.0) == 0);
+  CHECK(jacobi_weight(-0.5, 0.0, 1e-300, 2.0) == doctest::Approx(1e150).epsilon(4 * eps));
+}

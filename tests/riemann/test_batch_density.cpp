@@ -57,7 +57,7 @@ TEST_CASE("densities: g(y) at the seven table points of every case as accurate a
   }
 }
 
-TEST_CASE("densities against density(): wedge step data, apex 0.5, 0.028 and 1e-3 L from the trailing edge") {
+TEST_CASE("densities against density(): wedge step data, apex 0.5, 0.05, 0.028 and 1e-3 L from the trailing edge, 0.02 L from the leading edge") {
   // The interpolated A~ must reproduce density() to rounding: both use the same algorithm and
   // orders, only the source of A~ differs. Measured <= 2.2e-13 relative to max(|g|, int g / L)
   // (alpha 0.2; the points nearest the apex, where the two orders of density() themselves

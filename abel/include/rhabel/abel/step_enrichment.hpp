@@ -845,8 +845,8 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
     if (options.degree != 0 || tail <= options.tolerance) break;
     // At the rounding floor of the enrichment (4 max|q| eps; measured 1-5 max|q| eps) more points
     // cannot help: converged to that floor (reported in rounding_floor). (Also requiring the
-    // tail to stagnate was measured: it doubles the points, 65 -> 513 at eps = 0.1, without
-    // improving int g.)
+    // tail to stagnate was measured with the former doubling levels: it took 65 -> 513 points at
+    // eps = 0.1 without improving int g.)
     if (tail <= 4 * sol.rounding_floor) break;
     // Plateau: a tail below 1024 eps that no longer decays, against the previous level or within
     // this one (the coefficients of the second half before the tail), is rounding noise.
@@ -898,9 +898,7 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
     }
     const Real defect = e.nu == -1 ? pow(h, alpha) * sol.solvability_defect : Real(0);
     // g.smooth.series with the recurrence coefficients computed once (quadrature::jacobi_series).
-    const auto series = g.smooth.coefficients.empty()
-                            ? rhabel::quadrature::jacobi_series<Real>()
-                            : rhabel::quadrature::jacobi_series<Real>(g.smooth.coefficients, g.smooth.del, g.smooth.gam);
+    const auto series = g.smooth.series_evaluator();
     Real worst = 0, scale = 0;
     for (const auto& [one_plus_y, one_minus_y] : points) {
       const Real s = one_plus_y <= one_minus_y ? op.lo() + h * one_plus_y : op.hi() - h * one_minus_y;

@@ -409,7 +409,8 @@ struct gauss_jacobi_half_target {
 // and the phase. The phase of the expansion at t is
 //   phi_0 = rho t - (a + 1/2) pi/2 = (k - 1/2) pi + epsilon,
 //   epsilon = [rho K - (k + a/2 - 1/4) pi] + rho correction,
-// the bracket (the rounding of the double K) formed by FMA and a two-term pi, so that
+// the bracket (the rounding of the double K) formed exactly by Dekker's two-product
+// (detail::two_product_error, no FMA call, so the loop vectorises) and a two-term pi, so that
 // cos phi_0 = (-1)^k sin epsilon and sin phi_0 = (-1)^(k+1) cos epsilon. This replaces the tan of
 // the guess and the sin and cos of a phase of size n (whose rounding alone is eps rho t) by one
 // sin and cos of K/2 and two small angles, and the phase of the double point t is known to a few

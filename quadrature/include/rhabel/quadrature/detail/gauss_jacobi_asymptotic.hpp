@@ -58,7 +58,7 @@ inline constexpr double hahn_max_total = 2;
 // the interior weights there already carry s^(2a+1), which turns the rounding of the node
 // into a relative error of up to (2a + 1) ulp (measured 62 eps at a = 30), so a rounding error
 // of G' up to a quarter of that is not visible in the weights; and it moves the first interior
-// node at a = 30 from rho t ~ 650 to ~ 160 (37 instead of 191 boundary nodes, each an O(n)
+// node at a = 30 from rho t ~ 650 to ~ 165 (38 instead of 191 boundary nodes, each an O(n)
 // recurrence sweep: n = 10^6 in 0.15 s instead of 0.4 s). Measured at a = 30, n = 4000,
 // against the long double recurrence: the nodes that became interior have weight errors
 // <= 50 eps, below the 55-62 eps of the interior nodes beyond them.

@@ -10,8 +10,8 @@
 // (0, 1]). Accuracy (relative, an estimate from tests, not a bound): within 2 eps, measured
 // 1.4 eps (tests/quadrature/test_gauss_jacobi.cpp, "endpoint_power" cases: node-like batches
 // and random ones against long double powl, s from subnormal to 1, exponents -1 + 1e-3 ... 61);
-// two calls of pow and their product, the former form, are within 1.5 ulp (measured 1.9 ulp of
-// the result's binade, as the new form). Exponents 0, 1/2, 1, 3/2, 2 of both factors keep sqrt and
+// two calls of pow and their product, the former form, measured 1.9 ulp of the result's binade
+// on the same inputs. Exponents 0, 1/2, 1, 3/2, 2 of both factors keep sqrt and
 // products (within 1.5 ulp). Where the series is not taken (below) the result is exactly
 // pow(s, a) * pow(c, b), including its zeros, infinities, NaN and intermediate overflow.
 //
@@ -24,8 +24,9 @@
 // series' roundings. A point takes the series only when |a f|, |b g| <= max_scaled_ratio = 1/16
 // (so |y| <= 1/4 and y errs by <= 0.4 eps) and |f|, |g| <= max_ratio = 1/8; every other point,
 // and every point of a batch whose anchor is not a comfortably normal double, takes pow. In the
-// rule's batches of 32 nodes (|a f| ~ 16 |a| / k at the node k from the end) this leaves pow to
-// the first few batches (k < ~130 for |a| ~ 1) and to large exponents (a = 61: k > ~16000).
+// rule's batches of 32 nodes (anchor in the middle, so a point is at most 16 nodes from it and
+// |a f| ~ 8 |a| / k at the node k from the end) this leaves pow to the first few batches (k <
+// ~130 for |a| ~ 1) and to large exponents (a = 61: k < ~7800).
 //   2 atanh f = 2 f (1 + z/3 + ... + z^8/17), z = f^2 <= 1/64: truncation below 2^-58 relative;
 //   exp(y) = 1 + (y + y^2 E(y)), E the Taylor series to y^13/15!: truncation below 1e-21.
 // Error: the anchor (two pows, within ~1 ulp together; the product exact), exp(y) (0.4 eps from
