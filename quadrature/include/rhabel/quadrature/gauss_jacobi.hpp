@@ -40,18 +40,25 @@
 //    fma, which is a libm call in this build), the expansion, the finishing step and the
 //    weight factor s^(2p+1) c^(2q+1) (detail/gauss_jacobi_power.hpp: two pow per batch and a
 //    series for the ratios to the batch's middle node, within 2 eps like two pow per node).
-//    For an exponent above 5 at that end, points whose guess is not yet within the finishing
-//    threshold take up to three Newton steps in the batch (about 2000 nodes at p = 30,
-//    n = 10^4); for exponents <= 5 the few such points (11 at (-0.9, 0.3), 170 at (5, 5),
-//    n = 10^4) are finished one by one. A node is interior when the expansion, summed to at
-//    most 30 terms, has a phase-independent term bound below eps/16 and a sum of term bounds
-//    <= 2 (no cancellation) for an exponent p <= 5 at that end, <= (2p + 1)/4 above
-//    (detail::hahn_admissible_total: the weights there carry the (2p + 1)-fold amplification
-//    of the node's rounding anyway, and the bound 2 made p = 30 start the interior at
-//    rho t ~ 650 with ~190 boundary nodes, 0.4 s of O(n) sweeps at n = 10^6). Measured at
-//    n = 10^6 this puts the first interior node at rho t ~ 20 for |p| <= 2, 22 for p = 5,
-//    32 for p = 10 and ~165 for p = 30 (rho = n + (p+q+1)/2), i.e. 5-6, 4, 5 and 38 boundary
-//    nodes at that end (none for p = 1/2).
+//    Points whose guess is not yet within the finishing threshold take up to three Newton
+//    steps in the batch, for every exponent (about 2000 nodes at p = 30, n = 10^4; 11 at
+//    (-0.9, 0.3), 170 at (5, 5)); only the points that move are evaluated again, and each step
+//    puts the phase and s, c at the same double t (interior_guesser::move). Session 3 took these
+//    steps only for p > 5, because they moved the worst weight at p = q = 5 from 11.6 to 15.6
+//    eps (s, c by the addition theorem, about an ulp less accurate than sin and cos of t/2) or
+//    14.1 eps (s, c of the rounded t, the phase of the unrounded K + correction: up to
+//    (2p + 1) eps/2 in the weight); with the point made consistent they lower it to 8.9 eps
+//    (accuracy figures below; the regression test for p or q = 5 pins it). A node is interior when the
+//    expansion, summed to at most 30 terms, has a phase-independent term bound below eps/16
+//    and a sum of term bounds <= max(2, (2p + 1)/4) for the exponent p at that end
+//    (detail::hahn_admissible_total, continuous in p: the weights carry the (2p + 1)-fold
+//    amplification of the node's rounding anyway, and the bound 2 made p = 30 start the
+//    interior at rho t ~ 650 with ~190 boundary nodes, 0.4 s of O(n) sweeps at n = 10^6).
+//    Measured at n = 10^4 and 10^6 (the same figures) this puts the first interior node at
+//    rho t ~ 20 for |p| <= 2, 21 for p = 4, 22 for p = 5, 32 for p = 10 and ~166 for p = 30
+//    (rho = n + (p+q+1)/2), i.e. 5-6, 4, 4, 5 and 38 boundary nodes at that end (none for
+//    p = 1/2, one for p = 3.5, 4.5, 5.5, where alpha_l of the expansion vanishes from
+//    l = p + 1/2 on).
 //    Boundary nodes: Newton in u on the difference-form recurrence from Bessel-zero guesses
 //    (Olver; DLMF 18.16.8; boost::math::cyl_bessel_j_zero in double), all boundary nodes of one
 //    end sharing each O(n) sweep; for n >= ~10^3 the guesses are already within the finishing
@@ -78,18 +85,19 @@
 //    n = 10^6 for five pairs, 1024 and 65536 for the regression values; node indices on both
 //    sides of the boundary/interior switch; and both exponents near -1: p, q in
 //    {-1 + 1e-9, -1 + 1e-5, -0.999}, n = 1, 2, 3, 16, 40, 41, 80, 101, 10^4), measured by
-//    tests/quadrature/test_gauss_jacobi.cpp: worst 3.2 eps for the nodes and 11.6 eps for the
-//    weights (n = 10^6: 2.0 and 6.4 eps; both exponents near -1: 2.6 and 6.4 eps). The weights
+//    tests/quadrature/test_gauss_jacobi.cpp (its -s output, session 4): worst 3.2 eps for the
+//    nodes and 8.9 eps for the weights (11.6 eps before the batch steps were made consistent;
+//    n = 10^6: 2.0 and 5.7 eps; both exponents near -1, n >= 41: 2.6 and 7.8 eps). The weights
 //    of the asymptotic path carry s^(2p+1) c^(2q+1), s = sin(t/2), c = cos(t/2), so a one-ulp
 //    rounding of the node is amplified by up to 2p + 1; the recurrence path (n <= 40, or
 //    forced) is within 0.5 eps, also for p = q = -1 + 1e-9 (issue #2: the expanded recurrence
 //    constant (p+q+1)(p+1)(p+q) had cancelled there, 1.6e5 eps in the weights, 4e4 eps in the
 //    nodes; now formed from p + 1 and q + 1). For n = 10 ... 100 (across the 40 / 41 switch)
-//    the asymptotic path is within 4.0 eps (nodes) and 16.5 eps (weights) of the recurrence
-//    path (p, q in [-0.999, 5]).
+//    the asymptotic path is within 5.0 eps (min(1 - x, 1 + x)) and 14 eps (weights) of the
+//    recurrence path (every n, p and q in {-0.999, -0.9, -0.5, 0, 0.25, 0.5, 5}; 5.0 and 18 eps
+//    before session 4 on the same grid, where 4.0 and 16.5 eps had been recorded).
 //  * p or q in (5, 30]: nodes within 4 eps (measured 2.5), weights within 128 eps (measured
-//    62 eps at n = 100, 64 eps at n = 10^4 (62 before the interior region was widened for
-//    large exponents, session 3), 49 eps at n = 10^6).
+//    62 eps at n = 100 and at n = 10^4 (64 eps before session 4), 49 eps at n = 10^6).
 //  * Real = cpp_bin_float_50 (recurrence path): measured 49 eps_50 (n <= 100, q = 30).
 //  Never judge a rule by sum(w) alone: it hides 1e-9 errors in individual weights.
 //
@@ -124,7 +132,13 @@
 // five memset calls per term of the expansion, twelve divisions per node, and an unvectorised
 // accumulation loop (pointer aliasing). (30, 0) is still above the targets: its 38 boundary nodes
 // per sweep (191 before the interior region was widened, see the regimes) cost half of the
-// time at 10^6 (perf), and its interior needs 10 to 27 terms per node at 10^4. Small n (recurrence path):
+// time at 10^6 (perf), and its interior needs 10 to 27 terms per node at 10^4. Session 4 (one
+// accumulation loop in evaluate_batch, batch Newton steps for every exponent evaluating only
+// the moving points, the direct single-value endpoint_power) kept the cost: medians of three
+// interleaved runs of the command above with --benchmark_repetitions=3 against the session-3
+// binary at load 2.3-3, n = 10^4 and 10^6, session 3 -> 4: Legendre 0.42 -> 0.39 ms, 50 -> 50 ms;
+// (-0.9, 0.3) 0.92 -> 0.90 ms, 91 -> 88 ms; (0.3, 0.7) 0.87 -> 0.86 ms, 90 -> 87 ms; (5, 5)
+// 0.52 -> 0.48 ms, 53 -> 55 ms; (30, 0) 2.28 -> 2.14 ms, 155 -> 151 ms. Small n (recurrence path):
 // the eigenvalues, one long double sweep per end and the constants take 4 us at n = 8, twice
 // GSL's 2 us.
 //
@@ -503,21 +517,25 @@ struct interior_guesser {
     point(sin_K, cos_K, residual, sign, correction, s, c, cos_phi, sin_phi, largest_angle);
   }
 
-  // The point t = K + correction for a given correction (complete's second half; also used
-  // after Newton steps, which are added to the correction so that the phase stays a small
-  // angle known to a few eps).
+  // sin x and cos x for |x| <= largest_polynomial_angle by their Taylor polynomials to x^7
+  // and x^8 (truncation below 3e-22 relative). Products with the rounded reciprocals, not
+  // divisions (twelve divisions per node were 5% of the rule at n = 10^4; the terms they
+  // scale are below 1e-4 relative, so the reciprocals' rounding is below 1e-20).
+  static void small_angle_sin_cos(double x, double& sin_x, double& cos_x) {
+    constexpr double r6 = 1.0 / 6, r20 = 1.0 / 20, r42 = 1.0 / 42, r12 = 1.0 / 12, r30 = 1.0 / 30, r56 = 1.0 / 56;
+    const double x2 = x * x;
+    sin_x = x * (1 - x2 * r6 * (1 - x2 * r20 * (1 - x2 * r42)));
+    cos_x = 1 - x2 / 2 * (1 - x2 * r12 * (1 - x2 * r30 * (1 - x2 * r56)));
+  }
+
+  // The point t = K + correction for a given correction (complete's second half), s and c by
+  // the addition theorem from sin(K/2), cos(K/2) and the half correction.
   void point(double sin_K, double cos_K, double residual, double sign, double correction, double& s, double& c,
              double& cos_phi, double& sin_phi, double& largest_angle) const {
     const double delta = correction / 2, epsilon = residual + rho * correction;
-    const double d2 = delta * delta, e2 = epsilon * epsilon;
-    // Products with the rounded reciprocals, not divisions (twelve divisions per node were
-    // 5% of the rule at n = 10^4; the terms they scale are below 1e-4 relative, so the
-    // reciprocals' rounding is below 1e-20).
-    constexpr double r6 = 1.0 / 6, r20 = 1.0 / 20, r42 = 1.0 / 42, r12 = 1.0 / 12, r30 = 1.0 / 30, r56 = 1.0 / 56;
-    const double sin_delta = delta * (1 - d2 * r6 * (1 - d2 * r20 * (1 - d2 * r42)));
-    const double cos_delta = 1 - d2 / 2 * (1 - d2 * r12 * (1 - d2 * r30 * (1 - d2 * r56)));
-    const double sin_e = epsilon * (1 - e2 * r6 * (1 - e2 * r20 * (1 - e2 * r42)));
-    const double cos_e = 1 - e2 / 2 * (1 - e2 * r12 * (1 - e2 * r30 * (1 - e2 * r56)));
+    double sin_delta, cos_delta, sin_e, cos_e;
+    small_angle_sin_cos(delta, sin_delta, cos_delta);
+    small_angle_sin_cos(epsilon, sin_e, cos_e);
     s = sin_K * cos_delta + cos_K * sin_delta;  // sin((K + correction)/2)
     c = cos_K * cos_delta - sin_K * sin_delta;
     cos_phi = sign * sin_e;
@@ -529,12 +547,46 @@ struct interior_guesser {
   // boundary for |a| > 1/2, where the correction grows like a^2).
   void exact_point(double sin_K, double cos_K, double residual, double sign, double correction, double& s, double& c,
                    double& cos_phi, double& sin_phi) const {
-    const double delta = correction / 2, epsilon = residual + rho * correction;
+    const double delta = correction / 2;
     const double sin_delta = std::sin(delta), cos_delta = std::cos(delta);
     s = sin_K * cos_delta + cos_K * sin_delta;
     c = cos_K * cos_delta - sin_K * sin_delta;
-    cos_phi = sign * std::sin(epsilon);
-    sin_phi = -sign * std::cos(epsilon);
+    phase(residual, sign, correction, cos_phi, sin_phi);
+  }
+
+  // The phase phi_0 at t = K + correction as (cos phi_0, sin phi_0) from epsilon = residual +
+  // rho correction (polynomials up to largest_polynomial_angle, the library beyond).
+  void phase(double residual, double sign, double correction, double& cos_phi, double& sin_phi) const {
+    const double epsilon = residual + rho * correction;
+    double sin_e, cos_e;
+    if (std::abs(epsilon) <= largest_polynomial_angle) {
+      small_angle_sin_cos(epsilon, sin_e, cos_e);
+    } else {
+      sin_e = std::sin(epsilon);
+      cos_e = std::cos(epsilon);
+    }
+    cos_phi = sign * sin_e;
+    sin_phi = -sign * cos_e;
+  }
+
+  // A Newton step of the guess k: the new point is the double t = K + (correction + step), and
+  // the correction becomes t - K, exact whenever t/K is in [1/2, 2] (Sterbenz's lemma; in the
+  // interior t is within a few per cent of K: the guess's correction is ~ a^2/(2 (rho K)^2) of
+  // K, 1.6% at a = 30 on the first interior node), so that the phase formed from the
+  // correction is that of the same double t whose sin(t/2) and cos(t/2) are taken. Why it matters: the weight is Q s^(2a+1) c^(2b+1) / G'^2 with s, c at
+  // the point where G' is taken, and G' follows the phase; a phase for the unrounded K +
+  // correction with s, c of the rounded t (the former form) puts a relative error of up to
+  // (2a + 1) eps/2 into the weight (p = q = 5: 14.1 eps instead of 8.9 eps in the 60-digit
+  // table; with s, c by the addition theorem instead, 15.6 eps). The library's sin and cos of
+  // t/2 are used rather than the addition theorem: after steps the correction may leave the
+  // polynomials' range, and they are within half an ulp.
+  void move(double K, double residual, double sign, double step, double& correction, double& s, double& c,
+            double& cos_phi, double& sin_phi) const {
+    const double t = K + (correction + step);
+    correction = t - K;
+    s = std::sin(t / 2);
+    c = std::cos(t / 2);
+    phase(residual, sign, correction, cos_phi, sin_phi);
   }
 };
 
@@ -597,22 +649,20 @@ inline bool gauss_jacobi_asymptotic_half(std::size_t n, double a, double b, std:
   // (DLMF 18.8.1 in t); the neglected terms are O(sigma^3) relative, below 1e-17.
   // w = weight_factor s^(2a+1) c^(2b+1) / (y'(t + h)/prefactor(t))^2 (s, c at the point t).
   constexpr double finish_threshold = 1e-6;
-  // Newton sweeps over a batch before its remaining unfinished points go node by node: only
-  // for a > hahn_large_exponent, where thousands of nodes need them (2000 at a = 30,
-  // n = 10^4, 3/4 of the time node by node). For a <= 5 only tens of nodes do (11 at
-  // (-0.9, 0.3), 170 at (5, 5), n = 10^4) and single_node keeps the measured accuracy of the
-  // contract region exactly as it was (batch steps moved the worst weight at p = q = 5,
-  // n = 100, from 11.6 to 15.6 eps; the difference was not investigated further).
-  const int batch_newton_sweeps = a > hahn_large_exponent ? 3 : 0;
+  // Newton sweeps over a batch before its remaining unfinished points go node by node, for
+  // every exponent (at a = 30, n = 10^4, about 2000 nodes need them, which took 3/4 of the time
+  // node by node; at (-0.9, 0.3) 11 nodes, at (5, 5) 170). Session 3 took them only for
+  // a > 5, because they had moved the worst weight at p = q = 5 from 11.6 to 15.6 eps; the
+  // cause was the point after a step (interior_guesser::move), and with it made consistent
+  // the sweeps improve the table's worst weight instead (11.6 to 8.9 eps).
+  constexpr int batch_newton_sweeps = 3;
   const interior_guesser guesser(a, b, rho);
   const interior_finisher finisher(n, a, b);
   // s^(2a+1) c^(2b+1): per batch with two pows per batch (detail/gauss_jacobi_power.hpp,
   // within 2 eps like pow * pow), or per node with two pows.
   const endpoint_power power(2 * a + 1, 2 * b + 1);
-  auto weight = [&](double s_, double c_, double weight_slope) {
-    return weight_factor * power(s_, c_) / (weight_slope * weight_slope);
-  };
-  // One interior node on its own (the batches below hand over every node they cannot finish).
+  // One interior node on its own (the batches below hand over every node they cannot finish):
+  // the batch's computation for a single point, with up to 20 Newton steps.
   auto single_node = [&](std::size_t k) {
     double K, residual, sin_K, cos_K, sign, correction, cos_phi, sin_phi, largest_angle;
     guesser.guess_angle(k, K, residual, sin_K, cos_K, sign);
@@ -620,17 +670,20 @@ inline bool gauss_jacobi_asymptotic_half(std::size_t n, double a, double b, std:
     if (!(largest_angle <= interior_guesser::largest_polynomial_angle)) {
       guesser.exact_point(sin_K, cos_K, residual, sign, correction, s, c, cos_phi, sin_phi);
     }
-    double t = K + correction, step = 0, h = 0, u = 0, v = 0, weight_slope = 0;
+    double step = 0, h = 0, u = 0, v = 0, weight_slope = 0;
     bool ok = hahn.evaluate_at(s, c, 1 / (s * c), cos_phi, sin_phi, value, slope);
     // Newton in t until the step is small (rare: small n or large exponents), then finish.
     for (int iteration = 0; ok; ++iteration) {
       finisher(s, c, 1 / (s * c), value, slope, step, h, u, v, weight_slope);
       if (std::abs(step) * rho < finish_threshold) break;
-      t += step;
-      ok = iteration < 20 && hahn.evaluate(t, value, slope, s, c);
+      ok = iteration < 20 && std::abs(step) < K + correction;  // t stays in (0, 2t)
+      if (ok) {
+        guesser.move(K, residual, sign, step, correction, s, c, cos_phi, sin_phi);
+        ok = hahn.evaluate_at(s, c, 1 / (s * c), cos_phi, sin_phi, value, slope);
+      }
     }
-    if (ok && t + h > 0) {
-      target.set(k, u, v, weight(s, c, weight_slope));
+    if (ok && K + correction + h > 0) {
+      target.set(k, u, v, weight_factor * power(s, c) / (weight_slope * weight_slope));
     } else {
       by_recurrence.push_back(k);
       const double sin_half = std::sin(interior_guess(k, a, b, rho) / 2);
@@ -643,11 +696,26 @@ inline bool gauss_jacobi_asymptotic_half(std::size_t n, double a, double b, std:
   // that the batch's first node needs (the bound decreases with t in the interior, except near
   // t = pi/2 for large b). A node goes to single_node whenever single_node would have taken another branch:
   // a last term not below eps/16, a bound sum above hahn.max_total(), or a Newton step above the
-  // finishing threshold.
+  // finishing threshold after the batch's sweeps.
   constexpr std::size_t B = hahn_expansion::batch_size;
   double K[B], residual[B], sin_K[B], cos_K[B], sign[B], correction[B], largest_angle[B];
-  double s0[B], c0[B], inverse_sc[B], cos_phi[B], sin_phi[B], values[B], slopes[B], last_bound[B], total[B];
+  double s0[B], c0[B], cos_phi[B], sin_phi[B], last_bound[B], total[B];
   double step[B], h[B], u[B], v[B], weight_slope[B], factor[B];
+  // Evaluates `size` points given by s, c and the phase, and finishes them; false if the first
+  // point needs more than hahn_max_terms terms (the caller's order: increasing t).
+  auto evaluate = [&](std::size_t size, const double* s_, const double* c_, const double* cos_phi_,
+                      const double* sin_phi_, double* last_bound_, double* total_, double* step_, double* h_,
+                      double* u_, double* v_, double* weight_slope_) {
+    double inverse_sc[B], values[B], slopes[B];
+    for (std::size_t i = 0; i < size; ++i) inverse_sc[i] = 1 / (s_[i] * c_[i]);
+    const int terms = hahn.terms_needed(s_[0], c_[0]);
+    if (terms > hahn_max_terms) return false;
+    hahn.evaluate_batch(size, terms, s_, c_, inverse_sc, cos_phi_, sin_phi_, values, slopes, last_bound_, total_);
+    for (std::size_t i = 0; i < size; ++i) {
+      finisher(s_[i], c_[i], inverse_sc[i], values[i], slopes[i], step_[i], h_[i], u_[i], v_[i], weight_slope_[i]);
+    }
+    return true;
+  };
   for (std::size_t k0 = boundary + 1; k0 <= count; k0 += B) {
     const std::size_t size = std::min(B, count - k0 + 1);
     guesser.guess_angles(k0, size, K, residual, sin_K, cos_K, sign);
@@ -655,60 +723,55 @@ inline bool gauss_jacobi_asymptotic_half(std::size_t n, double a, double b, std:
       guesser.complete(sin_K[i], cos_K[i], residual[i], sign[i], correction[i], s0[i], c0[i], cos_phi[i], sin_phi[i],
                        largest_angle[i]);
     }
-    // Evaluate the batch at t = K + correction (s0, c0 and the phase from `complete` or
-    // `point`); false if the first point needs more than hahn_max_terms terms. Points moved by
-    // Newton steps below take s0, c0 from sin and cos of t/2: formed by the addition theorem
-    // they are about an ulp less accurate, which the weight amplifies by 2a + 1 (measured at
-    // p = 30, n = 4000: 84.5 eps instead of 63 eps).
-    bool moved[B] = {};
-    auto evaluate = [&]() {
-      for (std::size_t i = 0; i < size; ++i) {
-        if (!(largest_angle[i] <= interior_guesser::largest_polynomial_angle)) {
-          guesser.exact_point(sin_K[i], cos_K[i], residual[i], sign[i], correction[i], s0[i], c0[i], cos_phi[i],
-                              sin_phi[i]);
-        }
+    for (std::size_t i = 0; i < size; ++i) {
+      if (!(largest_angle[i] <= interior_guesser::largest_polynomial_angle)) {
+        guesser.exact_point(sin_K[i], cos_K[i], residual[i], sign[i], correction[i], s0[i], c0[i], cos_phi[i],
+                            sin_phi[i]);
       }
-      for (std::size_t i = 0; i < size; ++i) {
-        if (moved[i]) {
-          const double t = K[i] + correction[i];
-          s0[i] = std::sin(t / 2);
-          c0[i] = std::cos(t / 2);
-        }
-      }
-      for (std::size_t i = 0; i < size; ++i) inverse_sc[i] = 1 / (s0[i] * c0[i]);
-      const int terms = hahn.terms_needed(s0[0], c0[0]);
-      if (terms > hahn_max_terms) return false;
-      hahn.evaluate_batch(size, terms, s0, c0, inverse_sc, cos_phi, sin_phi, values, slopes, last_bound, total);
-      for (std::size_t i = 0; i < size; ++i) {
-        finisher(s0[i], c0[i], inverse_sc[i], values[i], slopes[i], step[i], h[i], u[i], v[i], weight_slope[i]);
-      }
-      return true;
-    };
-    if (!evaluate()) {
+    }
+    if (!evaluate(size, s0, c0, cos_phi, sin_phi, last_bound, total, step, h, u, v, weight_slope)) {
       for (std::size_t i = 0; i < size; ++i) single_node(k0 + i);
       continue;
     }
-    // Newton steps in the batch for the points whose guess is not yet within the finishing
-    // threshold (large exponents: at p = 30 about 2000 nodes from the end, which took the
-    // node-by-node path, 3/4 of the time at n = 10^4): the step is added to the correction,
-    // so the phase stays a small angle (single_node forms it from t, eps rho t absolute).
-    // The other points are recomputed at the same t (the number of terms may change with the
-    // batch's first point; terms beyond the tolerance change G by less than eps/16).
+    // Newton sweeps for the points whose guess is not yet within the finishing threshold (all
+    // of them near the end at large exponents, a few elsewhere): only those points move
+    // (interior_guesser::move: the step goes into the correction, so the phase stays a small
+    // angle known to a few eps) and only they are evaluated again, as a batch of their own in
+    // the order of the batch (the points that did not move keep their results).
     for (int sweep = 0; sweep < batch_newton_sweeps; ++sweep) {
-      bool any = false;
+      std::size_t moving[B], moving_count = 0;
       for (std::size_t i = 0; i < size; ++i) {
-        const bool moving = std::abs(step[i]) * rho >= finish_threshold && last_bound[i] < hahn_expansion::tolerance &&
-                            total[i] <= hahn.max_total() && std::abs(step[i]) < K[i];
-        correction[i] += moving ? step[i] : 0.0;
-        moved[i] = moved[i] || moving;
-        any = any || moving;
+        if (std::abs(step[i]) * rho >= finish_threshold && last_bound[i] < hahn_expansion::tolerance &&
+            total[i] <= hahn.max_total() && std::abs(step[i]) < K[i] + correction[i]) {
+          moving[moving_count++] = i;
+        }
       }
-      if (!any) break;
-      for (std::size_t i = 0; i < size; ++i) {
-        guesser.point(sin_K[i], cos_K[i], residual[i], sign[i], correction[i], s0[i], c0[i], cos_phi[i], sin_phi[i],
-                      largest_angle[i]);
+      if (moving_count == 0) break;
+      double ms[B], mc[B], mcos[B], msin[B], mlast[B], mtotal[B], mstep[B], mh[B], mu[B], mv[B], mslope[B];
+      for (std::size_t j = 0; j < moving_count; ++j) {
+        const std::size_t i = moving[j];
+        guesser.move(K[i], residual[i], sign[i], step[i], correction[i], s0[i], c0[i], cos_phi[i], sin_phi[i]);
+        ms[j] = s0[i];
+        mc[j] = c0[i];
+        mcos[j] = cos_phi[i];
+        msin[j] = sin_phi[i];
       }
-      if (!evaluate()) break;  // the first point left the interior region: single_node decides
+      // A first moving point outside the interior region: the moving points go to single_node
+      // (an infinite step marks them unfinished).
+      if (!evaluate(moving_count, ms, mc, mcos, msin, mlast, mtotal, mstep, mh, mu, mv, mslope)) {
+        for (std::size_t j = 0; j < moving_count; ++j) step[moving[j]] = std::numeric_limits<double>::infinity();
+        break;
+      }
+      for (std::size_t j = 0; j < moving_count; ++j) {
+        const std::size_t i = moving[j];
+        last_bound[i] = mlast[j];
+        total[i] = mtotal[j];
+        step[i] = mstep[j];
+        h[i] = mh[j];
+        u[i] = mu[j];
+        v[i] = mv[j];
+        weight_slope[i] = mslope[j];
+      }
     }
     power(size, s0, c0, factor);
     for (std::size_t i = 0; i < size; ++i) {

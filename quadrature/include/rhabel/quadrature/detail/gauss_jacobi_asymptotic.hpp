@@ -16,7 +16,7 @@
 //   bound_m = 2^-m / (2 rho + 1)_m sum_l |alpha_l beta_{m-l}| s^-l c^-(m-l),
 // and the evaluation stops at the first m with bound_m < eps / 16. If no m < 30 reaches that,
 // or if the sum of the bounds exceeds 2 (the terms first grow like (p^2/(2 rho t))^m / m! for
-// large p, and cancellation would cost accuracy; (2p + 1)/4 for p > 5, see
+// large p, and cancellation would cost accuracy; (2p + 1)/4 for p > 3.5, see
 // hahn_admissible_total), the point is outside the interior region and the caller uses the
 // recurrence. Measured at n = 10^6: the interior starts at rho t = 20 for |p| <= 2, 22 for
 // p = 5, 32 for p = 10 and ~165 for p = 30 (~650 with the bound 2). evaluate_batch sums the same series for up to
@@ -41,9 +41,11 @@
 
 #include "rhabel/quadrature/detail/gauss_jacobi_recurrence.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 namespace rhabel::quadrature::detail {
@@ -52,18 +54,19 @@ namespace rhabel::quadrature::detail {
 inline constexpr int hahn_max_terms = 30;
 // Largest admissible sum of the term bounds: the terms may first grow (by (p^2/(2 rho t))^m/m!)
 // before they decay, and the rounding error of G is about eps times this sum (G has amplitude 1).
-// For exponents a <= hahn_large_exponent (the accuracy contract of gauss_jacobi.hpp).
+// The sum admitted for every exponent (hahn_admissible_total).
 inline constexpr double hahn_max_total = 2;
-// Beyond this exponent at the end the admissible sum is (2a + 1)/4 (hahn_admissible_total):
-// the interior weights there already carry s^(2a+1), which turns the rounding of the node
-// into a relative error of up to (2a + 1) ulp (measured 62 eps at a = 30), so a rounding error
-// of G' up to a quarter of that is not visible in the weights; and it moves the first interior
-// node at a = 30 from rho t ~ 650 to ~ 165 (38 instead of 191 boundary nodes, each an O(n)
-// recurrence sweep: n = 10^6 in 0.15 s instead of 0.4 s). Measured at a = 30, n = 4000,
-// against the long double recurrence: the nodes that became interior have weight errors
-// <= 50 eps, below the 55-62 eps of the interior nodes beyond them.
-inline constexpr double hahn_large_exponent = 5;
-inline double hahn_admissible_total(double a) { return a <= hahn_large_exponent ? hahn_max_total : (2 * a + 1) / 4; }
+// The admissible sum at the end with exponent a: max(2, (2a + 1)/4), continuous in a (the
+// larger value from a = 3.5 on). For large a the interior weights already carry s^(2a+1),
+// which turns the rounding of the node into a relative error of up to (2a + 1) ulp (measured
+// 62 eps at a = 30), so a rounding error of G' up to a quarter of that is not visible in the
+// weights; and it moves the first interior node at a = 30 from rho t ~ 650 to ~ 165 (38
+// instead of 191 boundary nodes, each an O(n) recurrence sweep: n = 10^6 in 0.15 s instead of
+// 0.4 s). Measured at a = 30, n = 4000, against the long double recurrence: the nodes that
+// became interior have weight errors <= 50 eps, below the 55-62 eps of the interior nodes
+// beyond them. Session 3 switched from 2 to (2a + 1)/4 at a = 5 (a jump from 2 to 2.75); the
+// continuous form changes the table's figures for p or q = 5 by nothing (measured).
+inline double hahn_admissible_total(double a) { return std::max(hahn_max_total, (2 * a + 1) / 4); }
 
 // The weight factor Q of the header comment (symmetric in a, b).
 inline double hahn_weight_factor(std::size_t n, double p, double q) {
@@ -176,12 +179,12 @@ class hahn_expansion {
 
   // evaluate_at for a batch of `count` points (count <= batch_size) with exactly `terms` terms
   // each (terms <= hahn_max_terms), in loops over the batch without branches that the compiler
-  // vectorises. Inputs s, c, 1/(s c) and the phase (cos phi_0, sin phi_0; overwritten); outputs
-  // G, G', the bound of the last term and the sum of the bounds, from which the caller decides,
-  // point by point, what evaluate_at would have decided (terms beyond the first one below the
-  // tolerance change G by less than that).
+  // vectorises. Inputs s, c, 1/(s c) and the phase (cos phi_0, sin phi_0); outputs G, G', the
+  // bound of the last term and the sum of the bounds, from which the caller decides, point by
+  // point, what evaluate_at would have decided (terms beyond the first one below the tolerance
+  // change G by less than that).
   void evaluate_batch(std::size_t count, int terms, const double* s, const double* c, const double* inverse_sc,
-                      double* cos_phi, double* sin_phi, double* value, double* slope, double* last_bound,
+                      const double* cos_phi, const double* sin_phi, double* value, double* slope, double* last_bound,
                       double* total) const {
     double power_s[hahn_max_terms][batch_size], power_c[hahn_max_terms][batch_size];  // s^-l, c^-j
     double half_cot[batch_size], half_tan[batch_size];
@@ -205,44 +208,44 @@ class hahn_expansion {
         power_c[m][i] = power_c[m - 1][i] * (s[i] * inverse_sc[i]);
       }
     }
-    for (int m = 0; m < terms; ++m) {
-      // The terms l = 0 (the first of U) and l = 1 (the first of V) initialise the sums, the
-      // others accumulate (zeroing the five arrays per term instead cost 1/6 of this routine
-      // in memset calls at n = 10^4); the order of the additions is that of evaluate_at.
-      for (int l = 0; l <= m; ++l) {
-        const double coefficient = ((l & 2) ? -1.0 : 1.0) * alpha_[l] * beta_[m - l];
-        const double magnitude = std::abs(coefficient);
-        const double j = m - l, ll = l;
-        double* partial = (l & 1) ? V : U;
-        double* partial_slope = (l & 1) ? dV : dU;
-        const double* ps = power_s[l];
-        const double* pc = power_c[m - l];
-        if (l == 0) {
-          for (std::size_t i = 0; i < count; ++i) {
-            const double power = ps[i] * pc[i];
-            const double product = coefficient * power;
-            partial[i] = product;
-            partial_slope[i] = product * (j * half_tan[i] - ll * half_cot[i]);
-            bound[i] = magnitude * power;
-          }
-        } else if (l == 1) {
-          for (std::size_t i = 0; i < count; ++i) {
-            const double power = ps[i] * pc[i];
-            const double product = coefficient * power;
-            partial[i] = product;
-            partial_slope[i] = product * (j * half_tan[i] - ll * half_cot[i]);
-            bound[i] += magnitude * power;
-          }
+    // Adds the term (m, l), coefficient alpha_l beta_j (j = m - l) with the sign of
+    // cos(phi_m - l pi/2), times s^-l c^-j to its sum (U for even l, V for odd l), the term
+    // times d/dt log(s^-l c^-j) = j tan(t/2)/2 - l cot(t/2)/2 to the slope's sum, and |term| to
+    // the bound. The terms l = 0 (the first of U) and l = 1 (the first of V) set their sums
+    // instead (zeroing the five arrays per term cost 1/6 of this routine in memset calls at
+    // n = 10^4), and l = 0 sets the bound: the flags are compile-time constants, so the one loop
+    // body is instantiated three times without a branch or select inside.
+    auto accumulate_term = [&](int m, int l, auto sets_partial, auto sets_bound) {
+      const double coefficient = ((l & 2) ? -1.0 : 1.0) * alpha_[l] * beta_[m - l];
+      const double magnitude = std::abs(coefficient);
+      const double j = m - l, ll = l;
+      double* partial = (l & 1) ? V : U;
+      double* partial_slope = (l & 1) ? dV : dU;
+      const double* ps = power_s[l];
+      const double* pc = power_c[m - l];
+      for (std::size_t i = 0; i < count; ++i) {
+        const double power = ps[i] * pc[i];
+        const double product = coefficient * power;
+        const double product_slope = product * (j * half_tan[i] - ll * half_cot[i]);
+        if constexpr (decltype(sets_partial)::value) {
+          partial[i] = product;
+          partial_slope[i] = product_slope;
         } else {
-          for (std::size_t i = 0; i < count; ++i) {
-            const double power = ps[i] * pc[i];
-            const double product = coefficient * power;
-            partial[i] += product;
-            partial_slope[i] += product * (j * half_tan[i] - ll * half_cot[i]);
-            bound[i] += magnitude * power;
-          }
+          partial[i] += product;
+          partial_slope[i] += product_slope;
+        }
+        if constexpr (decltype(sets_bound)::value) {
+          bound[i] = magnitude * power;
+        } else {
+          bound[i] += magnitude * power;
         }
       }
+    };
+    for (int m = 0; m < terms; ++m) {
+      // The order of the additions is that of evaluate_at.
+      accumulate_term(m, 0, std::true_type{}, std::true_type{});
+      if (m >= 1) accumulate_term(m, 1, std::true_type{}, std::false_type{});
+      for (int l = 2; l <= m; ++l) accumulate_term(m, l, std::false_type{}, std::false_type{});
       if (m == 0) {
         for (std::size_t i = 0; i < count; ++i) V[i] = dV[i] = 0;
       }
@@ -263,8 +266,6 @@ class hahn_expansion {
       slope[i] = G_slope[i];
       total[i] = sum[i];
       last_bound[i] = last[i];
-      cos_phi[i] = cos_phase[i];
-      sin_phi[i] = sin_phase[i];
     }
   }
 
