@@ -10,10 +10,12 @@
 #include <boost/multiprecision/cpp_bin_float.hpp>
 #include <boost/multiprecision/eigen.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 using namespace rhabel::abel;
@@ -36,6 +38,18 @@ std::vector<std::function<double(double)>> minus_s(std::size_t count) {
 multi_solution<double> solve_bounded_pair(const abel_parameters<double>& par, double gap,
                                           const multi_solve_options<double>& options) {
   return solve_union(par, unit_pair(gap, edge::bounded, edge::bounded), minus_s(2), options);
+}
+
+/// A density of class (leading, trailing) on [lo, hi] without coefficients (for the node sets).
+jacobi_density<double> class_density(const abel_parameters<double>& par, double lo, double hi, edge leading,
+                                     edge trailing) {
+  jacobi_density<double> g;
+  g.lo = lo;
+  g.hi = hi;
+  const auto e = par.exponents(leading, trailing);
+  g.gam = e.gam;
+  g.del = e.del;
+  return g;
 }
 
 }  // namespace
@@ -331,4 +345,119 @@ TEST_CASE("union: bad input") {
   options.max_degree = 128;
   options.residual_points = 0;  // nothing to drive the adaptive degree
   CHECK_THROWS_AS(solve_union(par, two, F, options), std::domain_error);
+}
+
+// Memory guard (multi_interval.hpp, "Memory"): a degree whose dense system would exceed
+// options.max_memory_bytes is refused with std::domain_error naming the option, its value and
+// the largest admissible degree, before anything is allocated (regression: max_degree = 1e6
+// used to start allocating a 3e13-byte matrix); the bound is sharp at the limit it reports.
+TEST_CASE("union: memory guard refuses a degree beyond options.max_memory_bytes") {
+  abel_parameters<double> par(0.3, 0.2);
+  const std::vector<interval_spec<double>> two{{0.0, 1.0}, {1.5, 2.0}};
+  const auto F = minus_s(2);
+  multi_solve_options<double> options;
+  options.degree = 32;
+  options.max_degree = 1000000;  // (2e6)^2 doubles
+  try {
+    (void)solve_union(par, two, F, options);
+    FAIL("no exception");
+  } catch (const std::domain_error& e) {
+    const std::string what = e.what();
+    CHECK(what.find("solve_union") != std::string::npos);
+    CHECK(what.find("options.max_degree") != std::string::npos);
+    CHECK(what.find("1000000") != std::string::npos);
+    CHECK(what.find("[2, 5181]") != std::string::npos);  // the default 2 GiB, two intervals
+    CHECK(what.find("max_memory_bytes") != std::string::npos);
+  }
+  // No overflow of (K M)^2 in size_t: the largest degree is refused, not wrapped around.
+  options.max_degree = std::numeric_limits<std::size_t>::max();
+  CHECK_THROWS_AS(solve_union(par, two, F, options), std::domain_error);
+  options.max_degree = 0;
+  options.degree = std::numeric_limits<std::size_t>::max() / 2;
+  CHECK_THROWS_AS(solve_union(par, two, F, options), std::domain_error);
+  // Sharp at the reported limit: a bound of exactly the estimate at degree 24 admits 24 and
+  // refuses 25 (one solve of 48 unknowns, no residual).
+  options.degree = 24;
+  options.residual_points = 0;
+  options.max_memory_bytes = static_cast<std::size_t>(detail::union_memory_bytes<double>(2, 24));
+  CHECK(detail::union_degree_limit<double>(2, options.max_memory_bytes) == 24);
+  CHECK(solve_union(par, two, F, options).degree == 24);
+  options.degree = 25;
+  CHECK_THROWS_AS(solve_union(par, two, F, options), std::domain_error);
+}
+
+// detail::degree_graded_cross_nodes (the assembly's cross quadrature) and panel_integrator
+// (numerics.hpp, behind make_cross_nodes, the residual's cross quadrature) grade the same way
+// (union_assembly.hpp: same breaks 0, d, 3d, ..., same rules per panel); only the node count per
+// panel differs (degree-dependent there, one count here). At degree 0 every panel gets 24 nodes,
+// so the two node sets must coincide up to rounding, and the total count must be 24 per panel.
+// Facing right, panel_integrator grades towards its len end: its panel ends there are stored as
+// distances from 0 (2 - u, rounded), so its node distances to the facing end carry absolute
+// errors ~ eps, i.e. relative ~ eps/d next to it (measured 2.3e-13 at gap 1e-4, d = 2e-4);
+// degree_graded_cross_nodes measures u from the facing end itself.
+TEST_CASE("cross nodes: degree_graded_cross_nodes at degree 0 == panel_integrator's nodes (same grading)") {
+  const double x_tolerance = 4 * eps;  // absolute: one rounding of a distance <= 2
+  const abel_parameters<double> par(0.3, 0.3);
+  for (const auto& [leading, trailing] : {std::pair{edge::bounded, edge::unbounded}, std::pair{edge::unbounded, edge::bounded}})
+    for (double gap : {1e-4, 0.3})
+      for (bool facing_left : {true, false}) {
+        const auto g = class_density(par, 2.0, 3.0, leading, trailing);
+        auto graded = detail::degree_graded_cross_nodes(g, gap, facing_left, 0);
+        auto fixed = detail::make_cross_nodes(g, gap, facing_left, 24);
+        INFO("gap " << gap << " facing_left " << facing_left << " gam " << g.gam);
+        REQUIRE(graded.x.size() == fixed.x.size());
+        CHECK(graded.x.size() % 24 == 0);
+        // order by x (the two walk the panels in opposite directions when facing right)
+        auto order = [](const detail::cross_nodes<double>& c) {
+          std::vector<std::size_t> idx(c.x.size());
+          for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
+          std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return c.x[a] < c.x[b]; });
+          return idx;
+        };
+        const auto ig = order(graded), jf = order(fixed);
+        double worst_x = 0, worst_w = 0;
+        for (std::size_t r = 0; r < ig.size(); ++r) {
+          worst_x = std::max(worst_x, std::abs(graded.x[ig[r]] - fixed.x[jf[r]]));
+          worst_w = std::max(worst_w, std::abs(graded.weight[ig[r]] / fixed.weight[jf[r]] - 1));
+        }
+        // pow of a distance with <= 2 eps relative error times a few roundings (16 eps); facing
+        // right, times 2/d for panel_integrator's distances near its len end (above).
+        const double weight_tolerance = facing_left ? 16 * eps : 16 * eps * 2 / (gap / g.half_length());
+        CHECK(worst_x <= x_tolerance);
+        CHECK(worst_w <= weight_tolerance);
+      }
+}
+
+// The degree-dependent node counts resolve P_n: with a constant kernel the cross integral is
+// int w P_n = h_0 delta_n0 (orthogonality; an exact identity sharing no code with the node
+// construction), for every n < degree, at the nearly-touching gap 1e-4 and degree 1024 (the
+// regime the counts were designed for), relative to h sqrt(h_0 h_n) (the Cauchy-Schwarz size).
+TEST_CASE("cross nodes: degree_graded_cross_nodes integrate w P_n exactly up to rounding, n < 1024, gap 1e-4") {
+  const abel_parameters<double> par(0.3, 0.3);
+  const std::size_t degree = 1024;
+  for (const auto& [leading, trailing] : {std::pair{edge::bounded, edge::unbounded}, std::pair{edge::unbounded, edge::unbounded}})
+    for (bool facing_left : {true, false}) {
+      const auto g = class_density(par, 0.0, 1.0, leading, trailing);
+      const auto nodes = detail::degree_graded_cross_nodes(g, 1e-4, facing_left, degree);
+      std::vector<double> moments(degree, 0.0);
+      for (std::size_t q = 0; q < nodes.x.size(); ++q) {
+        const auto P = rhabel::quadrature::jacobi_p_all(degree - 1, g.del, g.gam, nodes.x[q]);
+        for (std::size_t n = 0; n < degree; ++n) moments[n] += nodes.weight[q] * P[n];
+      }
+      const double h = g.half_length(), h0 = rhabel::quadrature::jacobi_norm_squared(0, g.del, g.gam);
+      double worst = std::abs(moments[0] / (h * h0) - 1);
+      std::size_t worst_n = 0;
+      for (std::size_t n = 1; n < degree; ++n) {
+        const double scale = h * std::sqrt(h0 * rhabel::quadrature::jacobi_norm_squared(n, g.del, g.gam));
+        if (std::abs(moments[n]) / scale > worst) {
+          worst = std::abs(moments[n]) / scale;
+          worst_n = n;
+        }
+      }
+      INFO("gam " << g.gam << " del " << g.del << " facing_left " << facing_left << ": worst n = " << worst_n);
+      // 1e-11: the cross blocks feed a solve whose target is the residual 1e-10 (the default
+      // residual_tolerance). Measured 1.9e-14 (bounded/unbounded) and 3.9e-12 (unbounded at both
+      // ends, gam = -0.95, at the top degrees n = 1022, 1023).
+      CHECK(worst <= 1e-11);
+    }
 }

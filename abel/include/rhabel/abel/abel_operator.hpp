@@ -27,6 +27,10 @@
 // has its exponents SWAPPED: (p, q) = (gam + nu, del + nu) with p at x = +1.
 //
 // What is computed and how accurately:
+//  * eigenvalue(n, e), eigenvalues(N, e): lambda_n above, the ratio (1 - alpha)_n / n! as the
+//    running product of (k - alpha)/k (one value in O(n); all N in O(N), bit-identical to the
+//    single values); relative error <= (3n + 8) eps (measured <= 0.09 (3n + 8) eps against the
+//    Gamma-function form at 50 digits, n <= 2000, alpha in {0, 1e-8, 0.3, 0.999}).
 //  * apply(density, s), s inside (a, b): exact through the spectral relation; relative error
 //    O(n eps) of the image series.
 //  * apply_by_quadrature(...): the SAME quantity by direct quadrature of the two one-sided
@@ -301,14 +305,33 @@ class abel_operator {
   Real half_length() const { return (hi_ - lo_) / 2; }
   edge_exponents<Real> exponents(edge leading, edge trailing) const { return par_.exponents(leading, trailing); }
 
-  /// lambda_n of the spectral relation (reference interval, without the (L/2)^alpha factor).
+  /// lambda_n of the spectral relation (reference interval, without the (L/2)^alpha factor),
+  ///     lambda_n = -2^(-nu) pi (1 - alpha)_n / (n! sin(pi del)),
+  /// the ratio (1 - alpha)_n / n! = prod_{k=1}^n (k - alpha)/k formed in O(n) operations (relative
+  /// error <= ~3 n eps: three roundings per factor). For all of lambda_0 .. lambda_{N-1} use
+  /// eigenvalues(N, e): O(N) in all instead of O(N^2), and bit-identical to this.
   Real eigenvalue(std::size_t n, const edge_exponents<Real>& e) const {
-    using std::pow;
-    using std::sin;
-    const Real pi = boost::math::constants::pi<Real>();
     Real rising = 1;  // (1 - alpha)_n / n!
-    for (std::size_t k = 1; k <= n; ++k) rising *= (Real(k) - par_.alpha()) / Real(k);
-    return -pow(Real(2), Real(-e.nu)) * pi * rising / sin(pi * e.del);
+    for (std::size_t k = 1; k <= n; ++k) rising = next_rising(rising, k);
+    return eigenvalue_factor(e) * rising / eigenvalue_denominator(e);
+  }
+
+  /// lambda_0, ..., lambda_{count-1} (see eigenvalue()) by the ratio recurrence
+  /// lambda_n / lambda_{n-1} = (n - alpha)/n: O(count) operations. Each lambda_n carries the
+  /// same roundings in the same order as eigenvalue(n, e) (the running product is the same
+  /// sequence of partial products), so the two agree bit for bit; against the Gamma-function
+  /// form -2^(-nu) pi Gamma(n+1-alpha) / (Gamma(1-alpha) n! sin(pi del)) the relative error is
+  /// <= ~3 n eps (tests/abel/test_operator.cpp, n < 2001, alpha in {0, 1e-8, 0.3, 0.999}).
+  std::vector<Real> eigenvalues(std::size_t count, const edge_exponents<Real>& e) const {
+    std::vector<Real> out;
+    out.reserve(count);
+    const Real factor = eigenvalue_factor(e), denominator = eigenvalue_denominator(e);
+    Real rising = 1;
+    for (std::size_t n = 0; n < count; ++n) {
+      if (n > 0) rising = next_rising(rising, n);
+      out.push_back(factor * rising / denominator);
+    }
+    return out;
   }
 
   /// A g at s for a series density of this interval. Inside (lo, hi): spectral relation.
@@ -324,11 +347,12 @@ class abel_operator {
       const int nu = static_cast<int>(std::lround(static_cast<double>(nu_real)));
       const edge_exponents<Real> e{g.gam, g.del, nu};
       std::vector<Real> image;
+      const std::vector<Real> lambda = eigenvalues(g.coefficients.size(), e);
       for (std::size_t n = 0; n < g.coefficients.size(); ++n) {
         const long m = static_cast<long>(n) - nu;
         if (m < 0) continue;
         if (image.size() <= static_cast<std::size_t>(m)) image.resize(static_cast<std::size_t>(m) + 1, Real(0));
-        image[static_cast<std::size_t>(m)] += eigenvalue(n, e) * g.coefficients[n];
+        image[static_cast<std::size_t>(m)] += lambda[n] * g.coefficients[n];
       }
       // Image family (gam + nu, del + nu): for nu = -1 an exponent may be <= -1, which only
       // detail::jacobi_sum_any handles (it defers to quadrature::jacobi_clenshaw otherwise).
@@ -428,6 +452,18 @@ class abel_operator {
   };
 
  private:
+  // The factors of lambda_n (eigenvalue(), eigenvalues()): -2^(-nu) pi, sin(pi del), and the
+  // step (1 - alpha)_k/k! = (1 - alpha)_(k-1)/(k-1)! x (k - alpha)/k of the running product.
+  static Real eigenvalue_factor(const edge_exponents<Real>& e) {
+    using std::pow;
+    return -pow(Real(2), Real(-e.nu)) * boost::math::constants::pi<Real>();
+  }
+  static Real eigenvalue_denominator(const edge_exponents<Real>& e) {
+    using std::sin;
+    return sin(boost::math::constants::pi<Real>() * e.del);
+  }
+  Real next_rising(const Real& rising, std::size_t k) const { return rising * ((Real(k) - par_.alpha()) / Real(k)); }
+
   static Real exp_(const Real& x) {
     using std::exp;
     return exp(x);

@@ -115,14 +115,16 @@ abel_solution<Real> solution_from_image(const abel_operator<Real>& op, const edg
   sol.density.gam = e.gam;
   sol.density.del = e.del;
   std::vector<Real>& c = sol.density.coefficients;
+  // c_n = d_{n - nu} / lambda_n: lambda_0 .. lambda_{d.size()} in O(d.size()) (abel_operator::eigenvalues).
+  const std::vector<Real> lambda = op.eigenvalues(d.size() + 1, e);
   if (e.nu == -1) {
     sol.solvability_defect = d.empty() ? Real(0) : d[0];
-    for (std::size_t m = 1; m < d.size(); ++m) c.push_back(d[m] / op.eigenvalue(m - 1, e));
+    for (std::size_t m = 1; m < d.size(); ++m) c.push_back(d[m] / lambda[m - 1]);
   } else if (e.nu == 0) {
-    for (std::size_t m = 0; m < d.size(); ++m) c.push_back(d[m] / op.eigenvalue(m, e));
+    for (std::size_t m = 0; m < d.size(); ++m) c.push_back(d[m] / lambda[m]);
   } else {
     c.push_back(Real(0));
-    for (std::size_t m = 0; m < d.size(); ++m) c.push_back(d[m] / op.eigenvalue(m + 1, e));
+    for (std::size_t m = 0; m < d.size(); ++m) c.push_back(d[m] / lambda[m + 1]);
     sol.homogeneous = sol.density;
     const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, e.del, e.gam);
     sol.homogeneous.coefficients.assign(1, 1 / (op.half_length() * h0));

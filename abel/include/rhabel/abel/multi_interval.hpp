@@ -14,7 +14,7 @@
 // interval (options.degree). The equation is imposed at the M Chebyshev points of the first kind
 // of every interval I_j (in units of (L_j/2)^alpha):
 //   own term:   A_j(w P_n) = (L_j/2)^alpha lambda_n P_{n-nu_j}^(gam_j+nu_j, del_j+nu_j)
-//               (spectral relation, exact; lambda_n from the recurrence lambda_n/lambda_{n-1} = (n-alpha)/n);
+//               (spectral relation, exact; all lambda_n at once by abel_operator::eigenvalues, O(M));
 //   cross term: B(k, n) = int_{I_i} w_i P_n K(t - s_k) dt by composite Gauss-Jacobi quadrature
 //               graded geometrically toward the end of I_i facing I_j (uniform in the gap), with
 //               panel node counts that follow the resolution P_n needs (detail/union_assembly.hpp),
@@ -81,8 +81,18 @@
 //             i.e. a 1.6e4-unknown dense system (2 GB, minutes): out of reach of this method. The
 //             solver reports not_converged with that residual. Open: a basis that builds the
 //             layer in (poles or graded panels at the facing ends).
-// Memory: 8 (K M)^2 bytes for the matrix (K intervals): 34 MB at K = 2, M = 1024; 300 MB at
-// K = 3, M = 2048. Choose max_degree accordingly.
+// Memory (guarded). The dense solve holds the (K M)^2 collocation matrix (K intervals, M =
+// degree), factorised in place, and during the assembly one cross block's transients (~ 6 M^2
+// numbers); for non-IEEE types also the inverse (for `condition`). detail::union_memory_bytes
+// estimates the peak as sizeof(Real) max((K M)^2 + 6 M^2 [K > 1], (1 or 2) (K M)^2). Measured
+// peak resident set of a whole double solve without residual (F = -s, gap 1e-4, this machine)
+// against the estimate: K = 2, M = 1024: 81 MB (84); K = 3, M = 1024: 123 MB (126);
+// K = 2, M = 2048: 268 MB (336); K = 1, M = 4096: 143 MB (134; the process itself ~9 MB).
+// (Before session 4 the LU worked on a copy: 3 (K M)^2 numbers, 410 MB at K = 2, M = 2048.)
+// solve_union throws std::domain_error BEFORE allocating anything when the estimate at the
+// largest degree it may use, max(degree, max_degree), exceeds options.max_memory_bytes (default
+// 2 GiB: K = 1 up to M = 16384, K = 2 up to 5181, K = 3 up to 4230); the message gives the
+// largest admissible degree. Raise max_memory_bytes deliberately for larger systems.
 #pragma once
 
 #include "rhabel/abel/abel_solver.hpp"
@@ -95,6 +105,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <sstream>
 #include <type_traits>
 #include <vector>
 
@@ -112,12 +123,17 @@ struct multi_solve_options {
   std::size_t degree = 32;              ///< collocation points (= unknowns) per interval; the first degree tried
   /// Adaptive degree: while the residual exceeds residual_tolerance the degree grows by 1.5x up
   /// to max_degree (0: no adaptation, only `degree`). Needs residual_points > 0. Memory and time
-  /// grow like max_degree^2 and ^3 (header: 2 s and 34 MB at 1024 for two intervals).
+  /// grow like max_degree^2 and ^3 (header: 2 s and a 81 MB peak at 1024 for two intervals;
+  /// bounded by max_memory_bytes).
   std::size_t max_degree = 0;
   std::size_t residual_points = 8;      ///< per interval; 0 = skip the residual
   std::vector<std::optional<Real>> loads;  ///< per interval, used for nu = +1 intervals only
   /// status = not_converged when the independent residual exceeds this (only if it is computed).
   Real residual_tolerance = Real(1e-10);
+  /// Bound on the estimated peak memory of one dense solve (detail::union_memory_bytes, bytes):
+  /// solve_union throws std::domain_error, before allocating, when max(degree, max_degree)
+  /// would exceed it. Default 2 GiB (two intervals: degree <= 5181).
+  std::size_t max_memory_bytes = std::size_t(1) << 31;
 };
 
 template <class Real>
@@ -199,6 +215,34 @@ std::vector<union_point<Real>> union_points(const interval_spec<Real>& iv, const
   return out;
 }
 
+/// Estimated peak memory (bytes, as a double: no overflow for any size_t arguments) of
+/// solve_union_at_degree for K intervals at M collocation points each, T = K M unknowns: the
+/// larger of the assembly phase, T^2 + 6 M^2 numbers (the matrix plus one cross block's kernel
+/// values M x Q, basis values Q x M and their M x M product; Q ~ 2M nodes at gaps down to 1e-4,
+/// 2.5M at 1e-12), and the factorisation phase, T^2 numbers (LU in place) or 2 T^2 for non-IEEE
+/// types (the inverse, see `condition`). Measured peaks: the header's "Memory" paragraph.
+template <class Real>
+double union_memory_bytes(std::size_t K, std::size_t M) {
+  const double T = double(K) * double(M), m = double(M);
+  const double assembly = T * T + (K > 1 ? 6 * m * m : 0);
+  const double factorisation = (std::is_floating_point_v<Real> ? 1 : 2) * T * T;
+  return double(sizeof(Real)) * std::max(assembly, factorisation);
+}
+
+/// The largest M with union_memory_bytes<Real>(K, M) <= bytes (K >= 1; bisection, the estimate
+/// is increasing in M and >= sizeof(Real) (K M)^2).
+template <class Real>
+std::size_t union_degree_limit(std::size_t K, std::size_t bytes) {
+  using std::sqrt;
+  std::size_t lo = 0;  // union_memory_bytes(K, lo) <= bytes
+  std::size_t hi = static_cast<std::size_t>(sqrt(double(bytes) / (double(sizeof(Real)) * double(K) * double(K)))) + 1;
+  while (hi - lo > 1) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    (union_memory_bytes<Real>(K, mid) <= double(bytes) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
 /// Gap between intervals i and j (i != j), sorted and disjoint.
 template <class Real>
 Real union_gap(const std::vector<interval_spec<Real>>& intervals, std::size_t i, std::size_t j) {
@@ -263,9 +307,7 @@ multi_solution<Real> solve_union_at_degree(const abel_parameters<Real>& par,
     const Real p = e.gam + Real(e.nu), q = e.del + Real(e.nu);
     const auto pts = union_points(intervals[j], grid);
     const auto row0 = static_cast<Eigen::Index>(offset[j]);
-    std::vector<Real> lambda(n_basis[j]);  // lambda_n = lambda_{n-1} (n - alpha)/n: O(n) in all
-    for (std::size_t n = 0; n < n_basis[j]; ++n)
-      lambda[n] = n == 0 ? ops[j].eigenvalue(0, e) : lambda[n - 1] * (Real(n) - alpha) / Real(n);
+    const std::vector<Real> lambda = ops[j].eigenvalues(n_basis[j], e);  // O(n_basis) in all
     for (std::size_t k = 0; k < M; ++k) {
       const auto r = row0 + static_cast<Eigen::Index>(k);
       const Real v = F[j](pts[k].s);
@@ -299,14 +341,21 @@ multi_solution<Real> solve_union_at_degree(const abel_parameters<Real>& par,
       }
     }
   }
-  Eigen::PartialPivLU<matrix> lu(A);
+  // 1-norm of A for the exact condition of non-IEEE types (A is overwritten below).
+  Real norm_A = 0;
+  if constexpr (!std::is_floating_point_v<Real>) norm_A = A.cwiseAbs().colwise().sum().maxCoeff();
+  // LU in place (Eigen::Ref): A holds the factors from here on. With a copy of A (PartialPivLU
+  // of a matrix; its rcond() then also allocated a T x T temporary) the peak was 3 (K M)^2
+  // numbers: 405 MB against 143 MB now at K = 1, M = 4096; 410 MB against 268 MB at K = 2,
+  // M = 2048. The factorisation is the same, bit for bit (checked on a random 2000 x 2000).
+  Eigen::PartialPivLU<Eigen::Ref<matrix>> lu(A);
   if constexpr (std::is_floating_point_v<Real>) {
     sol.condition = 1 / lu.rcond();
   } else {
     // Eigen's estimator needs NumTraits<Real>::infinity(), which the Boost.Multiprecision
     // bindings lack: the exact 1-norm condition instead (O(size^3), like the LU itself).
     const matrix inverse = lu.inverse();
-    sol.condition = A.cwiseAbs().colwise().sum().maxCoeff() * inverse.cwiseAbs().colwise().sum().maxCoeff();
+    sol.condition = norm_A * inverse.cwiseAbs().colwise().sum().maxCoeff();
   }
   vector b = rhs;
   std::vector<Real> c0(K, Real(0));
@@ -418,7 +467,10 @@ Real union_residual(const abel_parameters<Real>& par, const std::vector<interval
 
 /// Solves the coupled system (paper 41) on the union of `intervals` (sorted, disjoint) with data
 /// F[j] on interval j. See the header comment for the method, the evidence returned and the
-/// measured accuracy and cost.
+/// measured accuracy and cost. Throws std::domain_error (naming the parameter, its value and
+/// the valid range) for no intervals, a data count != interval count, unsorted or overlapping
+/// intervals, max_degree in (0, degree), adaptation without residual points, and a degree
+/// whose dense system would exceed options.max_memory_bytes (header, "Memory").
 template <class Real>
 multi_solution<Real> solve_union(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
                                  const std::vector<std::function<Real(Real)>>& F,
@@ -443,6 +495,16 @@ multi_solution<Real> solve_union(const abel_parameters<Real>& par, const std::ve
                                 "> 0 when options.max_degree > options.degree (the residual drives the degree)");
   std::size_t M = std::max<std::size_t>(options.degree, 2);
   const std::size_t M_max = std::max(M, options.max_degree);
+  // Memory guard (header, "Memory"): refuse before allocating the dense system.
+  if (detail::union_memory_bytes<Real>(K, M_max) > double(options.max_memory_bytes)) {
+    std::ostringstream range;
+    range << "[2, " << detail::union_degree_limit<Real>(K, options.max_memory_bytes) << "] for " << K
+          << " interval(s): the dense solve would need ~" << detail::union_memory_bytes<Real>(K, M_max)
+          << " bytes > options.max_memory_bytes = " << options.max_memory_bytes
+          << " (raise it deliberately for a larger system)";
+    detail::throw_bad_parameter("rhabel::abel::solve_union", M_max == M ? "options.degree" : "options.max_degree",
+                                M_max, range.str().c_str());
+  }
   for (;;) {
     auto sol = detail::solve_union_at_degree(par, intervals, F, options, M);
     if (options.residual_points == 0) return sol;

@@ -87,7 +87,9 @@
 // graded towards b and towards a step until each panel is no longer than its distance to the
 // nearest other singular point) instead of one principal value per quadrature node (~1 us
 // each, ~120 per g(y) and order). At 50 digits densities() and density() agree to ~2e-28
-// (order 12, one case; not in the tests).
+// (order 12, one case; not in the tests). Both interpolations (the window, Chebyshev-Lobatto,
+// and the panels, first kind) are fitted by one routine, detail::chebyshev_fit: the DCT of the
+// samples at their rounded abscissae, refined twice by the DCT of the residual.
 //
 // Usage for step data (the wedge; one call per scene, the punch layer's oracle):
 //     piecewise_function<double> F{[&](double) { return S1 / tgamma(1 - alpha); },
@@ -193,6 +195,85 @@ struct abel_rh_options {
 
 namespace detail {
 
+// Chebyshev interpolation at rounded abscissae, shared by index0_abel::density_with (the window
+// around y, Chebyshev-Lobatto points) and reduced_interpolant (the panels of A~, first-kind
+// points). The N samples f_j are taken at the representable points x_j nearest to the nominal
+// nodes, i.e. at abscissae s'_j = s_j + O(ulp(x)/panel): next to an end or a step A~ varies on
+// the scale of the panel, and s'_j - s_j ~ 1e-10 at 1e-6 L. So the coefficients of
+// P(s) = sum_k c_k T_k(s) are fitted at the ACTUAL s'_j: the discrete cosine transform of the
+// samples, refined twice by the transform of the residual f_j - P(s'_j) (a fixed-point iteration
+// that contracts like N^2 max|s'_j - s_j|; three transforms in all). The transforms:
+//   lobatto     s_j = cos(pi j/(N-1)):      c_k = (2/(N-1)) sum''_j f_j T_k(s_j), halved for k = 0, N-1
+//                                           (DCT-I; sum'' halves the terms j = 0, N-1);
+//   first_kind  s_j = cos(pi (j+1/2)/N):    c_k = (2/N) sum_j f_j T_k(s_j), halved for k = 0 (DCT-II).
+// T_k(s_j) comes from a table built once (the Lobatto entries from the 2(N-1) values
+// cos(pi m/(N-1)), m = k j mod 2(N-1), the first-kind entries cos(pi (j+1/2) k/N) directly).
+template <class Real>
+class chebyshev_fit {
+ public:
+  enum class grid { lobatto, first_kind };
+
+  chebyshev_fit() = default;
+  chebyshev_fit(std::size_t N, grid kind) : N_(N), kind_(kind), table_(N * N) {
+    using std::cos;
+    const Real pi = boost::math::constants::pi<Real>();
+    if (kind == grid::lobatto) {
+      const std::size_t M = N - 1;  // cos(pi m/M), m < 2M, with the argument reduced to [0, pi/2]
+      std::vector<Real> cosine(2 * M);
+      for (std::size_t m = 0; m < 2 * M; ++m) {
+        const std::size_t r = m > M ? 2 * M - m : m;  // cos is even and 2 pi periodic
+        cosine[m] = 2 * r > M ? -cos(pi * Real(M - r) / Real(M)) : cos(pi * Real(r) / Real(M));
+      }
+      for (std::size_t k = 0; k < N; ++k)
+        for (std::size_t j = 0; j < N; ++j) table_[k * N + j] = cosine[(k * j) % (2 * M)];
+    } else {
+      for (std::size_t k = 0; k < N; ++k)
+        for (std::size_t j = 0; j < N; ++j) table_[k * N + j] = cos(pi * (Real(j) + Real(1) / 2) * Real(k) / Real(N));
+    }
+  }
+
+  std::size_t size() const { return N_; }
+  /// T_k(s_j) at the nominal node s_j.
+  const Real& chebyshev_t(std::size_t k, std::size_t j) const { return table_[k * N_ + j]; }
+
+  /// c_0 .. c_{N-1} of the interpolant of values[j] at abscissae[j] (see above).
+  std::vector<Real> coefficients(const std::vector<Real>& values, const std::vector<Real>& abscissae) const {
+    const bool lobatto = kind_ == grid::lobatto;
+    const Real divisor = Real(lobatto ? N_ - 1 : N_);
+    std::vector<Real> c(N_, Real(0)), residual = values;
+    for (int sweep = 0; sweep < 3; ++sweep) {
+      for (std::size_t k = 0; k < N_; ++k) {
+        const Real* row = &table_[k * N_];
+        Real sum = 0;
+        for (std::size_t j = 0; j < N_; ++j) {
+          const Real term = residual[j] * row[j];
+          sum += (lobatto && (j == 0 || j + 1 == N_)) ? term / 2 : term;
+        }
+        const bool single = k == 0 || (lobatto && k + 1 == N_);
+        c[k] += (single ? sum : 2 * sum) / divisor;
+      }
+      for (std::size_t j = 0; j < N_; ++j) residual[j] = values[j] - clenshaw(c, abscissae[j]);
+    }
+    return c;
+  }
+
+  /// sum_k c_k T_k(s) (Clenshaw).
+  static Real clenshaw(const std::vector<Real>& c, const Real& s) {
+    Real b1 = 0, b2 = 0;
+    for (std::size_t k = c.size(); k-- > 1;) {
+      const Real b0 = 2 * s * b1 - b2 + c[k];
+      b2 = b1;
+      b1 = b0;
+    }
+    return s * b1 - b2 + c[0];
+  }
+
+ private:
+  std::size_t N_ = 0;
+  grid kind_ = grid::lobatto;
+  std::vector<Real> table_;  // T_k(s_j) at [k N + j]
+};
+
 // One index-0 solution of the Abel equation at one order: Riemann problem + Abel inversion.
 template <class Real>
 class index0_abel {
@@ -211,11 +292,9 @@ class index0_abel {
     at_y_ = quadrature::gauss_jacobi<Real>(n_, -alpha_, Real(0));
     both_ = quadrature::gauss_jacobi<Real>(n_, -alpha_, m_);
     sigma_ = Real(1) / 4;
-    // cos(pi m/(N-1)) for m < 2(N-1), N = n|1 (density()'s Chebyshev-Lobatto window): the same
-    // values chebyshev_cosine returns, computed once (density() needs 3 N^2 of them per point).
-    const std::size_t window = (n_ | 1) - 1;
-    lobatto_cosine_.resize(2 * window);
-    for (std::size_t m = 0; m < 2 * window; ++m) lobatto_cosine_[m] = chebyshev_cosine(m, window);
+    // density()'s Chebyshev-Lobatto window of N = n|1 points: its table T_k(s_j), built once
+    // (density() needs 3 N^2 of them per point).
+    window_ = chebyshev_fit<Real>(n_ | 1, chebyshev_fit<Real>::grid::lobatto);
   }
 
   // The node with distances (from_lo, to_hi) to the ends of the panel [u, v], rounded to a
@@ -346,10 +425,9 @@ class index0_abel {
     // symmetric, s = 0 exact). The sample y + H s_j is rounded to a representable x_j; next to a
     // or b, A~ varies on the scale of H itself while x_j moves by up to ulp(y)/2 (relatively
     // ~1e-10 of H at 1e-6 from an end), so the interpolant is built at the ACTUAL abscissae
-    // s'_j = (x_j - y)/H: the DCT of the samples, refined twice by the DCT of the residual
-    // f_j - P(s'_j) (a fixed-point iteration that contracts like N^2 max|s'_j - s_j|).
-    const std::size_t N = n_ | 1;  // odd: y itself is a sample
-    std::vector<Real> values(N), abscissae(N), coefficients(N, Real(0)), residual(N);
+    // s'_j = (x_j - y)/H (chebyshev_fit).
+    const std::size_t N = window_.size();  // n|1, odd: y itself is a sample
+    std::vector<Real> values(N), abscissae(N);
     for (std::size_t j = 0; j < N; ++j) {
       const Real s = sin(pi * (Real(N - 1) - 2 * Real(j)) / (2 * Real(N - 1)));
       if (s == 0) {
@@ -363,21 +441,7 @@ class index0_abel {
       values[j] = source.reduced(x);
       abscissae[j] = (x - y) / H;
     }
-    residual = values;
-    for (int sweep = 0; sweep < 3; ++sweep) {
-      // c_k += (2/(N-1)) sum''_j r_j cos(k j pi/(N-1)), halved for k = 0, N-1: P = sum_k c_k T_k
-      for (std::size_t k = 0; k < N; ++k) {
-        Real sum = 0;
-        for (std::size_t j = 0, m = 0; j < N; ++j) {  // m = (k j) mod 2(N-1), k < 2(N-1)
-          const Real term = residual[j] * lobatto_cosine_[m];
-          sum += (j == 0 || j + 1 == N) ? term / 2 : term;
-          m += k;
-          if (m >= 2 * (N - 1)) m -= 2 * (N - 1);
-        }
-        coefficients[k] += ((k == 0 || k + 1 == N) ? sum : 2 * sum) / Real(N - 1);
-      }
-      for (std::size_t j = 0; j < N; ++j) residual[j] = values[j] - clenshaw(coefficients, abscissae[j]);
-    }
+    const std::vector<Real> coefficients = window_.coefficients(values, abscissae);
     // near part: alpha H^(-alpha) int_0^1 sum c_k D_k(-u) u^(-alpha) du (at_y_ is exact: degree N-2 <= 2n-1)
     Real near = 0;
     for (std::size_t i = 0; i < at_y_.size(); ++i) {
@@ -416,8 +480,6 @@ class index0_abel {
   const Real& hi() const { return b_; }
   const Real& exponent_lo() const { return m_; }
   const piecewise_function<Real>& data() const { return F_; }
-  template <class>
-  friend class reduced_interpolant;  // shares clenshaw()
   /// lambda = cos^2(beta pi/2) size/pi^2: A~(x) = lambda log|x - c| + (functions analytic on
   /// either side of c) next to a step of F at c of this size (see integral()).
   Real log_coefficient(const Real& size) const {
@@ -514,27 +576,6 @@ class index0_abel {
     }
   }
 
-  // sum_k c_k T_k(s) (Clenshaw).
-  static Real clenshaw(const std::vector<Real>& c, const Real& s) {
-    Real b1 = 0, b2 = 0;
-    for (std::size_t k = c.size(); k-- > 1;) {
-      const Real b0 = 2 * s * b1 - b2 + c[k];
-      b2 = b1;
-      b1 = b0;
-    }
-    return s * b1 - b2 + c[0];
-  }
-
-  // cos(pi m / M) with the argument reduced to [0, pi/2] (exact symmetry, no large arguments).
-  static Real chebyshev_cosine(std::size_t m, std::size_t M) {
-    using std::cos;
-    const Real pi = boost::math::constants::pi<Real>();
-    m %= 2 * M;
-    if (m > M) m = 2 * M - m;  // cos is even and 2 pi periodic
-    if (2 * m > M) return -cos(pi * Real(M - m) / Real(M));
-    return cos(pi * Real(m) / Real(M));
-  }
-
   // Panels of [a, y - H] for the far part of density(): breaks at y - 2^j H (j >= 0), at the
   // steps of F (which all lie below y - 3H), graded towards each step as in panels().
   std::vector<std::pair<Real, Real>> far_panels(const Real& y, const Real& H) const {
@@ -564,7 +605,7 @@ class index0_abel {
   std::size_t n_;
   riemann_solution<Real> rh_;
   Real c_, s_, m_, sigma_;
-  std::vector<Real> lobatto_cosine_;  // chebyshev_cosine(m, N - 1), m < 2 (N - 1)
+  chebyshev_fit<Real> window_;  // density()'s Chebyshev-Lobatto interpolation, N = n|1 points
   quadrature::quadrature_rule<Real> legendre_, at_a_, at_y_, both_;
 };
 
@@ -592,8 +633,6 @@ class reduced_interpolant {
   reduced_interpolant(const index0_abel<Real>& exact, const Real& finest, std::size_t points)
       : exact_(exact), a_(exact.lo()), b_(exact.hi()), m_(exact.exponent_lo()) {
     using std::abs;
-    using std::cos;
-    const Real pi = boost::math::constants::pi<Real>();
     std::vector<Real> breaks{a_};
     for (const auto& s : exact.data().steps) {
       if (s.position > a_ && s.position < b_) {
@@ -635,38 +674,26 @@ class reduced_interpolant {
       if (!at_b) pieces_.push_back(piece{f, v, false, {}});
     }
     covered_ = pieces_.back().hi;
-    // cos(pi (j + 1/2) k / P), first-kind nodes x_j = cos(pi (j + 1/2)/P), DCT-II coefficients.
+    // First-kind nodes s_j = cos(pi (j + 1/2)/P) = T_1(s_j), DCT-II coefficients (chebyshev_fit).
     const std::size_t P = points;
-    std::vector<Real> cosine(P * P);
-    for (std::size_t j = 0; j < P; ++j)
-      for (std::size_t k = 0; k < P; ++k) cosine[j * P + k] = cos(pi * (Real(j) + Real(1) / 2) * Real(k) / Real(P));
+    const chebyshev_fit<Real> fit(P, chebyshev_fit<Real>::grid::first_kind);
     // The nodes are rounded to representable x_j; next to b (or a step) A~ varies on the scale of
     // the panel, and a node moved by ulp(x)/2 on a panel of length 1e-7 shifts the data by ~1e-9
-    // relatively. So, as in density(), the interpolant is fitted at the ACTUAL abscissae s'_j: the
-    // DCT of the samples, refined twice by the DCT of the residual at s'_j.
-    std::vector<Real> values(P), abscissae(P), residual(P);
+    // relatively. So, as in density(), the interpolant is fitted at the ACTUAL abscissae s'_j.
+    std::vector<Real> values(P), abscissae(P);
     tail_ = 0;
     for (auto& p : pieces_) {
       const Real half = (p.hi - p.lo) / 2;
       for (std::size_t j = 0; j < P; ++j) {
         // node in [-1, 1], placed by index0_abel::node (strictly inside the panel, off the steps:
         // a panel a few ulps long next to a step must not put a node on it)
-        const Real t = cosine[j * P + 1];
+        const Real t = fit.chebyshev_t(1, j);
         const Real x = exact.node({p.lo, p.hi}, half * (1 + t), half * (1 - t));
         const Real value = exact.reduced(x);
         values[j] = p.weighted ? value / pow_m(x - a_) : value - logs(x);
         abscissae[j] = ((x - p.lo) - (p.hi - x)) / (p.hi - p.lo);
       }
-      p.c.assign(P, Real(0));
-      residual = values;
-      for (int sweep = 0; sweep < 3; ++sweep) {
-        for (std::size_t k = 0; k < P; ++k) {
-          Real sum = 0;
-          for (std::size_t j = 0; j < P; ++j) sum += residual[j] * cosine[j * P + k];
-          p.c[k] += (k == 0 ? sum : 2 * sum) / Real(P);
-        }
-        for (std::size_t j = 0; j < P; ++j) residual[j] = values[j] - clenshaw(p.c, abscissae[j]);
-      }
+      p.c = fit.coefficients(values, abscissae);
       Real largest = 0;
       for (const Real& c : p.c) largest = std::max<Real>(largest, abs(c));
       if (largest > 0) tail_ = std::max<Real>(tail_, abs(p.c[P - 1]) / largest);
@@ -722,7 +749,7 @@ class reduced_interpolant {
     return it == pieces_.end() ? nullptr : &*it;
   }
   static Real abscissa(const piece& p, const Real& x) { return ((x - p.lo) - (p.hi - x)) / (p.hi - p.lo); }
-  static Real clenshaw(const std::vector<Real>& c, const Real& s) { return index0_abel<Real>::clenshaw(c, s); }
+  static Real clenshaw(const std::vector<Real>& c, const Real& s) { return chebyshev_fit<Real>::clenshaw(c, s); }
 
   const index0_abel<Real>& exact_;
   Real a_, b_, m_, covered_ = 0, tail_ = 0;

@@ -10,15 +10,30 @@
 //    The node count of a panel follows the resolution P_n needs there, not its degree: near
 //    x = 1 P_n(cos theta) oscillates like J_0(n theta), so a panel spanning the angles
 //    [theta_a, theta_b] (theta = arccos(1 - u)) carries ~ n (theta_b - theta_a)/pi half-waves;
-//    it gets 20 + n (theta_b - theta_a)/2 nodes, rounded up to a multiple of 8: pi/2 nodes per
-//    half-wave, 3x the rate at which an n/2-point Gauss rule integrates P_n exactly over the
-//    whole interval, plus the 20 the kernel and the endpoint weights need (panel_integrator's
-//    measured 16 nodes ~ 1e-24, plus a margin). The total is ~ 24 (log2(h/gap) + 2) + pi n/2
-//    nodes, against ~ (log2(h/gap) + 2)(n/2 + 16) for make_cross_nodes: 3-4x fewer at degree
-//    1024 and gap 1e-4, which is what makes degree >= 1000 affordable (a cross block costs
-//    degree^2 x nodes multiply-adds, done as one matrix product). Accuracy: checked through
-//    the solver (tests/abel/test_multi_interval.cpp: forward/inverse consistency to 1e-11, the
-//    alpha = 0 closed form to 8e-11 at gap 1e-4), not separately.
+//    it gets 20 + n (theta_b - theta_a)/2 nodes, rounded up to a multiple of 8 (cross_panel_nodes):
+//    pi/2 nodes per half-wave, 3x the rate at which an n/2-point Gauss rule integrates P_n
+//    exactly over the whole interval, plus the 20 the kernel and the endpoint weights need
+//    (panel_integrator's measured 16 nodes ~ 1e-24, plus a margin). The total is
+//    ~ 24 (log2(h/gap) + 2) + pi n/2 nodes, against ~ (log2(h/gap) + 2)(n/2 + 16) for
+//    make_cross_nodes: 3-4x fewer at degree 1024 and gap 1e-4 (1912 against 6864), which is what
+//    makes degree >= 1000 affordable (a cross block costs degree^2 x nodes multiply-adds, done
+//    as one matrix product). Accuracy: int w P_n = h_0 delta_n0 for all n < 1024 at gap 1e-4 to
+//    <= 3.9e-12 relative to h sqrt(h_0 h_n) (1.9e-14 unless both ends are unbounded; the worst
+//    at the top degrees), and through the solver (tests/abel/test_multi_interval.cpp:
+//    forward/inverse consistency to 1e-11, the alpha = 0 closed form to 8e-11 at gap 1e-4).
+//    Relation to detail::panel_integrator::for_each_node (numerics.hpp), deliberately NOT used
+//    here: the GRADING is the same (its breaks for len = 2, d_left = d, d_right = inf are these,
+//    and so are its four rules: Gauss-Jacobi with the facing end's exponent on the first panel,
+//    the far end's on the last, Gauss-Legendre between; at degree 0 the two node sets coincide
+//    to rounding, tests/abel/test_multi_interval.cpp). What differs is the NODE COUNT: a
+//    panel_integrator carries ONE count for all its panels (its rules are fixed at
+//    construction), which here would have to be the far panel's ~ 20 + n pi/4 on each of the
+//    log2(1/d) + 2 panels (11960 nodes instead of 1912 at degree 1024, gap 1e-4: 6x); so the
+//    panels are walked here with a count each. A second, smaller difference: panel_integrator
+//    stores the breaks graded towards its len end as distances from 0 (len - u, rounded), so
+//    with the facing end on the right its node distances to that end are off by ~eps absolute,
+//    ~eps/d relative (2.3e-13 in the weights at d = 2e-4); here u is measured from the facing
+//    end on either side.
 //  * cross_block: the matrix B(k, n) = scale int_{I_i} w_i P_n K(t - s_k) dt at collocation
 //    points s_k of I_j given by their distance to the end of I_j facing I_i (no cancellation
 //    in t - s: t - s = (distance of t to its facing end) + gap + (distance of s to its facing end)).
@@ -42,18 +57,30 @@ struct cross_nodes {
   std::vector<Real> x, weight, t_minus_lo, hi_minus_t;
 };
 
+/// Gauss nodes for the panel [ua, ub] of u = distance from the facing end (reference units,
+/// u in [0, 2]) so that P_n, n < degree, is resolved: 20 + degree (theta_b - theta_a)/2,
+/// theta = arccos(1 - u), rounded up to a multiple of 8 so that few distinct rules enter the
+/// cache (the top of this header). THE difference from panel_integrator (one count for all).
+template <class Real>
+std::size_t cross_panel_nodes(const Real& ua, const Real& ub, std::size_t degree) {
+  using std::acos;
+  const double extra = static_cast<double>(Real(degree) * (acos(1 - ub) - acos(1 - ua)) / 2);
+  const std::size_t nodes = 20 + static_cast<std::size_t>(std::ceil(extra));
+  return (nodes + 7) / 8 * 8;
+}
+
 /// Nodes graded toward the end of I_i facing the other interval (the lo end if facing_left),
 /// at distance `gap`; resolve P_n for n < degree (see the top of this header).
 template <class Real>
 cross_nodes<Real> degree_graded_cross_nodes(const jacobi_density<Real>& g, const Real& gap, bool facing_left,
                                                   std::size_t degree) {
-  using std::acos;
   using std::pow;
   const Real h = g.half_length();
   const Real d = gap / h;
   // Exponent of the weight at the facing end and at the far end (w = (1-x)^del (1+x)^gam).
   const Real e_face = facing_left ? g.gam : g.del;
   const Real e_far = facing_left ? g.del : g.gam;
+  // panel_integrator::for_each_node's breaks for (len = 2, d_left = d, d_right = inf).
   std::vector<Real> breaks{Real(0)};
   if (d > 0 && d < 1) {
     Real w = d;
@@ -61,14 +88,9 @@ cross_nodes<Real> degree_graded_cross_nodes(const jacobi_density<Real>& g, const
   }
   breaks.push_back(Real(2));
   cross_nodes<Real> out;
-  const Real n_real = Real(degree);
   for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
     const Real ua = breaks[k], ub = breaks[k + 1];
-    const Real theta_a = acos(1 - ua), theta_b = acos(1 - ub);
-    const double extra = static_cast<double>(n_real * (theta_b - theta_a) / 2);
-    // Rounded up to a multiple of 8 so that few distinct rules enter the cache.
-    std::size_t nodes = 20 + static_cast<std::size_t>(std::ceil(extra));
-    nodes = (nodes + 7) / 8 * 8;
+    const std::size_t nodes = cross_panel_nodes(ua, ub, degree);
     const bool touches_face = k == 0, touches_far = k + 2 == breaks.size();
     // Gauss-Jacobi on [ua, ub] for the weight (ub - u)^P (u - ua)^Q: Q = e_face on the first
     // panel, P = e_far on the last.
