@@ -327,7 +327,7 @@ int main(int argc, char** argv) {
         const double seconds = median_seconds([&] { (void)solve_step(op, edge::bounded, edge::bounded, F, 0.0, options); }, n == 0 ? 5 : 3);
         if (n == 0)
           std::cerr << name.str() << " alpha=" << c.alpha << " adaptive: K=" << sol.taylor_degree
-                    << (sol.density.edge_power != 0 ? " (edge-damped)" : " (Taylor)") << " n=" << sol.degree
+                    << (sol.density.mobius != 0 ? " (mapped)" : " (Taylor)") << " n=" << sol.degree
                     << " status=" << (sol.status == solve_status::converged ? "converged" : "not_converged")
                     << " tail=" << sol.coefficient_tail << " floor=" << sol.rounding_floor
                     << " RH error estimates " << rh.total().error_estimate << ", " << rh.integral(0.0).error_estimate << "\n";

@@ -21,6 +21,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -30,19 +31,12 @@ namespace {
 
 constexpr double pi = boost::math::constants::pi<double>();
 constexpr double boundary_width = 1e-12;  // |alpha + beta/2 - 1/2| below this is "boundary"
-// Wedge below the boundary, apex at distance min(eps, 1 - eps) L from an edge. abel::solve_step's
-// accuracy degrades as the apex approaches an edge (its Taylor factor q has radius 1 - |x0|).
-// Measured (alpha = 0.2, beta = 0, tolerance 1e-14, C_f against the Riemann-Hilbert route):
-// 1.6e-13 at min(eps, 1 - eps) = 0.25, 4e-9 (degree 129) at 0.042, 2e-3 at 5e-4; alpha = 0: 1e-4
-// at 0.02. The pressure samples of the enriched density (tolerance 1e-10, against the
-// Riemann-Hilbert density): 2e-11 .. 1e-10 of the peak at min(eps, 1 - eps) in [0.105, 0.15]
-// (2.8e-10 once: alpha 0.05, k 0.5, 0.15), 1.3e-6 at 0.028, 1e-4 at 1e-3; the Riemann-Hilbert
-// samples cost 14-24 ms against ~1-2 ms for the whole enriched solve. So: at or below near_edge
-// the isolated wedge takes C_f and the pressure samples from the Riemann-Hilbert route (wedge_by_rh,
-// rh_pressure); at or below enrich_limit the density is the plain Jacobi series instead of the
-// enriched one (residual and displacement only, for an isolated wedge).
-constexpr double near_edge = 0.1;
-constexpr double enrich_limit = 1e-3;
+// Wedge below the boundary, apex at distance min(eps, 1 - eps) L from an edge. abel::solve_step
+// maps an apex with min(eps, 1 - eps) < 1/4 toward the centre (Moebius map, abel/step_enrichment.hpp)
+// and converges at 65-195 points down to 1e-3 (FIGURES). Below enrich_limit the isolated wedge
+// takes C_f and the pressure samples from the Riemann-Hilbert route (wedge_by_rh, rh_pressure) and
+// the density is the plain Jacobi series (residual and displacement only).
+constexpr double enrich_limit = 1e-4;
 
 using detail::edge_exponents;
 using detail::forcing;
@@ -230,28 +224,40 @@ class inside_action {
  public:
   inside_action(const contact_density& g, const abel::abel_parameters<double>& par)
       : g_(g), op_(par, g.a(), g.b()), evaluate_(op_, g.jacobi.gam, g.jacobi.del, g.jacobi.coefficients.size() + 32),
-        split_(g.apex.q.size() / 2 + 12), series_(g.jacobi.coefficients, g.jacobi.del, g.jacobi.gam) {}
+        evaluate_mapped_(op_, g.jacobi.gam, g.jacobi.del, g.apex.smooth.coefficients.size() + 32),
+        split_(g.apex.quadrature_nodes() - 4), series_(g.jacobi.coefficients, g.jacobi.del, g.jacobi.gam),
+        mapped_series_(g.apex.smooth.series_evaluator()) {}
   inside_action(const inside_action&) = delete;
   inside_action& operator=(const inside_action&) = delete;
   double operator()(double s) const {
     // g.jacobi.series(x) with the recurrence coefficients computed once (same sum to a few ulps).
     double result = evaluate_([&](double x) { return series_(x); }, s);
-    if (g_.has_apex) {
-      // A[C phi] as abel::apply computes it inside the interval, with the split rules built once
-      // for all check points (abel::apply builds them per call).
-      const double h = op_.half_length(), y = map_to_reference(s, g_.a(), g_.b()).x;
-      result += std::pow(h, op_.parameters().alpha()) * g_.apex.enrichment *
-                abel::detail::enrichment_image_any(g_.apex, op_.parameters(), split_, y);
+    if (!g_.has_apex) return result;
+    // A[C phi] as abel::apply computes it inside the interval, with the split rules built once
+    // for all check points (abel::apply builds them per call).
+    const double h = op_.half_length(), alpha = op_.parameters().alpha();
+    const auto& apex = g_.apex;
+    if (apex.mobius == 0) {
+      const double y = map_to_reference(s, g_.a(), g_.b()).x;
+      return result + std::pow(h, alpha) * apex.enrichment * abel::detail::enrichment_image_any(apex, op_.parameters(), split_, y);
     }
-    return result;
+    // Mapped: the covariance A[g](M(sigma)) = (1 - s^2)^alpha (1 + s sigma)^(1 - alpha) A[g~](sigma)
+    // (abel/step_enrichment.hpp), with the series part of g~ by the same independent quadrature.
+    const auto d = apex.sigma_of((s - g_.a()) / h, (g_.b() - s) / h);
+    const double y = d[0] <= d[1] ? d[0] - 1 : 1 - d[1];
+    const double t = d[0] <= d[1] ? g_.a() + h * d[0] : g_.b() - h * d[1];
+    const double mapped = evaluate_mapped_([&](double x) { return mapped_series_(x); }, t) +
+                          std::pow(h, alpha) * apex.enrichment * abel::detail::enrichment_image_any(apex, op_.parameters(), split_, y);
+    return result + std::pow((1 - apex.mobius) * (1 + apex.mobius), alpha) * std::pow(d[2], 1 - alpha) * mapped;
   }
 
  private:
   const contact_density& g_;
   abel::abel_operator<double> op_;
-  abel::abel_operator<double>::quadrature_evaluator evaluate_;
+  abel::abel_operator<double>::quadrature_evaluator evaluate_, evaluate_mapped_;
   abel::detail::split_integrator<double> split_;  // node count as in abel::apply
   rhabel::quadrature::jacobi_series<double> series_;  // g.jacobi's series, coefficients precomputed
+  rhabel::quadrature::jacobi_series<double> mapped_series_;  // g.apex.smooth's (mapped only; else empty)
 };
 
 // The action A g (s) of another indentor's density at points s of an interval [lo, hi] outside its
@@ -304,7 +310,7 @@ struct indentor_state {
   std::optional<double> epsilon;
   std::optional<double> friction;  // C_f when it does not come from g (wedge, apex next to an edge)
   double friction_error = 0;       // its error estimate
-  // Isolated wedge with the apex within near_edge L of an edge: its Riemann-Hilbert solution on
+  // Isolated wedge with the apex within enrich_limit L of an edge: its Riemann-Hilbert solution on
   // the unit interval, the source of the pressure samples (see wedge_by_rh).
   std::shared_ptr<const riemann::abel_rh_solution<double>> rh_unit;
   double rh_one_minus_eps = 0;  // its interval is [-eps, rh_one_minus_eps]
@@ -578,9 +584,10 @@ contact_density build_wedge_step(double a, double b, double apex, int nu, const 
   abel::solve_options<double> o;
   o.residual_points = 0;
   o.tolerance = cx.options.tolerance;
-  // Chebyshev points 17, 33, ..., 2 max_degree + 1: the remainder after the enrichment is smooth, so
-  // the cost is dominated by the quadrature of A[phi] at the points, not by the degree.
-  o.max_degree = 2 * std::max<std::size_t>(cx.options.max_degree, 8) + 1;
+  // Up to 2 max_degree + 1 Chebyshev points, at least the third nested level (585: an apex 1e-4 L
+  // from an edge converges there, abel/step_enrichment.hpp): the remainder after the enrichment is
+  // smooth, so the cost is the quadrature of A[phi] at the points, not the degree.
+  o.max_degree = std::max<std::size_t>(2 * std::max<std::size_t>(cx.options.max_degree, 8) + 1, 585);
   const auto smooth = F.smooth;
   const auto steps = F.steps;
   auto f = [&](double s) {
@@ -592,13 +599,20 @@ contact_density build_wedge_step(double a, double b, double apex, int nu, const 
   auto sol = abel::solve_step(op, leading_edge(nu), trailing_edge(nu), f, apex, o);
   contact_density g;
   g.nu = nu;
-  g.jacobi = std::move(sol.density.smooth);
-  g.apex = std::move(sol.density);
-  g.apex.smooth.coefficients.clear();
-  g.apex.smooth.lo = g.jacobi.lo;
-  g.apex.smooth.hi = g.jacobi.hi;
-  g.apex.smooth.gam = g.jacobi.gam;
-  g.apex.smooth.del = g.jacobi.del;
+  if (sol.density.mobius == 0) {
+    g.jacobi = std::move(sol.density.smooth);
+    g.apex = std::move(sol.density);
+    g.apex.smooth.coefficients.clear();
+    g.apex.smooth.lo = g.jacobi.lo;
+    g.apex.smooth.hi = g.jacobi.hi;
+    g.apex.smooth.gam = g.jacobi.gam;
+    g.apex.smooth.del = g.jacobi.del;
+  } else {
+    // Apex near an edge: solve_step's Moebius map; its series lives in the mapped variable, so the
+    // whole density stays in `apex` and `jacobi` keeps only a c_0 for set_load.
+    g.apex = std::move(sol.density);
+    g.jacobi = {g.apex.smooth.lo, g.apex.smooth.hi, g.apex.smooth.gam, g.apex.smooth.del, {0.0}};
+  }
   g.has_apex = true;
   g.update_apex_integral();
   g.tail = sol.coefficient_tail;
@@ -714,9 +728,9 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
     }
     return;
   }
-  // Near an edge (near_edge, enrich_limit at the top): C_f and the pressure samples of the
-  // isolated wedge from the Riemann-Hilbert route; very near, the density is the plain series,
-  // which then serves only the residual and the displacement of an isolated wedge. A coupled
+  // Within enrich_limit of an edge (see the top): C_f and the pressure samples of the isolated
+  // wedge from the Riemann-Hilbert route; the density is the plain series, which then serves
+  // only the residual and the displacement. A coupled
   // wedge keeps the plain series for everything (pressure unresolved next to the apex; C_f by
   // Richardson extrapolation of the series).
   const double edge_distance = std::min(eps, one_minus_eps);
@@ -773,15 +787,6 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
     st.g.scale(std::pow(L, -alpha));
     st.g.set_interval(st.apex - eps * L, st.apex + one_minus_eps * L);
     st.epsilon = eps;
-    if (edge_distance <= near_edge) {
-      const auto rh = wedge_by_rh(cx, S1, S2, eps, one_minus_eps);
-      st.friction = rh.friction;
-      st.friction_error = rh.friction_error;
-      st.rh_unit = rh.unit;
-      st.rh_one_minus_eps = one_minus_eps;
-      st.status = "apex within 0.1 L of an edge: C_f and the pressure grid by the Riemann-Hilbert route; "
-                  "residual and displacement from the enriched density (error_estimate)";
-    }
     return;
   }
   // Coupled: generic orthogonality root (the step part of d_0 is exact, the smooth part by quadrature).
@@ -854,14 +859,6 @@ void validate(const scene& s) {
 std::string indentor_name(std::size_t i, const indentor& ind) {
   static const char* names[] = {"parabolic", "wedge", "flat", "general_profile"};
   return "indentors[" + std::to_string(i) + "] (" + names[ind.shape.index()] + ")";
-}
-
-// C phi of an enriched density at the point with reference distances 1 + x, 1 - x and offset
-// dx0 = x - x0 from the apex, whichever is exact (phi is singular at x0: x - x0 must not be rounded).
-double enrichment_at(const abel::enriched_density<double>& e, double one_plus, double one_minus, double dx0) {
-  const double x = one_plus <= one_minus ? one_plus - 1 : 1 - one_minus;
-  return e.enrichment * std::pow(one_minus, e.smooth.del) * std::pow(one_plus, e.smooth.gam) * e.q_at(x) *
-         e.E_full(std::abs(dx0), dx0 > 0);
 }
 
 // Non-const: Boost 1.74 defines tanh_sinh::integrate(f, a, b) without the const of its declaration.
@@ -1268,6 +1265,8 @@ scene_result solve(const scene& s, const solve_options& options) {
       const rhabel::quadrature::jacobi_series<double> series(g.line_load ? std::vector<double>{} : g.jacobi.coefficients,
                                                              g.jacobi.del, g.jacobi.gam);
       const double h = g.jacobi.half_length();
+      std::optional<abel::enriched_evaluator<double>> mapped_apex;
+      if (g.has_apex && g.apex.mobius != 0) mapped_apex.emplace(g.apex);
       for (std::size_t k = 0; k < n; ++k) {
         const double t = g.jacobi.lo + g.length() * (static_cast<double>(k) + 0.5) / static_cast<double>(n);
         r.grid_x[k] = t;
@@ -1279,11 +1278,13 @@ scene_result solve(const scene& s, const solve_options& options) {
         const double one_plus_x = (t - g.jacobi.lo) / h, one_minus_x = (g.jacobi.hi - t) / h;
         const double x = one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x;
         double inner = series(x);
-        if (g.has_apex) {
+        if (g.has_apex && g.apex.mobius == 0) {
           const double u = x - g.apex.x0;
           inner += g.apex.enrichment * g.apex.q_at(x) * (u > 0 ? g.apex.E_full(u, true) : g.apex.E_full(-u, false));
         }
         r.pressure[k] = ps * (std::pow(one_minus_x, g.jacobi.del) * std::pow(one_plus_x, g.jacobi.gam) * inner);
+        // Mapped (apex near an edge): the whole density is in apex (abel's evaluator maps back).
+        if (mapped_apex) r.pressure[k] += ps * (*mapped_apex)(one_plus_x, one_minus_x);
       }
       if (st[i].rh_unit) {
         const double estimate = rh_pressure(*st[i].rh_unit, -*st[i].epsilon, st[i].rh_one_minus_eps, g.jacobi.gam,
@@ -1360,7 +1361,7 @@ scene_result solve(const scene& s, const solve_options& options) {
           const double one_plus = 2 * u / Lg, one_minus = 2 * v / Lg;
           const double xr = one_plus <= one_minus ? one_plus - 1 : 1 - one_minus;
           double val = std::pow(one_minus, g.jacobi.del) * std::pow(one_plus, g.jacobi.gam) * g.jacobi.series(xr);
-          if (g.has_apex) val += enrichment_at(g.apex, one_plus, one_minus, dx0);
+          if (g.has_apex) val += g.apex.value_with_offset(one_plus, one_minus, dx0);
           return val;
         };
         auto weight = [&](double u) { return psi_distance(-u, cx.alpha, omk_over_alpha, cx.kappa); };
@@ -1370,7 +1371,7 @@ scene_result solve(const scene& s, const solve_options& options) {
                    tanh_sinh_rule().integrate([&](double v) { return density_at(Lg - v, v, 0) * weight(Lg - v); }, 0.0, half, 1e-12);
         } else {
           // Four pieces, each parametrised by the offset from its singular end (a, apex, apex, b).
-          const double ua = st[i].apex - g.jacobi.lo, vb = g.jacobi.hi - st[i].apex, x0 = g.apex.x0;
+          const double ua = st[i].apex - g.jacobi.lo, vb = g.jacobi.hi - st[i].apex, x0 = g.apex.apex_reference();
           auto piece = [&](auto&& f, double length) { return tanh_sinh_rule().integrate(f, 0.0, length, 1e-12); };
           datum += piece([&](double u) { return density_at(u, Lg - u, 2 * u / Lg - 1 - x0) * weight(u); }, ua / 2);
           datum += piece([&](double o) { return density_at(ua - o, vb + o, -2 * o / Lg) * weight(ua - o); }, ua / 2);

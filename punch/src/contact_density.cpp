@@ -45,6 +45,7 @@ void contact_density::set_interval(double lo, double hi) {
 
 void contact_density::scale(double factor) {
   for (double& c : jacobi.coefficients) c *= factor;
+  for (double& c : apex.smooth.coefficients) c *= factor;  // empty unless mapped
   apex.enrichment *= factor;
   apex_integral *= factor;
 }
@@ -72,12 +73,8 @@ double contact_density::integral_from(double s) const {
   if (!(s > a())) return integral();
   if (!(s < b())) return 0;
   double sum = series_integral_from(jacobi, s);
-  if (has_apex) {
-    // The enrichment's composite quadrature always cuts at the apex; s is added as a further cut
-    // and the integrand masked to t > s (pieces never straddle s).
-    const double cut = s;
-    sum += apex.integrate([cut](double t) { return t > cut ? 1.0 : 0.0; }, std::vector<double>{cut});
-  }
+  // The enrichment's composite rule cut at s (integrate_between: pieces right of s only).
+  if (has_apex) sum += apex.integral_from(s);
   return sum;
 }
 

@@ -10,6 +10,7 @@
 //       .apply(jacobi_density, s)            A g(s), any s (outside [lo,hi]: surface slope, paper 27-28)
 //       .apply_by_quadrature(S, gam, del, s) independent direct quadrature of the one-sided integrals
 //       .eigenvalue(n, exponents)            lambda_n of the spectral relation
+//       .eigenvalues(N, exponents)           lambda_0 .. lambda_{N-1} in O(N)
 //       ::quadrature_evaluator               cached version of apply_by_quadrature
 //   jacobi_density<Real>{lo, hi, gam, del, coefficients}: g(t), integral(), integral_to(t), moment(k),
 //       integrate(f, breakpoints), intensity_leading(), intensity_trailing(), series(x)
@@ -20,7 +21,10 @@
 //     -> abel_solution{density, exponents, solvability_defect, homogeneous, residual,
 //                      coefficient_tail, degree, status, with_load(P)}
 //   solve_step(op, leading, trailing, F, t0)                  jump at t0 with singular enrichment
-//     -> enriched_solution{density: enriched_density (g(t), integral(), integral_to(t), integrate(f, bps)),
+//                                                             (Moebius map for an apex near an edge)
+//     -> enriched_solution{density: enriched_density (g(t), value_at_distance, value_with_offset,
+//                                   evaluator(), integral(), integral_to(t), integral_from(t),
+//                                   integrate(f, bps), integrate_between, intensities, mobius),
 //                          exponents, solvability_defect, residual, coefficient_tail, degree, status,
 //                          taylor_degree, rounding_floor};  apply(op, g, s)
 //   solve_union(parameters, intervals, F per interval, multi_solve_options)   paper 41

@@ -17,9 +17,9 @@
 // So step data is matched by g = C phi + w sum_n c_n P_n^(del,gam), where
 //     phi(x) = w(x) q(x) E(x),  q analytic on [-1, 1] with w q = w(x0) + O((x-x0)^(K+1)),
 // so that phi creates no jump-type terms of order 1..K, and w keeps the edge behaviour of the
-// class (the image of phi is smooth at the ends). Two choices of q (see "Taylor degree" below):
-// the Taylor polynomial (degree K) of w(x0)/w(x) at x0, or, for an apex near an edge, the
-// edge-damped factor. C = jump(F~)/(w(x0) J_E);
+// class (the image of phi is smooth at the ends). q is the Taylor polynomial (degree K) of
+// w(x0)/w(x) at x0 (see "Taylor degree" below; with the Moebius map of an apex near an edge, of
+// the mapped local solution). C = jump(F~)/(w(x0) J_E);
 // the remainder F~ - C A[phi] has only jump-type terms of order >= K+1 at x0 and is solved by the
 // spectral method of abel_solver.hpp (Chebyshev interpolation, adaptive). A[phi] at the
 // interpolation points is computed by composite Gauss-Jacobi quadrature, split at x0, at the
@@ -58,79 +58,77 @@
 //
 // Taylor degree and rounding floor. q has radius of convergence 1 - |x0| and max|q| on [-1, 1]
 // grows like ((1 + |x0|)/(1 - |x0|))^K. The smooth part of g cancels C phi far from the apex, so
-// the Chebyshev tail of the remainder stalls at rounding_floor = max|q| eps (measured 1-5 x).
-// taylor_degree = 0 (default) picks the largest K <= 12 with max|q| <= 1e4
-// (max_taylor_amplification), at least 1; the adaptive loop stops as converged once the tail is
-// below 4 rounding_floor (before, asymmetric cases ran to max_degree and reported not_converged).
-// Edge-damped factor (apex near an edge: automatic K < 5 = min_taylor_degree, i.e. eps = (t0 -
-// a)/L beyond ~0.87 or below ~0.13). The Taylor factor then leaves jump-type terms of order K + 1
-// <= 5 with coefficients ~ (1 - |x0|)^-(K+1), and the error decayed only like n^-(2K+2-2alpha).
-// Instead, with K = 5 (edge_damped_degree; K + 1 even) and u = x - x0, d+- = 1 -+ x0,
-//     q = (d+/D+)^del (d-/D-)^gam,   D+- = (1 -+ x) + sigma d+- (u/d+-)^(K+1),   sigma = 1,
-// so w q = w(x0) ((1-x)/D+)^del ((1+x)/D-)^gam. D+- > 0 on [-1, 1] (both terms >= 0 and not both
-// 0), so q is analytic there; (1 -+ x)/D+- = 1 + O(u^(K+1)) at x0 (no jump-type terms of order
-// 1..K); (1 -+ x)/D+- lies in [0, 1], so for del, gam >= 0 (the wedge class nu = -1) max|q| <= 1
-// (no amplification at all), and near each end D+- ~ sigma d+- keeps w's edge behaviour. The
-// price: the zeros of D+ lie at u ~ d+ e^(+-i 21 deg) (0.85 d+ from x0, 0.3 d+ off the axis, for
-// K = 5), so the images are analytic only in a region of size ~ d+ around the apex and the
-// error decays geometrically at a rate ~ sqrt(d+) (points ~ 1/sqrt(1 - |x0|)) instead of
-// algebraically; and the quadratures of phi need K/2 + 28 nodes per panel instead of K/2 + 16
-// (with 16 the images stalled at ~1e-9). K = 5 against K = 3, 7 (eps = 0.97, 257 points): 4e-11
-// against 2.5e-9, 5e-9; sigma = 0.1 gave 7.7e-11, sigma = 10 1e-8. If a negative edge exponent makes max|q|
-// exceed max_taylor_amplification (the class unbounded at the near edge, (1/D)^del growing where
-// D is large), the Taylor factor is kept. With the edge-damped factor rounding_floor is
-// max(max|q|, 64) eps: the tails of its images plateau at 1e-14 .. 1e-13 (measured).
+// the Chebyshev tail of the remainder stalls at max|q| eps (measured 1-5 x); on the plain path
+// (alpha >= 0.01) the two one-sided integrals of A[E] also cancel next to x0, ~ eps/(4 alpha)^2
+// (measured tails at 65 points 0.7-1.2 x that for alpha in [0.01, 0.05]). rounding_floor is the
+// larger of the two. taylor_degree = 0 (default) picks the largest K <= 12 (max_taylor_degree)
+// with max|q| <= 1e4 (max_taylor_amplification), at least 1; the adaptive loop stops as converged
+// once the tail is below 4 rounding_floor (before, asymmetric cases ran to max_degree and reported
+// not_converged; alpha in [0.01, 0.05] went to 195 points without improving int g).
 //
-// Accuracy and cost (command: build-step4/bin/study_abel_convergence out.csv, CSV rows
-// step_adaptive_*, step_apex_eps_*, step_apex_rh_eps_*; default options as the punch layer calls
-// it; median wall time, residual off, measured with the machine's 2 cores shared by ~5 jobs
-// (load 5), so times are +-30%).
+// Apex near an edge: Moebius map (|x0| > 1/2 = moebius_threshold, i.e. eps = (t0 - a)/L outside
+// [1/4, 3/4]; automatic K only). Next to an edge q's radius 1 - |x0| shrinks and the solution
+// varies on the scale d = 1 - |x0| around the apex: a global polynomial needs ~ 1/sqrt(d) points.
+// The operator is covariant under the Moebius maps of [-1, 1] onto itself, x = M(sigma) =
+// (sigma + s)/(1 + s sigma), |s| < 1 (derived for this module from M(sigma) - M(tau) = (1 - s^2)
+// (sigma - tau)/((1 + s sigma)(1 + s tau)) and M' = (1 - s^2)/(1 + s sigma)^2; checked by the tests
+// against tanh-sinh quadrature of the operator):
+//     A[g](M(sigma)) = (1 - s^2)^alpha (1 + s sigma)^(1 - alpha) A[g~](sigma),
+//     g~(sigma) = g(M(sigma)) (1 + s sigma)^(-1 - alpha),
+// and M fixes -1 and 1, so g~ has the edge exponents of g. solve_step solves A g~ = F~ := (1 -
+// s^2)^-alpha (1 + s sigma)^(alpha - 1) F(M(sigma)) with the apex at sigma0 = M^-1(x0). The map
+// multiplies the ratios r = (1 - x)/(1 + x): r(M(sigma)) = r_s r(sigma), r_s = (1 - s)/(1 + s).
+// Its price is F~'s factor, analytic on [-1, 1] with a branch point at -1/s, ~ 2 r_s beyond the
+// end far from the apex, which limits the Chebyshev convergence there. So r(x0) is split as
+// r^(1/4) (the apex's ratio after the map: eps 0.99 -> 0.76, 0.999 -> 0.85) times r^(3/4) (the
+// map's; moebius_apex_exponent: 1/4 and 1/5 measured best, 1/3 up to 1.5x and 1/2 up to 3x more
+// points). The local solution in sigma is (the map's image of E) ~ E~(sigma)/(1 + s sigma), so q
+// matches w(sigma0)(1 + s sigma0)/(w(sigma)(1 + s sigma)) to order K (mapped_weight_taylor), and C
+// comes from the jump of F at t0 (one-sided values taken in x: the map compresses distances next
+// to the apex) times F~/F there. nu = -1: the physical problem is A g = F - defect with a
+// CONSTANT defect, which is not constant in sigma, so the defect <F, w'>/<1, w'> (w' the image
+// weight (1 - x)^(gam-1) (1 + x)^(del-1)) is removed from F before the map, by Gauss-Jacobi in x
+// (solvability_defect keeps its meaning; what remains of the image-P_0 coefficient joins the tail).
+// The density carries s (enriched_density::mobius); its evaluations, integrals (composite rule
+// graded also toward the branch point), intensities and apply map back. A point costs as much as
+// without the map.
+//
+// Accuracy and cost (command: build-lead/bin/study_abel_convergence out.csv, CSV rows
+// step_adaptive_*, step_apex_eps_*, step_apex_rh_*; default options as the punch layer calls it;
+// median wall time, residual off, machine load ~1.3).
 // Step at t0 = 0.1 on [-1, 1], beta = 0.2, relative error of int g against the exact Rodrigues
 // value (int_a^t0 g against the degree-257 solution: same level):
-//     alpha = 0, 1e-3 (normalized path):      65 points, <= 1.1e-15,   0.83-0.97 ms
-//     alpha = 1e-8 (not in the study; thread CPU time of the same solve): 65 points, 0.85 ms
-//     alpha = 0.01:                             65 / 195 points (nu = 0 / -1), <= 1.2e-13,  0.28 / 0.92 ms
-//     alpha = 0.049, 0.05:                      65 / 195 points, <= 1.2e-14,  0.28 / 0.91 ms
-//     alpha = 0.25, 0.5, 0.9:                   65 points, <= 9.5e-15,   0.28 ms
-// so the target (1e-12 in under 1 ms) is met for every alpha. Before this session (same
-// machine, thread CPU time): 0.51 ms at 65 points (17 + 33 + 65 evaluated), 2.0-2.4 ms at alpha <=
-// 1e-3. The gains: nested levels starting at 65 (1.7x), and on the normalized path K/2 + 10
-// nodes per panel instead of K/2 + 16 and no pow in E_full (|u|^-alpha = 1 + alpha core) and a
-// series for exprel at tiny arguments (2.3-2.8x).
+//     alpha = 0, 1e-3 (normalized path):      65 points, <= 1.1e-15,   0.67-1.08 ms
+//     alpha = 0.01:                             65 points, <= 1.9e-13,   0.26-0.27 ms (was 195 for nu = -1)
+//     alpha = 0.049, 0.05:                      65 points, <= 8.1e-15,   0.26 ms (was 195)
+//     alpha = 0.25, 0.5, 0.9:                   65 points, <= 1.0e-14,   0.26 ms
 // Apex position eps = (t0 - a)/L, wedge data of the class nu = -1 satisfying the orthogonality
 // condition (alpha = 0.3, beta = 0.2; rows step_apex_rh_*), max relative error of int g and
 // int_a^t0 g against the independent Riemann-Hilbert route riemann::solve_abel_rh (its error
-// estimates <= 1e-15 here); n = points, factor = Taylor (K) or edge-damped (K = 5):
-//     eps      factor      65 pts     195 pts    585 pts    adaptive (default options)
-//     0.5      Taylor 12   1.2e-15    1.2e-15    1.2e-15     66 pts, 1.2e-15, 0.28 ms
-//     0.8      Taylor 7    2.5e-11    7.5e-13    8.4e-13    195 pts, 7.5e-13, 0.91 ms
-//     0.9      edge 5      2.5e-7     8.6e-12    6.4e-15    585 pts, 6.4e-15, 15 ms
-//     0.97     edge 5      1.6e-4     5.1e-9     2.6e-13   1024 pts, 1.1e-14, 44 ms
-//     0.99     edge 5      1.4e-3     5.8e-6     9.5e-12   1024 pts, 1.6e-13, 49 ms (not_converged)
-//     0.999    edge 5      8.3e-2     3.1e-3     1.1e-5    1024 pts, 2.7e-9,  95 ms (not_converged)
-//     0.03     edge 5      1.6e-6     1.1e-10    3.5e-14   1024 pts, 2.5e-14, 88 ms
-//     0.001    edge 5      5.1e-3     8.1e-5     2.6e-8    1024 pts, 4.6e-11, 130 ms (not_converged)
-// Before (Taylor factor only, doubling levels to 513 points; probe of this session against the
-// same RH reference): eps = 0.9: 6.8e-12 at 513 points; 0.97: 1.6e-9 (not_converged); 0.99:
-// 3.3e-8; 0.999: 2.5e-5. The punch layer's hardest wedge (alpha = 0.2, k = 0.5, S1 = S2: eps =
-// 0.84, Taylor K = 6) converges at 195 points to 1.8e-12 (alpha = 0.2), 1.8e-13 (alpha = 1e-3),
-// 1.1e-13 (alpha = 0), in 1.6 / 9 / 9 ms wall (thread CPU: 0.86 / 2.6 / 2.3 ms; before: 257
-// points, 4.2 / 12.1 / 11.4 ms CPU). The edge-damped points cost ~2.3x the Taylor ones (K/2 + 28
-// nodes per panel and exp/log of D+-).
-// The same study with F = +-1 in both classes (rows step_apex_eps_*, error of int g only):
-// eps in [0.3, 0.7] converged at 65-66 points, <= 1.5e-12; eps = 0.1, 0.9 converged at 195-585
-// points, <= 1.7e-12; eps = 0.01, 0.99 <= 1.6e-13 at 1024 points except nu = 0 at 0.99 (Taylor
-// kept: del < 0) 1.4e-12; eps = 1e-3, 0.999: 1e-13 .. 2.7e-9, residual 2e-9 .. 4e-6,
-// not_converged; eps = 1e-6, 1 - 1e-6: not_converged, error up to 0.27, residual 0.02 .. 0.7.
-// LIMIT (apex within ~1e-2 L of an edge): the solution then varies on the scale d = min(eps,
-// 1 - eps) L next to the apex (locally the step solution of a half-line problem, which is not
-// built in); any global polynomial representation needs ~ 1/sqrt(d/L) points to resolve it (the
-// Chebyshev spacing there is ~ sqrt(d L)/n). The edge-damped factor makes the convergence
-// geometric at that rate (1e-12 needs 585 points at 1 - eps = 0.03, ~1000 at 0.01, more than
-// the default max_degree 1024 at 1e-3) instead of algebraic. The solver reports what it did not reach: status not_converged and a residual
-// sampled next to the apex (x0 -+ d/2 and d/4, 3d/4 of the way to the near edge), measured
-// >= error(int g)/10 in every case above. For eps within 1e-3 of an edge use the Riemann-Hilbert
-// route (as the punch layer does).
+// estimates <= 1e-15 here):
+//     eps      map        65 pts     195 pts    585 pts    adaptive (default options)
+//     0.5      none       8.9e-16    1.2e-15    1.2e-15     66 pts, 8.9e-16, 0.26 ms
+//     0.8      s = 0.48   < 1e-16    1.4e-16    2.7e-16     65 pts, < 1e-16, 0.27 ms (was 195 pts, 7.5e-13, 0.91 ms)
+//     0.9      s = 0.68   3.0e-15    1.0e-14    4.0e-15     65 pts, 3.0e-15, 0.28 ms (was 585 pts, 15 ms)
+//     0.97     s = 0.86   3.2e-13    2.0e-13    8.0e-14     65 pts, 3.2e-13, 0.32 ms (was 1024 pts, 44 ms)
+//     0.99     s = 0.94   1.0e-12    8.7e-13    8.7e-13    195 pts, 8.7e-13, 0.86 ms (was not_converged, 49 ms)
+//     0.999    s = 0.99   1.1e-6     7.4e-13    2.6e-13    195 pts, 6.2e-13, 0.82 ms (was 2.7e-9, 95 ms)
+//     0.03     s = -0.86  1.2e-14    1.5e-14    2.0e-14     65 pts, 1.2e-14, 0.30 ms (was 1024 pts, 88 ms)
+//     0.001    s = -0.99  1.4e-5     4.2e-13    1.9e-13    195 pts, 4.2e-13, 0.92 ms (was 4.6e-11, 130 ms)
+// (~1e-12 is the level at which the Taylor factor's floor (max|q| ~ 1e4) and the reference's own
+// int_a^y meet: a variant with max|q| <= 1e2 converged to the same value at 195 points.) The punch
+// layer's hardest former case (alpha = 0.2, k = 0.5, S1 = S2: eps = 0.84) now takes 65 points:
+// 1.1e-15 (alpha = 0.2, 0.45 ms), 4.1e-16 (1e-3, 0.88 ms), 2.1e-15 (0, 0.68 ms); before 195.
+// The same study with F = +-1 in both classes (rows step_apex_eps_*, error of int g against the
+// exact Rodrigues value): eps in [0.1, 0.9] converged at 65-66 points, <= 1.8e-12; eps = 0.01,
+// 0.99, 1e-3, 0.999 at 195 points, <= 5.1e-13 (was 1024 points, not_converged at 1e-3 and 0.999).
+// LIMIT (apex within ~1e-4 L of an edge): the branch point of the map's factor lies ~ 2 r^(3/4)
+// beyond the far end (~1e-4 at 1 - eps = 1e-6) and the Chebyshev interpolation needs ~ r^(-3/8)
+// points: 1 - eps = 1e-4 converges at 585 points, 1e-6 not within max_degree (measured: error of
+// int g 6e-8 .. 3e-6 at 1025 points, status not_converged). The solver reports what it did not
+// reach: status not_converged and a residual sampled at the Chebyshev points of both axes and next
+// to the apex (x0 -+ d/2 and d/4, 3d/4 of the way to the near edge, in sigma), measured >=
+// error(int g)/42. For eps within 1e-3 of an edge the punch layer uses the Riemann-Hilbert route.
 //
 // Residual: direct quadrature of the one-sided integrals at interior Chebyshev points (never at
 // a sampling node nor at x0) plus the four points next to the apex; for the phi part this is the
@@ -149,26 +147,35 @@
 #include <limits>
 #include <map>
 #include <memory>
-#include <optional>
 #include <utility>
 #include <vector>
 
 namespace rhabel::abel {
 
+template <class Real>
+struct enriched_density;
+template <class Real>
+class enriched_evaluator;
+
 /// g = C phi + w sum c_n P_n on [lo, hi] (see header); evaluations exact up to quadrature rounding.
+/// With a Moebius map (mobius != 0: the apex near an edge) smooth, x0 and q describe
+/// g~(sigma) = g(M(sigma)) (1 + s sigma)^(-1-alpha) in the variable sigma of x = M(sigma); every
+/// evaluation below maps back (the header's "Apex near an edge").
 template <class Real>
 struct enriched_density {
-  jacobi_density<Real> smooth;   ///< w sum_n c_n P_n^(del,gam)
+  jacobi_density<Real> smooth;   ///< w sum_n c_n P_n^(del,gam) (in sigma when mapped)
   Real enrichment = 0;           ///< C
-  Real x0 = 0;                   ///< breakpoint in the reference variable
+  Real x0 = 0;                   ///< breakpoint in the reference variable (sigma when mapped)
   Real kappa = 0, alpha = 0;
-  /// Taylor coefficients of w(x0)/w(x) in powers of (x - x0); edge-damped mode (edge_power > 0):
-  /// {1, 0, ..., 0} of size K + 1 (q is then 1 times edge_factor). Evaluate q with q_at.
+  /// Taylor coefficients of the factor q in powers of (x - x0): w(x0)/w(x), times (1 + s x0)/(1 + s x)
+  /// when mapped. Evaluate q with q_at.
   std::vector<Real> q;
   /// alpha < 0.01: E is replaced by (E - 1)/alpha (uniform to alpha = 0, where it is
   /// -log|x - x0| - pi tan(beta pi/2) [x > x0]); the "-1/alpha" part is w q, a smooth density.
   bool normalized = false;
   Real one_minus_kappa_over_alpha = 0;
+  /// s of the Moebius map x = M(sigma) = (sigma + s)/(1 + s sigma), |s| < 1; 0: no map.
+  Real mobius = 0;
 
   Real half_length() const { return smooth.half_length(); }
 
@@ -189,88 +196,219 @@ struct enriched_density {
     if (!normalized) return right ? kappa : Real(1);
     return E_full(dist, right);
   }
-  /// Gap left around x0 by the quadratures: 0 since the normalized mode integrates its
-  /// log-type singularity at x0 exactly (Gauss-Laguerre end rule, detail::enrichment_piece);
-  /// formerly 1e-18. Kept for source compatibility.
-  static Real x0_gap() { return Real(0); }
 
-  /// phi(x) with distances 1 + x, 1 - x (reference variable).
+  /// phi(x) with distances 1 + x, 1 - x (reference variable; sigma when mapped).
   Real phi(const Real& one_plus_x, const Real& one_minus_x) const {
     using std::pow;
     const Real u = one_plus_x <= one_minus_x ? one_plus_x - (1 + x0) : (1 - x0) - one_minus_x;
     const Real E = u > 0 ? E_full(u, true) : E_full(-u, false);
-    return pow(one_minus_x, smooth.del) * pow(one_plus_x, smooth.gam) * q_at(one_plus_x, one_minus_x) * E;
+    return detail::power_product<Real>().times(one_minus_x, smooth.del).times(one_plus_x, smooth.gam).value() *
+           q_at(one_plus_x, one_minus_x) * E;
   }
 
+  /// The map at a point given by its distances to the ends. sigma_of: from (1 + x, 1 - x) to
+  /// {1 + sigma, 1 - sigma, 1 + s sigma}; x_of: from (1 + sigma, 1 - sigma) to {1 + x, 1 - x,
+  /// 1 + s sigma}. Both exact to a few ulps up to the ends: 1 + x = (1 + s)(1 + sigma)/(1 + s sigma),
+  /// 1 - x = (1 - s)(1 - sigma)/(1 + s sigma), 1 + s sigma = (1 - s^2)/(1 - s x), and the
+  /// denominators are sums of two non-negative terms ((1 - |s|) + |s| times a distance).
+  std::array<Real, 3> sigma_of(const Real& one_plus_x, const Real& one_minus_x) const {
+    using std::abs;
+    const Real s = mobius, rest = 1 - abs(s);
+    const Real one_minus_sx = s >= 0 ? rest + s * one_minus_x : rest - s * one_plus_x;
+    return {(1 - s) * one_plus_x / one_minus_sx, (1 + s) * one_minus_x / one_minus_sx, (1 - s) * (1 + s) / one_minus_sx};
+  }
+  std::array<Real, 3> x_of(const Real& one_plus_sigma, const Real& one_minus_sigma) const {
+    using std::abs;
+    const Real s = mobius, rest = 1 - abs(s);
+    const Real one_plus_s_sigma = s >= 0 ? rest + s * one_plus_sigma : rest - s * one_minus_sigma;
+    return {(1 + s) * one_plus_sigma / one_plus_s_sigma, (1 - s) * one_minus_sigma / one_plus_s_sigma, one_plus_s_sigma};
+  }
+  /// Distance beyond the end -1 (first) and +1 (second) of the sigma axis of the pole -1/s of the
+  /// map's factors (1 + s sigma)^c; infinite without a map or on the other side.
+  std::array<Real, 2> pole_distances() const {
+    using std::abs;
+    const Real inf = std::numeric_limits<Real>::infinity();
+    if (mobius == 0) return {inf, inf};
+    const Real d = (1 - abs(mobius)) / abs(mobius);
+    return mobius > 0 ? std::array<Real, 2>{d, inf} : std::array<Real, 2>{inf, d};
+  }
+
+  /// Distance on the sigma axis beyond -1 (below) or +1 (above) of the point at distance d beyond
+  /// x = -1 or +1; infinite if the map sends it past the pole (it then lies beyond the other end,
+  /// farther than the pole). Without a map: d.
+  Real beyond_in_sigma(const Real& d, bool below) const {
+    using std::abs;
+    const Real s = mobius, rest = 1 - abs(s);
+    // 1 - s x at x = -1 - d or 1 + d, as (1 - |s|) plus or minus |s| times a distance.
+    const Real one_minus_sx = below ? (s >= 0 ? rest + s * (2 + d) : rest + s * d) : (s >= 0 ? rest - s * d : rest - s * (2 + d));
+    if (!(one_minus_sx > 0)) return std::numeric_limits<Real>::infinity();
+    return (below ? 1 - s : 1 + s) * d / one_minus_sx;
+  }
+
+  /// g at the point with reference distances 1 + x, 1 - x to the ends (x != x0). For many points
+  /// use evaluator() (the series' recurrence coefficients computed once).
+  Real value_at_distance(const Real& one_plus_x, const Real& one_minus_x) const;
+  /// g at the point with reference distances 1 + x, 1 - x to the ends and offset dx = x - x_apex
+  /// from the apex (x_apex = apex_reference()), whichever are exact: next to the apex |dx|^-alpha
+  /// needs dx itself, not a difference of rounded abscissae. Mapped: sigma - sigma0 =
+  /// (1 - s^2) dx/((1 - s x)(1 - s x_apex)).
+  Real value_with_offset(const Real& one_plus_x, const Real& one_minus_x, const Real& dx) const;
+  /// The two above for many points (see enriched_evaluator).
+  enriched_evaluator<Real> evaluator() const { return enriched_evaluator<Real>(*this); }
   /// g(t), lo < t < hi, t != t0.
   Real operator()(const Real& t) const {
+    if (!(t > smooth.lo) || !(t < smooth.hi)) return Real(0);
     const Real h = half_length();
-    return smooth(t) + enrichment * phi((t - smooth.lo) / h, (smooth.hi - t) / h);
+    return value_at_distance((t - smooth.lo) / h, (smooth.hi - t) / h);
+  }
+  /// Reference abscissa of the apex (x0 mapped back when mobius != 0).
+  Real apex_reference() const {
+    if (mobius == 0) return x0;
+    const auto d = x_of(1 + x0, 1 - x0);
+    return d[0] <= d[1] ? d[0] - 1 : 1 - d[1];
   }
 
+  /// int_lo^hi f(t) g(t) dt for f smooth between the breakpoints (t0 is always a cut).
+  /// Composite Gauss-Jacobi: for the series part per piece with the edge exponents as weights (as
+  /// jacobi_density::integrate), for phi with the exponents -alpha at t0, gam, del at the ends,
+  /// graded toward every singular point and, when mapped, toward the pole of the map's factor.
+  /// `beyond_lo`, `beyond_hi`: distances (in units of the half-length) of further singular points
+  /// of f below lo and above hi (grading; infinite: none).
+  template <class Fn>
+  Real integrate(Fn&& f, std::vector<Real> breakpoints = {}, const Real& beyond_lo = std::numeric_limits<Real>::infinity(),
+                 const Real& beyond_hi = std::numeric_limits<Real>::infinity()) const {
+    return integrate_between(f, smooth.lo, smooth.hi, std::move(breakpoints), beyond_lo, beyond_hi);
+  }
+  /// int_from^to f g for lo <= from < to <= hi: the pieces of integrate's composite rule between
+  /// from and to (cut there, never masked: nodes next to the apex, where |t - t0|^-alpha carries
+  /// weight down to rounding distances, keep their side).
+  template <class Fn>
+  Real integrate_between(Fn&& f, const Real& from, const Real& to, std::vector<Real> breakpoints = {},
+                         const Real& beyond_lo = std::numeric_limits<Real>::infinity(),
+                         const Real& beyond_hi = std::numeric_limits<Real>::infinity()) const;
+
+  /// int_lo^hi g: c_0 h_0 (L/2) plus int C phi; mapped: integrate(1).
+  Real integral() const {
+    if (mobius != 0) return integrate([](const Real&) { return Real(1); });
+    return smooth.integral() + enrichment * half_length() * phi_integral_to(Real(1));
+  }
   /// int_{-1}^{X} phi dx (reference variable), X in [-1, 1].
   Real phi_integral_to(const Real& X) const;
 
-  /// int_lo^hi f(t) g(t) dt for f smooth between the breakpoints (t0 is always a cut).
-  /// Moments: f(t) = t^k. Composite Gauss-Jacobi with the exponents -alpha at t0, gam, del at
-  /// the ends as weights, graded toward every singular point.
-  template <class Fn>
-  Real integrate(Fn&& f, std::vector<Real> breakpoints = {}) const;
-
-  Real integral() const { return smooth.integral() + enrichment * half_length() * phi_integral_to(Real(1)); }
+  /// Leading-edge intensity lim g (t-a)^(-gam): smooth part plus C 2^del q(-1) E(-1), times (2/L)^gam;
+  /// mapped: that of g~ times ((1 - s)/(1 + s))^gam (1 - s)^(1 + alpha).
+  Real intensity_leading() const {
+    using std::pow;
+    const Real mapped = smooth.intensity_leading() + enrichment * pow(2 / (smooth.hi - smooth.lo), smooth.gam) *
+                                                         pow(Real(2), smooth.del) * q_at(Real(-1)) * E_full(1 + x0, false);
+    const Real s = mobius;
+    return s == 0 ? mapped : mapped * pow((1 - s) / (1 + s), smooth.gam) * pow(1 - s, 1 + alpha);
+  }
+  /// Trailing-edge intensity lim g (b-t)^(-del): smooth part plus C 2^gam q(1) E(+1), times (2/L)^del;
+  /// mapped: that of g~ times ((1 + s)/(1 - s))^del (1 + s)^(1 + alpha).
+  Real intensity_trailing() const {
+    using std::pow;
+    const Real mapped = smooth.intensity_trailing() + enrichment * pow(2 / (smooth.hi - smooth.lo), smooth.del) *
+                                                          pow(Real(2), smooth.gam) * q_at(Real(1)) * E_full(1 - x0, true);
+    const Real s = mobius;
+    return s == 0 ? mapped : mapped * pow((1 + s) / (1 - s), smooth.del) * pow(1 + s, 1 + alpha);
+  }
 
   /// q(x) (the Taylor polynomial) at x.
   Real q_at(const Real& x) const { return q_at(1 + x, 1 - x); }
-  /// q at the point with distances 1 + x, 1 - x to the ends (accurate next to an end).
+  /// q at the point with distances 1 + x, 1 - x to the ends.
   Real q_at(const Real& one_plus_x, const Real& one_minus_x) const {
     const Real u = one_plus_x <= one_minus_x ? one_plus_x - (1 + x0) : (1 - x0) - one_minus_x;
     Real qq = 0;
     for (std::size_t k = q.size(); k-- > 0;) qq = qq * u + q[k];
-    if (edge_power == 0) return qq;
-    return qq * edge_factor(one_plus_x, one_minus_x, u);
+    return qq;
   }
-  /// Edge-damped mode (edge_power = K + 1 > 0, even): q = ((1-x0)/D+)^del ((1+x0)/D-)^gam,
-  /// D+- = (1 -+ x) + sigma (1 -+ x0) (u/(1 -+ x0))^(K+1) (see header).
-  Real edge_factor(const Real& one_plus_x, const Real& one_minus_x, const Real& u) const {
-    using std::exp;
-    using std::log;
-    const Real dp = 1 - x0, dm = 1 + x0;
-    Real tp = u / dp, tm = u / dm, pp = 1, pm = 1;
-    for (std::size_t k = 0; k < edge_power; ++k) pp *= tp, pm *= tm;
-    // D+-/d+- = (1 -+ x)/d+- + sigma t^(K+1): a sum of two non-negative terms (no cancellation).
-    // One exp and two logs instead of two pow calls (pow of a base near 1 was 70% of the cost).
-    return exp(-smooth.del * log(one_minus_x / dp + edge_sigma * pp) - smooth.gam * log(one_plus_x / dm + edge_sigma * pm));
-  }
-  std::size_t edge_power = 0;   ///< 0: q is the Taylor polynomial; K + 1 (even): edge-damped q
-  Real edge_sigma = 1;
   /// Gauss nodes per panel of the quadratures of phi (split_integrator callers use 4 fewer):
-  /// K/2 + 16 for the Taylor factor; K/2 + 10 in normalized mode (alpha < 0.01: measured
-  /// <= 1e-15 in int g, 20% faster); K/2 + 28 for the edge-damped factor, whose complex zeros of
-  /// D+- lie ~0.3 (1 - |x0|) from the real axis (with K/2 + 16 the images stalled at 1e-9).
-  std::size_t quadrature_nodes() const { return q.size() / 2 + (edge_power != 0 ? 28 : (normalized ? 10 : 16)); }
-  /// Leading-edge intensity lim g (t-a)^(-gam): smooth part plus C 2^del q(-1) E(-1), times (2/L)^gam.
-  Real intensity_leading() const {
-    using std::pow;
-    return smooth.intensity_leading() +
-           enrichment * pow(2 / (smooth.hi - smooth.lo), smooth.gam) * pow(Real(2), smooth.del) * q_at(Real(-1)) *
-               E_full(1 + x0, false);
-  }
-  /// Trailing-edge intensity lim g (b-t)^(-del): smooth part plus C 2^gam q(1) E(+1), times (2/L)^del.
-  Real intensity_trailing() const {
-    using std::pow;
-    return smooth.intensity_trailing() +
-           enrichment * pow(2 / (smooth.hi - smooth.lo), smooth.del) * pow(Real(2), smooth.gam) * q_at(Real(1)) *
-               E_full(1 - x0, true);
-  }
+  /// K/2 + 16; K/2 + 10 in normalized mode (alpha < 0.01: measured <= 1e-15 in int g, 20% faster).
+  std::size_t quadrature_nodes() const { return q.size() / 2 + (normalized ? 10 : 16); }
 
-  /// int_lo^t g.
+  /// int_t^hi g (integrate_between: relative accuracy kept for t near hi).
+  Real integral_from(const Real& t) const {
+    if (!(t < smooth.hi)) return Real(0);
+    return integrate_between([](const Real&) { return Real(1); }, std::max(t, smooth.lo), smooth.hi);
+  }
+  /// int_lo^t g: the Rodrigues form of the series plus int C phi; mapped: the pieces below t of
+  /// integrate's composite rule. Both integrate from lo (relative accuracy kept for t near lo).
   Real integral_to(const Real& t) const {
-    const Real h = half_length();
     if (!(t > smooth.lo)) return Real(0);
-    const Real X = t >= smooth.hi ? Real(1) : -1 + (t - smooth.lo) / h;
-    return smooth.integral_to(t) + enrichment * h * phi_integral_to(X);
+    if (!(t < smooth.hi)) return integral();
+    if (mobius != 0) return integrate_between([](const Real&) { return Real(1); }, smooth.lo, t);
+    const Real h = half_length();
+    return smooth.integral_to(t) + enrichment * h * phi_integral_to(-1 + (t - smooth.lo) / h);
   }
 };
+
+/// g of an enriched density at many points: the series' recurrence coefficients computed once
+/// (quadrature::jacobi_series: the same sums as jacobi_clenshaw to a few ulps) and the weight
+/// w = (1 - x)^del (1 + x)^gam computed once for the series and phi. Holds a reference to the
+/// density (which must outlive it).
+template <class Real>
+class enriched_evaluator {
+ public:
+  explicit enriched_evaluator(const enriched_density<Real>& d)
+      : d_(d), series_(d.smooth.series_evaluator()),
+        one_plus_s_sigma0_(d.mobius != 0 ? d.x_of(1 + d.x0, 1 - d.x0)[2] : Real(1)) {}
+  /// g at the point with reference distances 1 + x, 1 - x (x != x_apex).
+  Real operator()(const Real& one_plus_x, const Real& one_minus_x) const {
+    return value(d_, series_, one_plus_s_sigma0_, one_plus_x, one_minus_x, nullptr);
+  }
+  /// The same with the exact offset dx = x - x_apex (see enriched_density::value_with_offset).
+  Real with_offset(const Real& one_plus_x, const Real& one_minus_x, const Real& dx) const {
+    return value(d_, series_, one_plus_s_sigma0_, one_plus_x, one_minus_x, &dx);
+  }
+
+  /// The evaluation for any series evaluator S(x) (single points: jacobi_clenshaw, no set-up).
+  template <class Series>
+  static Real value(const enriched_density<Real>& d, const Series& series, const Real& one_plus_s_sigma0,
+                    const Real& one_plus_x, const Real& one_minus_x, const Real* dx) {
+    using std::isinf;
+    using std::pow;
+    const Real s = d.mobius;
+    Real one_plus = one_plus_x, one_minus = one_minus_x;
+    Real u = dx != nullptr ? *dx : Real(0);
+    // w (1 + s sigma)^(1 + alpha) as one power_product (the map's factor only when mapped).
+    detail::power_product<Real> weight;
+    if (s != 0) {
+      const auto m = d.sigma_of(one_plus_x, one_minus_x);
+      one_plus = m[0], one_minus = m[1];
+      weight.times(m[2], 1 + d.alpha);
+      // 1 - s x = (1 - s^2)/(1 + s sigma), the same at the apex.
+      if (dx != nullptr) u = *dx * m[2] * one_plus_s_sigma0 / ((1 - s) * (1 + s));
+    }
+    if (dx == nullptr) u = one_plus <= one_minus ? one_plus - (1 + d.x0) : (1 - d.x0) - one_minus;
+    const Real x = one_plus <= one_minus ? one_plus - 1 : 1 - one_minus;
+    Real inner = series(x);
+    if (d.enrichment != 0)
+      inner += d.enrichment * d.q_at(one_plus, one_minus) * (u > 0 ? d.E_full(u, true) : d.E_full(-u, false));
+    const Real w = weight.times(one_minus, d.smooth.del).times(one_plus, d.smooth.gam).value();
+    // Exactly at an end with a negative exponent: the limit (never 0 * inf = NaN).
+    if (isinf(w) && inner == 0) return Real(0);
+    return w * inner;
+  }
+
+ private:
+  const enriched_density<Real>& d_;
+  rhabel::quadrature::jacobi_series<Real> series_;
+  Real one_plus_s_sigma0_;
+};
+
+template <class Real>
+Real enriched_density<Real>::value_at_distance(const Real& one_plus_x, const Real& one_minus_x) const {
+  const Real one_plus_s_sigma0 = mobius != 0 ? x_of(1 + x0, 1 - x0)[2] : Real(1);
+  return enriched_evaluator<Real>::value(*this, [this](const Real& x) { return smooth.series(x); }, one_plus_s_sigma0,
+                                         one_plus_x, one_minus_x, nullptr);
+}
+template <class Real>
+Real enriched_density<Real>::value_with_offset(const Real& one_plus_x, const Real& one_minus_x, const Real& dx) const {
+  const Real one_plus_s_sigma0 = mobius != 0 ? x_of(1 + x0, 1 - x0)[2] : Real(1);
+  return enriched_evaluator<Real>::value(*this, [this](const Real& x) { return smooth.series(x); }, one_plus_s_sigma0,
+                                         one_plus_x, one_minus_x, &dx);
+}
 
 template <class Real>
 struct enriched_solution {
@@ -281,12 +419,12 @@ struct enriched_solution {
   Real coefficient_tail = 0;
   std::size_t degree = 0;
   solve_status status = solve_status::converged;
-  /// K, the order of the local expansion built into phi (Taylor or edge-damped factor: see
-  /// density.edge_power).
+  /// K, the order of the local expansion built into phi (Taylor factor; mapped or not: see
+  /// density.mobius).
   std::size_t taylor_degree = 0;
-  /// Estimated relative rounding floor of the Chebyshev tail, max|q| eps over [-1, 1] (edge-damped
-  /// factor: max(max|q|, 64) eps, its quadrature plateau): the adaptive loop stops (converged) once
-  /// the tail is below 4x this even if options.tolerance is smaller. An estimate, not a bound.
+  /// Estimated relative rounding floor of the Chebyshev tail, max|q| eps over [-1, 1]: the adaptive
+  /// loop stops (converged) once the tail is below 4x this even if options.tolerance is smaller.
+  /// An estimate, not a bound.
   Real rounding_floor = 0;
 };
 
@@ -310,15 +448,23 @@ Real max_taylor_amplification() {
 /// levels have 3x as many and contain it).
 inline std::size_t initial_step_sampling_size() { return 65; }
 
-/// Below this automatic Taylor degree solve_step switches to the edge-damped factor.
+/// Largest automatic Taylor degree (solve_step).
+inline std::size_t max_taylor_degree() { return 12; }
+
+/// solve_step moves an apex with |x0| above this (eps = (t0 - a)/L outside [1/4, 3/4]) toward the
+/// centre by a Moebius map (header, "Apex near an edge").
 template <class Real>
-std::size_t min_taylor_degree() {
-  return 5;
+Real moebius_threshold() {
+  return Real(1) / 2;
 }
-/// K of the edge-damped factor (odd: K + 1 even keeps D+- > 0 on [-1, 1]).
+
+/// The Moebius map of an apex near an edge splits r = (1 - x0)/(1 + x0) as r^(1/4) (the apex's
+/// ratio after the map) times r^(3/4) (the map's: its pole lies ~ r^(3/4) beyond the far end). Measured
+/// (alpha = 0.3, beta = 0.2, exponents 0.2 .. 0.5 at eps = 0.8 .. 0.9999): 1/4 and 1/5 need the fewest points, 1/3
+/// up to 1.5 times more, 1/2 (a symmetric split) up to 3 times more (the header's table).
 template <class Real>
-std::size_t edge_damped_degree() {
-  return 5;
+Real moebius_apex_exponent() {
+  return Real(1) / 4;
 }
 
 namespace detail {
@@ -401,6 +547,21 @@ std::vector<Real> inverse_weight_taylor(const Real& gam, const Real& del, const 
   return c;
 }
 
+/// Taylor coefficients (degree K) of the factor q of a mapped enrichment: w(x0)/w(x) times
+/// (1 + s x0)/(1 + s x) = 1/(1 + c u), c = s/(1 + s x0) (the local solution of the mapped problem,
+/// header "Apex near an edge"); s = 0: inverse_weight_taylor.
+template <class Real>
+std::vector<Real> mapped_weight_taylor(const Real& gam, const Real& del, const Real& x0, std::size_t K, const Real& s) {
+  const std::vector<Real> w = inverse_weight_taylor(gam, del, x0, K);
+  if (s == 0) return w;
+  std::vector<Real> out(K + 1, Real(0));
+  const Real c = -s / (1 + s * x0);
+  Real ck = 1;
+  for (std::size_t k = 0; k <= K; ++k, ck *= c)
+    for (std::size_t i = 0; i + k <= K; ++i) out[i + k] += w[i] * ck;
+  return out;
+}
+
 /// max |q(x)| over [-1, 1] (q from inverse_weight_taylor, in powers of x - x0), on the ends and
 /// 64 first-kind Chebyshev points: the factor by which C phi exceeds its value at the apex far
 /// from it. The smooth part of g cancels it there, so rounding errors of relative size eps in
@@ -422,13 +583,8 @@ Real taylor_amplification(const std::vector<Real>& q, const Real& x0) {
 
 /// A~[phi](y) (reference interval, without (L/2)^alpha) by split composite quadrature.
 template <class Real>
-Real enrichment_image(const enriched_density<Real>& d, const abel_parameters<Real>& par, const split_integrator<Real>& si_in,
+Real enrichment_image(const enriched_density<Real>& d, const abel_parameters<Real>& par, const split_integrator<Real>& si,
                       const Real& y) {
-  // The edge-damped factor needs more nodes than a caller sized for a Taylor polynomial may give.
-  std::optional<split_integrator<Real>> own;
-  if (si_in.nodes() + 4 < d.quadrature_nodes()) own.emplace(d.quadrature_nodes() - 4);
-  const split_integrator<Real>& si = own ? *own : si_in;
-  using std::pow;
   const Real alpha = par.alpha(), kappa = par.kappa();
   const Real x0 = d.x0;
   std::vector<Real> cuts{Real(-1)}, left_exp, right_exp;
@@ -454,22 +610,25 @@ Real enrichment_image(const enriched_density<Real>& d, const abel_parameters<Rea
       if (point < k) return (cuts[k] - cuts[point]) + u;
       return (cuts[point] - cuts[k + 1]) + v;
     };
-    Real value = 1;
+    // Coefficients times the powers of the distances to the singular points this node's piece
+    // does not end at (those are the Gauss-Jacobi weight), as one power_product.
+    Real coefficient = 1;
+    power_product<Real> powers;
     const Real one_plus_x = distance_to(0), one_minus_x = distance_to(3);
-    if (k != 0) value *= pow(one_plus_x, d.smooth.gam);
-    if (k != 2) value *= pow(one_minus_x, d.smooth.del);
+    if (k != 0) powers.times(one_plus_x, d.smooth.gam);
+    if (k != 2) powers.times(one_minus_x, d.smooth.del);
     for (std::size_t point = 1; point <= 2; ++point) {
       const bool is_end = point == k || point == k + 1;
       const bool right_of_point = k >= point;  // node lies right of this point
       if (kind[point - 1] == 0) {
-        const Real coef = right_of_point ? kappa : Real(1);
-        value *= is_end ? coef : coef * pow(distance_to(point), -alpha);
+        coefficient *= right_of_point ? kappa : Real(1);
+        if (!is_end) powers.times(distance_to(point), -alpha);
       } else {
-        const Real coef = right_of_point ? Real(1) : -kappa;  // kernel: (x-y)^(alpha-1) for x > y
-        value *= is_end ? coef : coef * pow(distance_to(point), alpha - 1);
+        coefficient *= right_of_point ? Real(1) : -kappa;  // kernel: (x-y)^(alpha-1) for x > y
+        if (!is_end) powers.times(distance_to(point), alpha - 1);
       }
     }
-    return value * d.q_at(one_plus_x, one_minus_x);
+    return coefficient * powers.value() * d.q_at(one_plus_x, one_minus_x);
   });
 }
 
@@ -510,13 +669,24 @@ Real enrichment_piece_panels(const enriched_density<Real>& d, const Real& a, con
   return rule.integrate(b - a, d_left, d_right, [&](const Real& u, const Real& v) {
     const Real one_plus_x = (a + 1) + u, one_minus_x = (1 - b) + v;
     const Real x = one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x;
-    Real value = 1;
-    if (a_end != piece_end::interval_end) value *= pow(one_plus_x, d.smooth.gam);
-    if (b_end != piece_end::interval_end) value *= pow(one_minus_x, d.smooth.del);
+    // The edge powers this piece does not carry as weight, and E: E_over_weight at x0 (the rest of
+    // E is the weight), else kappa or 1 times dist^-alpha in the same power_product (normalized
+    // mode: E_full's log form).
+    power_product<Real> powers;
+    if (a_end != piece_end::interval_end) powers.times(one_plus_x, d.smooth.gam);
+    if (b_end != piece_end::interval_end) powers.times(one_minus_x, d.smooth.del);
     const Real dist = right_side ? (a - d.x0) + u : (d.x0 - b) + v;
     const bool at_x0 = right_side ? a_end == piece_end::x0 : b_end == piece_end::x0;
-    value *= at_x0 ? d.E_over_weight(dist, right_side) : d.E_full(dist, right_side);
-    return value * d.q_at(one_plus_x, one_minus_x) * k(x, u + offset_a, v + offset_b);
+    Real E;
+    if (at_x0) {
+      E = d.E_over_weight(dist, right_side);
+    } else if (!d.normalized) {
+      E = right_side ? d.kappa : Real(1);
+      powers.times(dist, -d.alpha);
+    } else {
+      E = d.E_full(dist, right_side);
+    }
+    return powers.value() * E * d.q_at(one_plus_x, one_minus_x) * k(x, u + offset_a, v + offset_b);
   });
 }
 
@@ -543,7 +713,8 @@ Real enrichment_piece(const enriched_density<Real>& d, const Real& a, const Real
     const Real u = x0_at_a ? dist : len - dist, v = x0_at_a ? len - dist : dist;
     const Real one_plus_x = (a + 1) + u, one_minus_x = (1 - b) + v;
     const Real x = one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x;
-    const Real value = pow(one_plus_x, d.smooth.gam) * pow(one_minus_x, d.smooth.del) * d.E_full(dist, x0_at_a);
+    const Real value = power_product<Real>().times(one_plus_x, d.smooth.gam).times(one_minus_x, d.smooth.del).value() *
+                       d.E_full(dist, x0_at_a);
     near += lag.weight[i] * value * d.q_at(one_plus_x, one_minus_x) * k(x, u, v);
   }
   near *= delta;
@@ -577,49 +748,102 @@ Real enriched_density<Real>::phi_integral_to(const Real& X) const {
 
 template <class Real>
 template <class Fn>
-Real enriched_density<Real>::integrate(Fn&& f, std::vector<Real> breakpoints) const {
+Real enriched_density<Real>::integrate_between(Fn&& f, const Real& from, const Real& to, std::vector<Real> breakpoints,
+                                               const Real& beyond_lo, const Real& beyond_hi) const {
   using detail::piece_end;
-  const Real h = half_length();
-  Real total = smooth.integrate(f, breakpoints);
-  const Real inf = std::numeric_limits<Real>::infinity();
-  // Cuts: the ends, x0 (two-sided) and the breakpoints.
-  std::vector<Real> cuts{Real(-1), Real(1)};
-  for (const Real& b : breakpoints)
-    if (b > smooth.lo && b < smooth.hi) {
-      const Real xb = -1 + (b - smooth.lo) / h;
-      if (xb != x0) cuts.push_back(xb);
+  using std::min;
+  using std::pow;
+  const Real h = half_length(), lo = smooth.lo, hi = smooth.hi;
+  // Cuts in the variable of phi (sigma when mapped): the ends, x0 (two-sided), the breakpoints and
+  // the range ends; pieces outside [from, to] are skipped.
+  // Formed as solve_step forms x0, and a cut within 4 ulps of x0 is x0: the sliver between them
+  // would carry int_0^ulp |u|^-alpha du ~ 1e-11 (alpha = 0.3) of spurious weight.
+  auto reference_of = [&](const Real& t) {
+    using std::abs;
+    Real x = -1 + (t - lo) / h;
+    if (mobius != 0) {
+      const auto d = sigma_of((t - lo) / h, (hi - t) / h);
+      x = d[0] <= d[1] ? d[0] - 1 : 1 - d[1];
     }
+    return abs(x - x0) <= 4 * std::numeric_limits<Real>::epsilon() * (1 + abs(x0)) ? x0 : x;
+  };
+  const Real range_lo = from > lo ? reference_of(from) : Real(-1), range_hi = to < hi ? reference_of(to) : Real(1);
+  if (!(range_hi > range_lo)) return Real(0);
+  std::vector<Real> cuts{Real(-1), Real(1), range_lo, range_hi};
+  for (const Real& b : breakpoints)
+    if (b > lo && b < hi) cuts.push_back(reference_of(b));
   std::sort(cuts.begin(), cuts.end());
   cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+  cuts.erase(std::remove(cuts.begin(), cuts.end(), x0), cuts.end());
+  auto inside = [&](const Real& a, const Real& b) { return a >= range_lo && b <= range_hi; };
+  // Singular points beyond the ends (sigma axis): those of f and the pole of the map's factors.
+  const auto pole = pole_distances();
+  const Real below = min(pole[0], beyond_in_sigma(beyond_lo, true)), above = min(pole[1], beyond_in_sigma(beyond_hi, false));
+  // The integrand's factor at a node of a piece [a, b], from its distances u, v to a and b:
+  // f(t) without a map; (1 - s^2) (1 + s sigma)^(alpha - 1) f(t(M(sigma))) with one (dx = (1 - s^2)
+  // (1 + s sigma)^-2 dsigma and g = g~ (1 + s sigma)^(1 + alpha)).
+  auto factor_on = [&](const Real& a, const Real& b) {
+    return [&, a, b](const Real&, const Real& u, const Real& v) {
+      Real one_plus = (a + 1) + u, one_minus = (1 - b) + v, jacobian = 1;
+      if (mobius != 0) {
+        const auto d = x_of(one_plus, one_minus);
+        one_plus = d[0], one_minus = d[1];
+        jacobian = (1 - mobius) * (1 + mobius) * pow(d[2], alpha - 1);
+      }
+      return jacobian * f(one_plus <= one_minus ? lo + h * one_plus : hi - h * one_minus);
+    };
+  };
+  // Series part, per piece between all cuts (x0 included): edge weights on the end pieces,
+  // geometric grading toward an edge a piece does not touch and toward the points beyond the ends.
+  Real series_sum = 0;
+  if (!smooth.coefficients.empty()) {
+    std::vector<Real> all = cuts;
+    all.push_back(x0);
+    std::sort(all.begin(), all.end());
+    const auto series = smooth.series_evaluator();
+    const std::size_t nodes = smooth.coefficients.size() / 2 + 24;
+    for (std::size_t k = 0; k + 1 < all.size(); ++k) {
+      const bool first = k == 0, last = k + 2 == all.size();
+      const detail::panel_integrator<Real> rule(last ? smooth.del : Real(0), first ? smooth.gam : Real(0), nodes);
+      const Real a = all[k], b = all[k + 1], start = a + 1, end = 1 - b;
+      if (!inside(a, b)) continue;
+      auto factor = factor_on(a, b);
+      series_sum += rule.integrate(b - a, first ? below : start, last ? above : end, [&](const Real& u, const Real& v) {
+        const Real one_plus_x = start + u, one_minus_x = end + v;
+        const Real x = one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x;
+        Real weight = 1;
+        if (!first) weight *= pow(one_plus_x, smooth.gam);
+        if (!last) weight *= pow(one_minus_x, smooth.del);
+        return weight * series(x) * factor(x, u, v);
+      });
+    }
+  }
   std::vector<Real> left_cuts, right_cuts;
   for (const Real& c : cuts) {
     if (c < x0) left_cuts.push_back(c);
     if (c > x0) right_cuts.push_back(c);
   }
   const piece_end at_x0 = piece_end::x0;
-  auto factor = [&](const Real& x, const Real&, const Real&) {
-    const Real t = smooth.lo + h * (x + 1);
-    return f(t);
-  };
   Real sum = 0;
   left_cuts.push_back(x0);
   for (std::size_t k = 0; k + 1 < left_cuts.size(); ++k) {
     const Real a = left_cuts[k], b = left_cuts[k + 1];
     const bool last = k + 2 == left_cuts.size();
+    if (!inside(a, b)) continue;
     sum += detail::enrichment_piece(*this, a, b, k == 0 ? piece_end::interval_end : piece_end::interior,
-                                    last ? at_x0 : piece_end::interior, k == 0 ? inf : a + 1,
-                                    last ? 1 - x0 : std::min(x0 - b, 1 - b), factor);
+                                    last ? at_x0 : piece_end::interior, k == 0 ? below : a + 1,
+                                    last ? 1 - x0 : std::min(x0 - b, 1 - b), factor_on(a, b));
   }
   right_cuts.insert(right_cuts.begin(), x0);
   for (std::size_t k = 0; k + 1 < right_cuts.size(); ++k) {
     const Real a = right_cuts[k], b = right_cuts[k + 1];
     const bool last = k + 2 == right_cuts.size();
+    if (!inside(a, b)) continue;
     sum += detail::enrichment_piece(*this, a, b, k == 0 ? at_x0 : piece_end::interior,
                                     last ? piece_end::interval_end : piece_end::interior,
-                                    k == 0 ? x0 + 1 : std::min(a - x0, a + 1), last ? inf : 1 - b,
-                                    factor);
+                                    k == 0 ? x0 + 1 : std::min(a - x0, a + 1), last ? above : 1 - b, factor_on(a, b));
   }
-  return total + enrichment * h * sum;
+  return h * (series_sum + enrichment * sum);
 }
 
 namespace detail {
@@ -653,10 +877,10 @@ Real enrichment_image_uniform(const enriched_density<Real>& d, const abel_parame
   // Far pieces, kernel (x-y)^(alpha-1) right of y, -kappa (y-x)^(alpha-1) left of y.
   const Real ya = y - eps, yb = y + eps;
   auto kernel_left_of_y = [&](const Real& b) {  // piece ending at b <= ya
-    return [&, b](const Real&, const Real&, const Real& v) { return -kappa * pow((y - b) + v, alpha - 1); };
+    return [&, b](const Real&, const Real&, const Real& v) { return -kappa * power_product<Real>().times((y - b) + v, alpha - 1).value(); };
   };
   auto kernel_right_of_y = [&](const Real& a) {
-    return [&, a](const Real&, const Real& u, const Real&) { return pow((a - y) + u, alpha - 1); };
+    return [&, a](const Real&, const Real& u, const Real&) { return power_product<Real>().times((a - y) + u, alpha - 1).value(); };
   };
   if (y < x0) {
     total += enrichment_piece(d, Real(-1), ya, piece_end::interval_end, piece_end::interior, inf, eps, kernel_left_of_y(ya));
@@ -680,19 +904,37 @@ Real enrichment_image_any(const enriched_density<Real>& d, const abel_parameters
 }  // namespace detail
 
 /// A g at any s (inside: spectral part + direct quadrature of A[phi]; outside [lo, hi]: the
-/// surface-slope formula, paper 27-28, by graded quadrature). s != t0, lo, hi.
+/// surface-slope formula, paper 27-28, by graded quadrature). s != t0, lo, hi. Mapped densities:
+/// inside by the covariance A[g](M(sigma)) = (1 - s^2)^alpha (1 + s sigma)^(1 - alpha) A[g~](sigma)
+/// (header), outside by integrate with the kernel (graded toward s).
 template <class Real>
 Real apply(const abel_operator<Real>& op, const enriched_density<Real>& g, const Real& s) {
   using detail::piece_end;
   using std::pow;
   const Real h = op.half_length(), alpha = op.parameters().alpha(), kappa = op.parameters().kappa();
+  const bool below = s <= op.lo(), inside = s > op.lo() && s < op.hi();
+  if (g.mobius != 0) {
+    if (inside) {
+      const auto d = g.sigma_of((s - op.lo()) / h, (op.hi() - s) / h);
+      const Real y = d[0] <= d[1] ? d[0] - 1 : 1 - d[1];
+      const detail::split_integrator<Real> si(g.quadrature_nodes() - 4);
+      const Real t = d[0] <= d[1] ? op.lo() + h * d[0] : op.hi() - h * d[1];
+      const Real mapped = op.apply(g.smooth, t) + pow(h, alpha) * g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, y);
+      return pow((1 - g.mobius) * (1 + g.mobius), alpha) * pow(d[2], 1 - alpha) * mapped;
+    }
+    // t - s from the distances to the facing end (no cancellation).
+    const Real gap = below ? op.lo() - s : s - op.hi();
+    const Real inf = std::numeric_limits<Real>::infinity();
+    return g.integrate(
+        [&](const Real& t) { return below ? pow((t - op.lo()) + gap, alpha - 1) : -kappa * pow((op.hi() - t) + gap, alpha - 1); },
+        {}, below ? gap / h : inf, below ? inf : gap / h);
+  }
   Real value = op.apply(g.smooth, s);
   const detail::split_integrator<Real> si(g.quadrature_nodes() - 4);
-  if (s > op.lo() && s < op.hi()) {
+  if (inside) {
     const Real y = -1 + (s - op.lo()) / h;
     return value + pow(h, alpha) * g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, y);
   }
-  const bool below = s <= op.lo();
   const Real d = below ? (op.lo() - s) / h : (s - op.hi()) / h;  // distance of y from the interval
   const Real inf = std::numeric_limits<Real>::infinity();
   const piece_end at_x0 = piece_end::x0;
@@ -706,8 +948,8 @@ Real apply(const abel_operator<Real>& op, const enriched_density<Real>& g, const
 
 /// Solves A g = F on [lo, hi] for F smooth except for a jump at t0 in (lo, hi) (see header).
 /// taylor_degree = 0 (default): automatic factor q (Taylor polynomial of the largest K <= 12 with
-/// max|q| <= 1e4, or the edge-damped factor of degree 5 when that K is below 5); taylor_degree =
-/// K > 0 forces the Taylor polynomial of degree K. options.degree != 0 fixes the number of
+/// max|q| <= 1e4) and, for an apex with |x0| > 1/2, the Moebius map (density.mobius); taylor_degree
+/// = K > 0 forces the Taylor polynomial of degree K without a map. options.degree != 0 fixes the number of
 /// sampling points (m or m + 1, see grid_size_avoiding); otherwise adaptive, 65 -> 195 -> 585 ->
 /// ... up to options.max_degree points. Returns the density with the evidence: status,
 /// coefficient_tail (estimate of the relative error of the image expansion), rounding_floor,
@@ -739,52 +981,84 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   g.x0 = x0;
   g.kappa = kappa;
   g.alpha = alpha;
-  const bool auto_degree = taylor_degree == 0;
-  if (taylor_degree == 0) {
-    // q has radius of convergence 1 - |x0| and grows like ((1 + |x0|)/(1 - |x0|))^K on the far
-    // side, which sets a rounding floor ~ max|q| eps (taylor_amplification). Largest K <= 12
-    // with max|q| <= max_taylor_amplification (1e4: floor ~ 1e-12), at least K = 1.
-    taylor_degree = 1;
-    for (std::size_t K = 12; K > 1; --K)
-      if (detail::taylor_amplification(detail::inverse_weight_taylor(e.gam, e.del, x0, K), x0) <=
-          max_taylor_amplification<Real>()) {
-        taylor_degree = K;
-        break;
-      }
-  }
-  g.q = detail::inverse_weight_taylor(e.gam, e.del, x0, taylor_degree);
-  auto amplification = [&] {  // max |q| on [-1, 1]: the ends and 64 first-kind Chebyshev points
-    Real amp = std::max(abs(g.q_at(Real(0), Real(2))), abs(g.q_at(Real(2), Real(0))));
-    const detail::chebyshev_grid<Real> grid(64);
-    for (std::size_t j = 0; j < 64; ++j) amp = std::max(amp, Real(abs(g.q_at(grid.one_plus_x[j], grid.one_minus_x[j]))));
-    return amp;
+  // q has radius of convergence 1 - |x0| and grows like ((1 + |x0|)/(1 - |x0|))^K on the far
+  // side, which sets a rounding floor ~ max|q| eps (taylor_amplification). Automatic K: the largest
+  // K <= max_taylor_degree with max|q| <= max_taylor_amplification (1e4: floor ~ 1e-12), at least 1.
+  auto automatic_degree = [&](const Real& apex, const Real& mobius) {
+    for (std::size_t K = max_taylor_degree(); K > 1; --K)
+      if (detail::taylor_amplification(detail::mapped_weight_taylor(e.gam, e.del, apex, K, mobius), apex) <=
+          max_taylor_amplification<Real>())
+        return K;
+    return std::size_t(1);
   };
-  if (auto_degree && taylor_degree < min_taylor_degree<Real>()) {
-    // Apex near an edge: the edge-damped factor (see header) instead of a short Taylor
-    // polynomial, unless it amplifies too (a negative edge exponent: (1/D)^del grows like
-    // D^|del| where D is large, far from the apex); then the Taylor factor stays.
-    const std::vector<Real> taylor = g.q;
-    g.q.assign(edge_damped_degree<Real>() + 1, Real(0));
-    g.q[0] = 1;
-    g.edge_power = edge_damped_degree<Real>() + 1;
-    if (amplification() <= max_taylor_amplification<Real>()) {
-      taylor_degree = edge_damped_degree<Real>();
-    } else {
-      g.q = taylor;
-      g.edge_power = 0;
+  const Real one_plus_x0 = (t0 - op.lo()) / h, one_minus_x0 = (op.hi() - t0) / h;
+  if (taylor_degree == 0) {
+    taylor_degree = automatic_degree(x0, Real(0));
+    if (abs(x0) > moebius_threshold<Real>()) {
+      // Apex near an edge: the Moebius map that splits r = (1 - x0)/(1 + x0) (see header).
+      using std::pow;
+      const Real r = one_minus_x0 / one_plus_x0, r_map = pow(r, 1 - moebius_apex_exponent<Real>());
+      g.mobius = (1 - r_map) / (1 + r_map);
+      const auto apex = g.sigma_of(one_plus_x0, one_minus_x0);
+      g.x0 = apex[0] <= apex[1] ? apex[0] - 1 : 1 - apex[1];
+      taylor_degree = automatic_degree(g.x0, g.mobius);
     }
   }
+  g.q = detail::mapped_weight_taylor(e.gam, e.del, g.x0, taylor_degree, g.mobius);
   sol.taylor_degree = taylor_degree;
-  // Edge-damped factor: max|q| ~ 1, but the quadrature of its images (complex zeros of D+- near
-  // the real axis) leaves a plateau of the tail at 1e-14 .. 1e-13 (measured): floor >= 64 eps.
-  sol.rounding_floor = (g.edge_power != 0 ? std::max(amplification(), Real(64)) : amplification()) *
-                       std::numeric_limits<Real>::epsilon();
-  // Jump of F at t0 from one-sided values (F is evaluated on each side only).
+  // Rounding floor of the remainder's Chebyshev tail: max|q| eps (the smooth part cancels C phi far
+  // from the apex) and, on the plain path (alpha >= 0.01), the cancellation of the two one-sided
+  // integrals of A[E] near x0, ~ eps/(4 alpha)^2 (normalized_enrichment_threshold: ~eps/alpha^2).
+  sol.rounding_floor = detail::taylor_amplification(g.q, g.x0) * std::numeric_limits<Real>::epsilon();
+  if (!(alpha < normalized_enrichment_threshold<Real>()))
+    sol.rounding_floor = max(sol.rounding_floor, std::numeric_limits<Real>::epsilon() / (16 * alpha * alpha));
+  // The data of the solved problem at the point with reference distances (1 + sigma, 1 - sigma):
+  // F, or with the map F~(sigma) = (1 - s^2)^-alpha (1 + s sigma)^(alpha - 1) F(M(sigma)) (header).
+  const Real s_map = g.mobius;
+  auto map_factor = [&](const Real& one_plus_s_sigma) {  // F~ / F
+    return pow((1 - s_map) * (1 + s_map), -alpha) * pow(one_plus_s_sigma, alpha - 1);
+  };
+  // nu = -1 solves A g = F - defect with a CONSTANT defect (F projected on the range: the image-P_0
+  // coefficient <F, w'>/<1, w'>, w' = (1 - x)^(gam-1) (1 + x)^(del-1), the weight of the image
+  // family P^(gam+nu, del+nu) (math.md section 4: the orthogonality condition); A[phi] has none). Mapped, a
+  // constant is not constant in sigma, so the physical defect is removed from F before the map:
+  // by Gauss-Jacobi on [-1, x0] and [x0, 1] (F smooth on each), graded toward the far end.
+  Real physical_defect = 0;
+  if (s_map != 0 && e.nu == -1) {
+    const Real inf = std::numeric_limits<Real>::infinity();
+    const detail::panel_integrator<Real> left_piece(Real(0), e.del - 1, 32), right_piece(e.gam - 1, Real(0), 32);
+    auto f_at = [&](const Real& one_plus, const Real& one_minus) {
+      const Real t = one_plus <= one_minus ? op.lo() + h * one_plus : op.hi() - h * one_minus;
+      const Real v = f(t);
+      detail::check_finite_value("rhabel::abel::solve_step", v, t);
+      return v;
+    };
+    const Real moment = left_piece.integrate(one_plus_x0, inf, one_minus_x0, [&](const Real& u, const Real& v) {
+      return pow(one_minus_x0 + v, e.gam - 1) * f_at(u, one_minus_x0 + v);
+    }) + right_piece.integrate(one_minus_x0, one_plus_x0, inf, [&](const Real& u, const Real& v) {
+      return pow(one_plus_x0 + u, e.del - 1) * f_at(one_plus_x0 + u, v);
+    });
+    physical_defect = moment / (pow(Real(2), e.gam + e.del - 1) * boost::math::beta(e.gam, e.del));
+  }
+  auto data_at = [&](const Real& one_plus_sigma, const Real& one_minus_sigma) {
+    Real one_plus = one_plus_sigma, one_minus = one_minus_sigma, factor = 1;
+    if (s_map != 0) {
+      const auto d = g.x_of(one_plus_sigma, one_minus_sigma);
+      one_plus = d[0], one_minus = d[1], factor = map_factor(d[2]);
+    }
+    const Real t = one_plus <= one_minus ? op.lo() + h * one_plus : op.hi() - h * one_minus;
+    const Real v = f(t);
+    detail::check_finite_value("rhabel::abel::solve_step", v, t);
+    return factor * (v - physical_defect);
+  };
+  // Jump of F at t0 from one-sided values (F is evaluated on each side only, in the physical
+  // variable: the map compresses distances next to the apex), times the map's factor there.
   const Real delta = 64 * std::numeric_limits<Real>::epsilon() * max(abs(t0), op.hi() - op.lo());
   const Real left_value = f(t0 - delta), right_value = f(t0 + delta);
   detail::check_finite_value("rhabel::abel::solve_step", left_value, t0 - delta);
   detail::check_finite_value("rhabel::abel::solve_step", right_value, t0 + delta);
-  const Real w0 = pow(1 - x0, e.del) * pow(1 + x0, e.gam);
+  const Real jump = (left_value - right_value) * (s_map != 0 ? map_factor(g.x_of(1 + g.x0, 1 - g.x0)[2]) : Real(1));
+  const Real w0 = pow(1 - g.x0, e.del) * pow(1 + g.x0, e.gam);
   g.normalized = alpha < normalized_enrichment_threshold<Real>();
   g.one_minus_kappa_over_alpha = op.parameters().one_minus_kappa_over_alpha();
   Real J_E;
@@ -798,7 +1072,7 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
     const Real ratio = alpha == 0 ? Real(1) : pi * alpha / sin(pi * alpha);
     J_E = ratio * (m * m + 4 * kappa * sh * sh);
   }
-  g.enrichment = scale_F * (left_value - right_value) / (w0 * J_E);
+  g.enrichment = scale_F * jump / (w0 * J_E);
 
   const detail::split_integrator<Real> si(g.quadrature_nodes() - 4);
   const Real p = e.gam + Real(e.nu), qI = e.del + Real(e.nu);
@@ -809,14 +1083,19 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   // side on which F is evaluated (s < t0 or s > t0 in the physical variable, rounded) is the
   // side on which A[phi] is evaluated, however large |t0| is compared with the length.
   using std::sqrt;
-  const Real margin = sqrt(std::numeric_limits<Real>::epsilon()) * (1 + max(abs(op.lo()), abs(op.hi())) / h);
+  // Mapped: distances at the apex shrink by M'(sigma0) = (1 - s^2)/(1 + s sigma0)^2 on the x axis.
+  Real margin = sqrt(std::numeric_limits<Real>::epsilon()) * (1 + max(abs(op.lo()), abs(op.hi())) / h);
+  if (s_map != 0) {
+    const Real one_plus_s_sigma0 = g.x_of(1 + g.x0, 1 - g.x0)[2];
+    margin *= max(Real(1), one_plus_s_sigma0 * one_plus_s_sigma0 / ((1 - s_map) * (1 + s_map)));
+  }
   std::size_t used = m;
   // Nested grids: the first-kind grid of size 3m contains the grid of size m (node j is node
   // 3j + 1), so a level reuses the remainder values of the previous one and computes 2m new ones.
   std::vector<Real> values, abs_data;
   for (;;) {
     const std::size_t previous_used = values.size();
-    used = detail::grid_size_avoiding(m, x0, margin);
+    used = detail::grid_size_avoiding(m, g.x0, margin);
     const bool nested = previous_used != 0 && used == 3 * previous_used;
     const detail::chebyshev_grid<Real> grid(used);
     std::vector<Real> next_values(used), next_abs(used);
@@ -826,10 +1105,7 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
         next_abs[j] = abs_data[j / 3];
         continue;
       }
-      const Real s = grid.one_plus_x[j] <= grid.one_minus_x[j] ? op.lo() + h * grid.one_plus_x[j]
-                                                               : op.hi() - h * grid.one_minus_x[j];
-      const Real v = f(s);
-      detail::check_finite_value("rhabel::abel::solve_step", v, s);
+      const Real v = data_at(grid.one_plus_x[j], grid.one_minus_x[j]);
       next_abs[j] = abs(scale_F * v);
       next_values[j] = scale_F * v - g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, grid.x[j]);
     }
@@ -874,6 +1150,14 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   const abel_solution<Real> smooth = detail::solution_from_image(op, e, d, inner);
   g.smooth = smooth.density;
   sol.solvability_defect = smooth.solvability_defect;
+  if (s_map != 0 && e.nu == -1) {
+    // The physical defect (below) was removed from the data: what is left of the image-P_0
+    // coefficient is the data's lack of resolution (and quadrature error): part of the tail.
+    sol.solvability_defect = scale_F * physical_defect;
+    Real biggest = 0;
+    for (const Real& v : abs_data) biggest = max(biggest, v);
+    if (biggest > 0) tail = max(tail, abs(smooth.solvability_defect) / biggest);
+  }
   sol.coefficient_tail = tail;
   sol.degree = used;
   if (options.residual_points > 0) {
@@ -881,33 +1165,47 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
     const typename abel_operator<Real>::quadrature_evaluator direct(op, e.gam, e.del, g.smooth.coefficients.size());
     // Residual points: no node of the sampling grid (residual_grid_size) and none within margin of x0.
     std::size_t r = detail::residual_grid_size(options.residual_points, used);
-    while (detail::grid_size_avoiding(r, x0, margin) != r || detail::same_power_of_two(r, used)) ++r;
+    while (detail::grid_size_avoiding(r, g.x0, margin) != r || detail::same_power_of_two(r, used)) ++r;
     const detail::chebyshev_grid<Real> grid(r);
     // Points as (1 + y, 1 - y): the interior Chebyshev points, plus four points that see an apex
     // close to an edge (where the Chebyshev points are sparse relative to the apex's distance d
     // to the nearer edge): y = x0 -+ d/2 and the points d/4, 3 d/4 of the way from x0 to that edge.
     std::vector<std::pair<Real, Real>> points;
     for (std::size_t j = 0; j < grid.x.size(); ++j) points.emplace_back(grid.one_plus_x[j], grid.one_minus_x[j]);
+    if (s_map != 0) {
+      // Mapped: the sigma grid crowds toward the apex and leaves the far side of the physical
+      // interval (squeezed next to the pole-side end) with few points; add the same grid in x.
+      for (std::size_t j = 0; j < grid.x.size(); ++j) {
+        const auto d = g.sigma_of(grid.one_plus_x[j], grid.one_minus_x[j]);
+        const Real y = d[0] <= d[1] ? d[0] - 1 : 1 - d[1];
+        if (abs(y - g.x0) > margin) points.emplace_back(d[0], d[1]);
+      }
+    }
     {
-      const Real to_lo = 1 + x0, to_hi = 1 - x0, d = std::min(to_lo, to_hi);
+      const Real to_lo = 1 + g.x0, to_hi = 1 - g.x0, d = std::min(to_lo, to_hi);
       for (const Real& shift : {-d / 2, d / 2}) points.emplace_back(to_lo + shift, to_hi - shift);
       for (const Real& fraction : {Real(1) / 4, Real(3) / 4}) {
         if (to_lo <= to_hi) points.emplace_back(to_lo * (1 - fraction), to_hi + to_lo * fraction);
         else points.emplace_back(to_lo + to_hi * fraction, to_hi * (1 - fraction));
       }
     }
-    const Real defect = e.nu == -1 ? pow(h, alpha) * sol.solvability_defect : Real(0);
+    // (Mapped: the defect is already out of the data.)
+    const Real defect = e.nu == -1 && s_map == 0 ? pow(h, alpha) * sol.solvability_defect : Real(0);
     // g.smooth.series with the recurrence coefficients computed once (quadrature::jacobi_series).
     const auto series = g.smooth.series_evaluator();
     Real worst = 0, scale = 0;
     for (const auto& [one_plus_y, one_minus_y] : points) {
+      // s: the point of the solved problem (sigma, in the units of [lo, hi], when mapped).
       const Real s = one_plus_y <= one_minus_y ? op.lo() + h * one_plus_y : op.hi() - h * one_minus_y;
       const Real y = one_plus_y <= one_minus_y ? one_plus_y - 1 : 1 - one_minus_y;
       const Real Ag = direct([&](const Real& x) { return series(x); }, s) +
                       pow(h, alpha) * g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, y);
-      const Real Fs = f(s);
-      worst = max(worst, abs(Ag - (Fs - defect)));
-      scale = max(scale, abs(Fs));
+      const Real Fs = data_at(one_plus_y, one_minus_y);
+      // Mapped: the residual of the physical equation A g = F - defect is that of the mapped one
+      // times F/F~ here.
+      const Real back = s_map != 0 ? 1 / map_factor(g.x_of(one_plus_y, one_minus_y)[2]) : Real(1);
+      worst = max(worst, abs(Ag - (Fs - defect)) * back);
+      scale = max(scale, abs(Fs) * back);
     }
     sol.residual = scale > 0 ? worst / scale : worst;
   }

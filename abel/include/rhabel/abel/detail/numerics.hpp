@@ -322,6 +322,34 @@ const laguerre_rule<Real>& gauss_laguerre_rule(std::size_t n) {
   return *slot;
 }
 
+/// prod_i d_i^(e_i) over positive distances d_i, accumulated as exp(sum_i e_i log d_i): one exp and
+/// one log per factor instead of one pow (glibc's correctly rounded pow costs about twice log + exp;
+/// these products are the inner loops of the step enrichment's quadratures: 30-55% of a wedge solve
+/// was pow). Factors with e_i = 0 are skipped (0^0 = 1, never 0 * log 0). Relative error <=
+/// (sum_i |e_i log d_i| + 2 n) eps: ~10 eps for distances above 1e-4; larger only where the
+/// product itself is tiny or huge (nodes next to an end, whose weight in the sums is negligible).
+/// e_i = -1 (the kernel at alpha = 0) is a division.
+template <class Real>
+class power_product {
+ public:
+  power_product& times(const Real& d, const Real& e) {
+    using std::log;
+    if (e == -1) {  // the alpha = 0 kernel: a division, exact to rounding
+      factor_ /= d;
+    } else if (e != 0) {
+      exponent_ += e * log(d);
+    }
+    return *this;
+  }
+  Real value() const {
+    using std::exp;
+    return exponent_ == 0 ? factor_ : factor_ * exp(exponent_);
+  }
+
+ private:
+  Real exponent_ = 0, factor_ = 1;
+};
+
 /// expm1(x)/x, = 1 at x = 0. For |x| below (720 eps)^(1/5) the Taylor series 1 + x/2 + x^2/6 +
 /// x^3/24 + x^4/120 (remainder < |x|^5/720 < eps): the normalized step enrichment calls this at
 /// every quadrature node with x = -alpha log|u|, tiny for alpha ~ 1e-8 (expm1 was ~15% of that

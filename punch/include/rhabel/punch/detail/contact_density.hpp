@@ -8,9 +8,12 @@
 //     (gam at the leading edge a, del at the trailing edge b; coefficients from abel::solve,
 //     abel::solve_image_series or the smooth part of abel::solve_step);
 //   * apex: for the wedge below the boundary, the singular enrichment C phi of abel::solve_step
-//     (phi = w q E, E = kappa (x - x0)_+^(-alpha) + (x0 - x)_+^(-alpha), log form for alpha < 0.05)
+//     (phi = w q E, E = kappa (x - x0)_+^(-alpha) + (x0 - x)_+^(-alpha), log form for alpha < 0.01)
 //     stored as an abel::enriched_density whose own smooth series is EMPTY (the series lives in
-//     `jacobi`), so that g = jacobi + apex everywhere and each part keeps abel's evaluators;
+//     `jacobi`), so that g = jacobi + apex everywhere and each part keeps abel's evaluators; for an
+//     apex near an edge (|x0| > 1/2) solve_step's Moebius map makes the series live in the mapped
+//     variable: then apex holds the WHOLE density (apex.mobius != 0) and jacobi only a c_0 (zero
+//     until set_load corrects the load);
 //   * a line load (flat punch on/above the boundary);
 //   * forcing: the right side of (8) as smooth part + steps (projected in contact.cpp with the steps'
 //     coefficients in closed form).
@@ -51,7 +54,7 @@ struct contact_density {
   double length() const { return jacobi.hi - jacobi.lo; }
   edge_exponents exponents() const { return {jacobi.gam, jacobi.del, nu}; }
   /// Abscissa of the apex (has_apex only), from the enrichment's reference breakpoint.
-  double apex_position() const { return a() + (1 + apex.x0) * length() / 2; }
+  double apex_position() const { return a() + (1 + apex.apex_reference()) * length() / 2; }
   /// Moves the density to [lo, hi] (same reference shape).
   void set_interval(double lo, double hi);
   /// Sets apex_integral from apex (call after building the enrichment).
