@@ -295,7 +295,7 @@ int main(int argc, char** argv) {
   // (independent route; int g and int_a^apex g good to ~1e-13 per its header). Rows
   // step_apex_rh_eps_<eps>: error = max of the relative errors of int g and int_a^apex g (relative
   // to int g), n = points (fixed 65, 195, 585; "adaptive" rows: default options), residual,
-  // seconds (median, residual off). Status, Taylor/edge-damped degree and tail to stderr.
+  // seconds (median, residual off). Status, Taylor degree (mapped or not) and tail to stderr.
   {
     const double beta_k = 2 / boost::math::constants::pi<double>() * std::atan(0.5 * 0.4 / 1.4);  // k = 0.5, nu = 0.3
     struct apex_case {

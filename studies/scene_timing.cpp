@@ -7,26 +7,32 @@
 // of abel::solve_step) in {1e-6, 1e-8, 1e-10, 1e-12, 1e-14}; max_degree 128.
 //
 // References, and how independent they are:
-//   * eps: I_eps(del, gam) = S2/(S1 + S2) inverted at 50 digits (boost::math::ibeta_inv on
-//     cpp_bin_float_50); the solver does the same inversion in double: checks the rounding only.
-//   * L: int g = (cos(beta pi/2)/(pi Gamma(1-alpha))) L^(1-alpha) [S1 B_eps(P, Q) - S2 (B(P, Q) - B_eps(P, Q))],
-//     P = (1 + beta)/2, Q = (3 - beta)/2 - alpha (the moment formula int g = (c/pi) int w* F of the
-//     Riemann-Hilbert route, riemann/abel_solver.hpp, for piecewise constant F), at 50 digits; the
-//     solver takes L from the Rodrigues image coefficient d_1 of the step: a different formula.
+//   * eps, L: studies/support/study_support.hpp's wedge_moment_reference at 50 digits (shared with
+//     study_wedge_near_edge). eps: I_eps(del, gam) = S2/(S1 + S2) inverted at 50 digits
+//     (boost::math::ibeta_inv on cpp_bin_float_50); the solver does the same inversion in double:
+//     checks the rounding only. L: int g = (cos(beta pi/2)/(pi Gamma(1-alpha))) L^(1-alpha)
+//     [S1 B_eps(P, Q) - S2 (B(P, Q) - B_eps(P, Q))], P = (1 + beta)/2, Q = (3 - beta)/2 - alpha (the
+//     moment formula for int g of the Riemann-Hilbert route, riemann/abel_solver.hpp, for piecewise
+//     constant F); the solver takes L from the form (S1 + S2) eps^del (1-eps)^gam / (1 - alpha) of
+//     the same integral: a different formula.
 //   * C_f: rhabel::riemann::solve_abel_rh at order 16 (Riemann problem + Abel inversion: no spectral
-//     relation, no enrichment), C_f = (S1 int_a^apex g - S2 int_apex^b g) / int g. Independent of
-//     the solver where it uses abel::solve_step (status "ok"); where the apex is within 0.1 L of an
-//     edge the solver itself takes C_f from the same route (status says so): err_Cf there checks
-//     only the rounding of the interval. err_Cf is relative to max(|C_f|, min(S1, S2)) (C_f = 0 for
-//     alpha = k = 0).
+//     relation, no enrichment) on the exact interval, C_f = (S1 int_a^apex g - S2 int_apex^b g) /
+//     int g. Independent of the solver wherever it uses abel::solve_step's enriched density: with
+//     the apex at least enrich_limit = 1e-4 L from the edges (punch/src/contact.cpp; an apex nearer
+//     an edge than L/4 is moved toward the centre by solve_step's Moebius map). Within 1e-4 L of an
+//     edge (the status says so; here S2/S1 = 1e-6, 1e6 where 1 - eps >= 1e-14, and a few cases at
+//     alpha >= 0.3) the solver itself takes C_f from the same route at the same order, on the unit
+//     interval: err_Cf there checks only the rounding of the interval. err_Cf is relative to
+//     max(|C_f|, min(S1, S2)) (C_f = 0 for alpha = k = 0).
 //   * pressure: riemann's g(y) at every 10th of the 1000 samples (its accuracy: ~1e-14..1e-13
 //     relative for alpha <= 0.5, riemann/abel_solver.hpp; samples where its two orders disagree by
-//     more than 1e-12 relative are skipped: since the far-panel fix of session 3 this happens only
-//     with the apex within ~1e-10 L of an edge, n_pressure_ref says how many were kept); error =
+//     more than 1e-12 relative are skipped, n_pressure_ref says how many were kept: 0-11 of 100
+//     with the apex within 1e-7 L of the leading edge (S2/S1 = 1e-6), elsewhere at least 99); error =
 //     max |p - p_ref| / max |p_ref| over those samples (p is infinite at the apex: the max is the
-//     sample nearest to it). Where the apex is within 0.1 L of an edge the solver's samples come
-//     from the same route (pointwise here, interpolated there): this checks the interpolation
-//     only; study_wedge_near_edge has independent references for those scenes.
+//     sample nearest to it). Independent of the solver on its step path (apex >= 1e-4 L from the
+//     edges); within 1e-4 L the solver's samples come from the same route (pointwise here,
+//     interpolated there): this checks the interpolation only; study_wedge_near_edge checks that
+//     path against abel::solve_step and the elastic closed form.
 //   * Where 1 - eps < 1e-14 the solver reports eps = 1 (contact ending at the apex): err_eps = 1
 //     there by construction; where 1 - eps < 1e-30 it reports C_f = S1, and the reference (int_a^y g
 //     for y within 1e-30 L of b, riemann's known weak spot) is not trustworthy either.
@@ -37,14 +43,20 @@
 //                n_pressure_ref (reference samples kept, of 100),degree,error_estimate,residual (the
 //                solver's independent residual of (8)),seconds,seconds_no_residual (median of 5 calls
 //                with solve_options::residual = false),status
+//   degree, error_estimate and residual are the solver's indentor_result fields as reported: degree
+//   is 0 where solve_step's Moebius map is on (eps outside [1/4, 3/4]: punch reports the size of the
+//   unmapped series, which keeps only c_0 there); on the Riemann-Hilbert path (apex within 1e-4 L
+//   of an edge) all three describe the plain Jacobi series of degree 127, which does not resolve
+//   the apex and serves only the residual and the displacement (error_estimate ~0.1-1, residual
+//   ~0.1-40): the pressure grid's own error estimate is in the status there.
 // Usage: study_scene_timing [> scene_timing.csv]
-// ibeta_inv at 50 digits instantiates erf_inv initialisers that reference libquadmath unless
-// __float128 support is disabled (the study needs no __float128).
-#define BOOST_MATH_DISABLE_FLOAT128
+#define BOOST_MATH_DISABLE_FLOAT128  // see studies/support/study_support.hpp
+#include "support/study_support.hpp"
+
 #include "rhabel/punch.hpp"
 #include "rhabel/riemann.hpp"
 
-#include <boost/math/special_functions/beta.hpp>
+#include <boost/math/constants/constants.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
@@ -72,21 +84,12 @@ struct reference {
 };
 
 reference make_reference(const material& m, double S1, double S2, double load, std::size_t grid) {
-  const big alpha = m.alpha, beta = m.beta();
-  const big pi = boost::math::constants::pi<big>();
-  const big gam = (1 - 2 * alpha - beta) / 2, del = (1 + beta) / 2;
-  const big ratio = big(S2) / (big(S1) + big(S2));
   reference r;
-  const big e = boost::math::ibeta_inv(del, gam, ratio);
-  const big e1 = boost::math::ibeta_inv(gam, del, 1 - ratio);
-  r.eps = static_cast<double>(e);
-  r.one_minus_eps = static_cast<double>(e1);
-  const big P = (1 + beta) / 2, Q = (3 - beta) / 2 - alpha;
-  const big B = boost::math::beta(P, Q), Be = boost::math::beta(P, Q, e);
-  const big gf = boost::math::tgamma(1 - alpha);
-  const big unit = cos(beta * pi / 2) / (pi * gf) * (big(S1) * Be - big(S2) * (B - Be));
-  const big E_U = 1;  // by construction of unit_material
-  r.L = static_cast<double>(pow(big(load) / (pi / 2 * E_U * unit), 1 / (1 - alpha)));
+  const auto moments = rhabel_study::wedge_moment_reference<big>(big(m.alpha), big(m.beta()), big(S1), big(S2),
+                                                                 big(load), big(1));  // E_U = 1: unit_material
+  r.eps = static_cast<double>(moments.eps);
+  r.one_minus_eps = static_cast<double>(moments.one_minus_eps);
+  r.L = static_cast<double>(moments.L);
   // Riemann-Hilbert route on the exact interval (apex at 0).
   const double a = -r.eps * r.L, b = r.one_minus_eps * r.L;
   const double gfd = boost::math::tgamma(1 - m.alpha);
@@ -95,8 +98,7 @@ reference make_reference(const material& m, double S1, double S2, double load, s
   o.order = 16;
   const auto sol = rhabel::riemann::solve_abel_rh(m.alpha, m.beta(), a, b, F, rhabel::riemann::edge::bounded,
                                                   rhabel::riemann::edge::bounded, o);
-  const double total = sol.total().value, ahead = sol.integral(0.0).value;
-  r.Cf = (S1 * ahead - S2 * (total - ahead)) / total;
+  r.Cf = rhabel_study::wedge_friction(S1, S2, sol.total().value, sol.integral(0.0).value);
   for (std::size_t k = 0; k < grid; k += 10) {
     const double t = a + (b - a) * (static_cast<double>(k) + 0.5) / static_cast<double>(grid);
     if (t == 0.0) continue;
@@ -110,10 +112,6 @@ reference make_reference(const material& m, double S1, double S2, double load, s
 }
 
 double rel(double x, double ref) { return ref == 0 ? std::abs(x) : std::abs(x / ref - 1); }
-// C_f error relative to max(|C_f|, min(S1, S2)): C_f vanishes for the elastic frictionless wedge.
-double cf_err(double x, double ref, double S1, double S2) {
-  return std::abs(x - ref) / std::max(std::abs(ref), std::min(S1, S2));
-}
 }  // namespace
 
 int main() {
@@ -175,8 +173,9 @@ int main() {
           std::string status = r.status;
           std::replace(status.begin(), status.end(), ',', ';');
           std::printf("%d,%g,%g,%g,%.6g,%g,%.2e,%.2e,%.2e,%.2e,%zu,%zu,%.2e,%.2e,%.3e,%.3e,%s\n", case_id, alpha, k, ratio, eps_ref, tol,
-                      err_eps, rel(r.contact_length, ref.L), cf_err(r.hysteretic_friction, ref.Cf, S1, S2), perr, ref.p.size(), r.degree,
-                      r.error_estimate, r.residual, secs[2], secs_fast[2], status.c_str());
+                      err_eps, rel(r.contact_length, ref.L),
+                      rhabel_study::wedge_friction_error(r.hysteretic_friction, ref.Cf, S1, S2), perr, ref.p.size(),
+                      r.degree, r.error_estimate, r.residual, secs[2], secs_fast[2], status.c_str());
           std::fflush(stdout);
         }
       }

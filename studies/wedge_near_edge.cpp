@@ -1,35 +1,68 @@
 // study_wedge_near_edge: the isolated wedge below the boundary with its apex near an edge (issue
 // #4: eps, L, C_f and 1000 pressure samples; the apex within 0.1 L of an edge is common: eps =
-// 0.907 for alpha = 0.3, S1 = S2; 0.972 for alpha = 0.2, S2/S1 = 3). There the solver takes C_f
-// AND the pressure samples from the Riemann-Hilbert route (riemann::solve_abel_rh, order 16;
-// samples from a piecewise Chebyshev interpolant of its density built with
-// abel_rh_solution::densities), the load and L in closed form, the residual and the
-// displacement from abel::solve_step's enriched density. Error and cost for eps in {0.84, 0.907,
-// 0.953, 0.972, 0.99, 0.999} (alpha = 0.2, 0.3, 0.1 with nu = 0.3, k in {0, 0.5}), the apex 0.01 L
-// from the leading edge, and the elastic frictionless wedge (closed form) at eps 0.972 and 0.999.
+// 0.907 for alpha = 0.3, S1 = S2; 0.972 for alpha = 0.2, S2/S1 = 3).
 //
-// References, and how independent they are:
-//   * L: the load moment of the Riemann-Hilbert route with eps from a 50-digit ibeta_inv
-//     (study_scene_timing's formula), at 50 digits: a different formula from the solver's.
-//   * pressure, every 10th of the 1000 samples, relative to the largest reference sample:
-//       err_p_rh24  riemann's pointwise g(y) at order 24 (the same method as the solver's source
-//                   at a different order, without the interpolants: checks the batch
-//                   evaluation and the interpolation, not the method);
-//       err_p_step  abel::solve_step with up to 1025 Chebyshev points, tolerance 1e-14 (a
-//                   different method, converging only algebraically this near an edge: its own
-//                   error dominates below ~0.03 L, see step_enrichment.hpp);
-//       err_p_exact alpha = k = 0 only: the closed form g = ((S1 + S2)/pi^2) [2 log(A + B) -
-//                   log(L |apex - t|)], A = sqrt((apex - a)(b - t)), B = sqrt((b - apex)(t - a))
-//                   (tests/punch/test_wedge.cpp): independent and exact.
-//   * C_f: err_Cf_step against solve_step at 1025 points (as above); at alpha = k = 0, C_f = 0.
+// What the solver does there (punch/src/contact.cpp, solve_wedge): eps in closed form (incomplete
+// beta inversion), L from the exact load; with the apex at least enrich_limit = 1e-4 L from the
+// edges, C_f, the pressure samples, the residual and the displacement all come from
+// abel::solve_step's enriched density (an apex nearer an edge than L/4, eps outside [1/4, 3/4], is
+// first moved toward the centre by a Moebius map: abel/step_enrichment.hpp); within 1e-4 L of an
+// edge, C_f and the pressure samples come from the Riemann-Hilbert route instead
+// (riemann::solve_abel_rh, order 16, on the unit interval; samples from a piecewise Chebyshev
+// interpolant of its density built with abel_rh_solution::densities) and the status says so
+// (column `path`).
+//
+// Cases (nu = 0.3, E1 = 1, U = 1, unit load): eps in {0.84, 0.907, 0.953, 0.972} (alpha = 0.2, 0.3,
+// 0.1, 0.2 with k in {0, 0.5} and S2/S1 = 1 or 3), eps in {0.99, 0.995, 0.998, 0.999, 0.9995,
+// 0.9999, 0.99999} and 0.01 at alpha = 0.2, k = 0 (the slope ratio that gives this eps), and the
+// elastic frictionless wedge (alpha = k = 0: closed form) at eps 0.972, 0.999, 0.9999 and 0.99999.
+// 0.9999 lies at the switch (the solver's own 1 - eps decides the path); 0.99999 is on the
+// Riemann-Hilbert path.
+//
+// References, each computed once per case, and how independent they are:
+//   * eps, L: study_support.hpp's wedge_moment_reference at 50 digits: eps by the 50-digit
+//     inversion of the same incomplete-beta condition (checks the solver's rounding only), L from
+//     the load-moment formula with incomplete beta functions (a different formula from the
+//     solver's eps^del (1-eps)^gam form). err_eps = max of the relative errors of eps and 1 - eps
+//     (1 - eps = (b - apex)/L: the small one of the two).
+//   * the Riemann-Hilbert route at order 24 (riemann::solve_abel_rh: a Riemann problem and Abel's
+//     inversion; no spectral relation, no Jacobi expansion of F, no enrichment) on the solver's
+//     interval [a, b], apex at 0:
+//       err_Cf_rh24  C_f = (S1 int_a^apex g - S2 int_apex^b g) / int g (as tests/punch/support.hpp's
+//                    wedge_oracle), relative to max(|C_f|, min(S1, S2)) (C_f = 0 for alpha = k = 0);
+//       err_p_rh24   its pointwise g(y) at every 10th of the 1000 samples, max |p - p_ref| over the
+//                    largest reference sample; samples where its two orders disagree by more than
+//                    1e-12 relative are left out (n_p_ref says how many of the 100 were kept).
+//     On the solver's step path (apex >= 1e-4 L from the edges) this is independent by method. On
+//     its Riemann-Hilbert path (within 1e-4 L) it is the same method at a different order, on the
+//     solver's interval instead of the unit one, pointwise instead of interpolated: it then checks
+//     the order, the scaling and the interpolant, not the method; the next reference and the
+//     closed form below are the independent checks of that path.
+//   * rh path only: abel::solve_step (Moebius map, up to 1025 points, tolerance 1e-14, residual
+//     off) on the solver's interval, the method of the step path and independent of the
+//     Riemann-Hilbert route: err_Cf_step and err_p_step as above (same samples, same norms); its
+//     own error at an apex 1e-4 ... 1e-5 L from an edge (where it may not converge within 1025
+//     points, abel/step_enrichment.hpp) is part of what they show (status_step: converged or not,
+//     and its coefficient tail).
+//   * alpha = k = 0 only, independent and exact:
+//       err_p_exact  the closed form g = ((S1 + S2)/pi^2) [2 log(A + B) - log(L |apex - t|)],
+//                    A = sqrt((apex - a)(b - t)), B = sqrt((b - apex)(t - a))
+//                    (tests/punch/test_wedge.cpp), at all 100 samples, relative to its largest;
+//       err_Cf_exact |C_f| / min(S1, S2): C_f = 0 exactly (no hysteresis).
 // Time: minimum per call over a 0.3 s budget (studies/support/study_support.hpp), solve_single
-// with grid_points = 1000, displacement off, tolerance 1e-10; with and without the residual.
+// with grid_points = 1000, displacement off, tolerance 1e-10; with and without the residual;
+// cpu_seconds is the CPU time per call of the run with the residual.
 //
-// CSV on stdout: alpha,k,S2_over_S1,eps,err_L,err_Cf_step,err_p_rh24,err_p_step,err_p_exact,
-//                pressure_estimate (the solver's, from its status),seconds,seconds_no_residual,
-//                cpu_seconds,status
+// CSV on stdout: alpha,k,S2_over_S1,eps,path (step: solve_step's enriched density; rh: the
+//                Riemann-Hilbert route),err_eps,err_L,err_Cf_rh24,err_p_rh24,n_p_ref,err_p_exact,
+//                err_Cf_exact,err_Cf_step,err_p_step,status_step,error_estimate,pressure_estimate
+//                (the solver's, from its status: rh path only),degree,seconds,seconds_no_residual,
+//                cpu_seconds,status (commas replaced by semicolons)
+//   error_estimate and degree are indentor_result's fields as reported: on the rh path they
+//   describe the plain series of degree 127 (residual and displacement only; error_estimate ~1);
+//   degree is 0 on the mapped step path (see study_scene_timing).
 // Usage: study_wedge_near_edge [> wedge_near_edge.csv]
-#define BOOST_MATH_DISABLE_FLOAT128  // see study_scene_timing: no __float128 needed
+#define BOOST_MATH_DISABLE_FLOAT128  // see studies/support/study_support.hpp
 #include "support/study_support.hpp"
 
 #include "rhabel/abel.hpp"
@@ -45,11 +78,15 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <utility>
 #include <vector>
 
 using namespace rhabel::punch;
 using rhabel_study::format_number;
 using rhabel_study::min_time_per_call;
+using rhabel_study::relative_error;
+using rhabel_study::wedge_friction;
+using rhabel_study::wedge_friction_error;
 using big = boost::multiprecision::cpp_bin_float_50;
 
 namespace {
@@ -58,7 +95,7 @@ constexpr double pi = boost::math::constants::pi<double>();
 
 struct scene_case {
   double alpha, k;
-  double eps;  // target: S2/S1 from I_eps(del, gam) = S2/(S1 + S2)
+  double eps;  // target eps: S2/S1 from I_eps(del, gam) = S2/(S1 + S2); negative: -(S2/S1) given
 };
 
 double slope_ratio(const material& m, double eps) {
@@ -66,29 +103,18 @@ double slope_ratio(const material& m, double eps) {
   const double r = boost::math::ibeta(del, gam, eps);
   return r / (1 - r);
 }
-
-double moment_length(const material& m, double S1, double S2, double load) {
-  const big alpha = m.alpha, beta = m.beta();
-  const big bpi = boost::math::constants::pi<big>();
-  const big gam = (1 - 2 * alpha - beta) / 2, del = (1 + beta) / 2;
-  const big e = boost::math::ibeta_inv(del, gam, big(S2) / (big(S1) + big(S2)));
-  const big P = (1 + beta) / 2, Q = (3 - beta) / 2 - alpha;
-  const big B = boost::math::beta(P, Q), Be = boost::math::beta(P, Q, e);
-  const big unit = cos(beta * bpi / 2) / (bpi * boost::math::tgamma(1 - alpha)) * (big(S1) * Be - big(S2) * (B - Be));
-  const big E_U = big(m.E1) * boost::math::tgamma(1 - alpha) / (1 - big(m.poisson) * big(m.poisson));
-  return static_cast<double>(pow(big(load) / (bpi / 2 * E_U * unit), 1 / (1 - alpha)));
-}
 }  // namespace
 
 int main() {
-  std::printf("alpha,k,S2_over_S1,eps,err_L,err_Cf_step,err_p_rh24,err_p_step,err_p_exact,pressure_estimate,seconds,"
+  std::printf("alpha,k,S2_over_S1,eps,path,err_eps,err_L,err_Cf_rh24,err_p_rh24,n_p_ref,err_p_exact,err_Cf_exact,"
+              "err_Cf_step,err_p_step,status_step,error_estimate,pressure_estimate,degree,seconds,"
               "seconds_no_residual,cpu_seconds,status\n");
-  const std::vector<scene_case> cases{{0.2, 0.5, -1},  {0.3, 0.0, -1},  {0.1, 0.5, -3},   {0.2, 0.0, -3},
-                                      {0.2, 0.0, 0.99}, {0.2, 0.0, 0.999}, {0.2, 0.0, 0.01}, {0.0, 0.0, 0.972},
-                                      {0.0, 0.0, 0.999}};
+  const std::vector<scene_case> cases{{0.2, 0.5, -1},     {0.3, 0.0, -1},     {0.1, 0.5, -3},    {0.2, 0.0, -3},
+                                      {0.2, 0.0, 0.99},   {0.2, 0.0, 0.995},  {0.2, 0.0, 0.998}, {0.2, 0.0, 0.999},
+                                      {0.2, 0.0, 0.9995}, {0.2, 0.0, 0.9999}, {0.2, 0.0, 0.99999}, {0.2, 0.0, 0.01},
+                                      {0.0, 0.0, 0.972},  {0.0, 0.0, 0.999},  {0.0, 0.0, 0.9999},  {0.0, 0.0, 0.99999}};
   for (const auto& c : cases) {
     const material m{c.alpha, 1.0, nu_poisson, c.k};
-    // negative eps: -(S2/S1) given directly (the brief's cases)
     const double ratio = c.eps < 0 ? -c.eps : slope_ratio(m, c.eps);
     const double S1 = 0.1, S2 = S1 * ratio, load = 1.0, apex = 0.0;
     const indentor ind{wedge{S1, S2}, load, apex};
@@ -97,49 +123,86 @@ int main() {
     o.displacement = false;
     o.tolerance = 1e-10;
     const auto r = solve_single(m, 1.0, ind, o);
-    const double eps = *r.epsilon, L = r.contact_length;
+    const double L = r.contact_length;
     const double ps = pi / 2 * m.effective_modulus(1.0), gf = boost::math::tgamma(1 - c.alpha);
-    // References on the solver's interval.
+    // eps and L at 50 digits (E_U = E1 Gamma(1 - alpha) / (1 - nu^2) at U = 1).
+    const big E_U = big(m.E1) * boost::math::tgamma(1 - big(c.alpha)) / (1 - big(nu_poisson) * big(nu_poisson));
+    const auto moments =
+        rhabel_study::wedge_moment_reference<big>(big(c.alpha), big(m.beta()), big(S1), big(S2), big(load), E_U);
+    const double err_eps = std::max(relative_error(r.epsilon.value_or(1.0), static_cast<double>(moments.eps)),
+                                    relative_error((r.b - apex) / L, static_cast<double>(moments.one_minus_eps)));
+    // The Riemann-Hilbert route at order 24 on the solver's interval, and its samples (once).
     rhabel::riemann::piecewise_function<double> F{[S1, gf](double) { return S1 / gf; }, {{apex, -(S1 + S2) / gf}}};
     rhabel::riemann::abel_rh_options<double> ro;
     ro.order = 24;
     const auto rh = rhabel::riemann::solve_abel_rh(c.alpha, m.beta(), r.a, r.b, F, rhabel::riemann::edge::bounded,
                                                    rhabel::riemann::edge::bounded, ro);
-    const rhabel::abel::abel_operator<double> op(c.alpha, m.beta(), r.a, r.b);
-    rhabel::abel::solve_options<double> so;
-    so.tolerance = 1e-14;
-    so.max_degree = 1025;
-    so.residual_points = 0;
-    const auto step = rhabel::abel::solve_step(op, rhabel::abel::edge::bounded, rhabel::abel::edge::bounded,
-                                               [&](double s) { return F(s); }, apex, so);
-    const double total = step.density.integral(), ahead = step.density.integral_to(apex);
-    const double cf_step = (S1 * ahead - S2 * (total - ahead)) / total;
-    double peak = 0, e_rh = 0, e_step = 0, e_exact = 0;
-    for (std::size_t k = 5; k < 1000; k += 10) peak = std::max(peak, ps * rh.density(r.grid_x[k]).value);
-    for (std::size_t k = 5; k < 1000; k += 10) {
+    const double cf_rh = wedge_friction(S1, S2, rh.total().value, rh.integral(apex).value);
+    std::vector<std::size_t> index;
+    std::vector<double> p_ref;
+    for (std::size_t k = 5; k < r.grid_x.size(); k += 10) {
       const double t = r.grid_x[k];
-      e_rh = std::max(e_rh, std::abs(r.pressure[k] - ps * rh.density(t).value) / peak);
-      e_step = std::max(e_step, std::abs(r.pressure[k] - ps * step.density(t)) / peak);
-      if (c.alpha == 0 && c.k == 0) {
+      if (t == apex) continue;  // p is infinite at the apex
+      const auto d = rh.density(t);
+      if (!(std::abs(d.error_estimate) < 1e-12 * std::abs(d.value))) continue;  // its two orders disagree
+      index.push_back(k);
+      p_ref.push_back(ps * d.value);
+    }
+    double peak = 0, e_rh = 0, e_exact = 0;
+    for (double p : p_ref) peak = std::max(peak, std::abs(p));
+    for (std::size_t j = 0; j < index.size(); ++j)
+      e_rh = std::max(e_rh, std::abs(r.pressure[index[j]] - p_ref[j]) / peak);
+    const bool rh_path = r.status.find("Riemann-Hilbert") != std::string::npos;
+    std::string cf_step_cell, p_step_cell, status_step;
+    if (rh_path) {
+      const rhabel::abel::abel_operator<double> op(c.alpha, m.beta(), r.a, r.b);
+      rhabel::abel::solve_options<double> so;
+      so.tolerance = 1e-14;
+      so.max_degree = 1025;
+      so.residual_points = 0;
+      const auto step = rhabel::abel::solve_step(op, rhabel::abel::edge::bounded, rhabel::abel::edge::bounded,
+                                                 [&](double s) { return F(s); }, apex, so);
+      const double cf_step = wedge_friction(S1, S2, step.density.integral(), step.density.integral_to(apex));
+      double e_step = 0;
+      for (std::size_t j = 0; j < index.size(); ++j)
+        e_step = std::max(e_step, std::abs(r.pressure[index[j]] - ps * step.density(r.grid_x[index[j]])) / peak);
+      cf_step_cell = format_number(wedge_friction_error(r.hysteretic_friction, cf_step, S1, S2), 3);
+      p_step_cell = format_number(e_step, 3);
+      status_step = (step.status == rhabel::abel::solve_status::converged ? "converged" : "not converged") +
+                    std::string(" tail ") + format_number(step.coefficient_tail, 2);
+    }
+    const bool elastic = c.alpha == 0 && c.k == 0;
+    if (elastic) {
+      std::vector<std::pair<std::size_t, double>> exact;  // (sample, closed-form pressure)
+      double exact_peak = 0;
+      for (std::size_t k = 5; k < r.grid_x.size(); k += 10) {
+        const double t = r.grid_x[k];
+        if (t == apex) continue;
         const double A = std::sqrt((apex - r.a) * (r.b - t)), B = std::sqrt((r.b - apex) * (t - r.a));
-        const double p = ps * (S1 + S2) / (pi * pi) * (2 * std::log(A + B) - std::log(L * std::abs(apex - t)));
-        e_exact = std::max(e_exact, std::abs(r.pressure[k] - p) / peak);
+        exact.emplace_back(k, ps * (S1 + S2) / (pi * pi) * (2 * std::log(A + B) - std::log(L * std::abs(apex - t))));
+        exact_peak = std::max(exact_peak, std::abs(exact.back().second));
       }
+      for (const auto& [k, p] : exact) e_exact = std::max(e_exact, std::abs(r.pressure[k] - p) / exact_peak);
     }
     const auto t_full = min_time_per_call([&] { return solve_single(m, 1.0, ind, o).load; }, 0.3);
     solve_options fast = o;
     fast.residual = false;
     const auto t_fast = min_time_per_call([&] { return solve_single(m, 1.0, ind, fast).load; }, 0.3);
-    std::string estimate = "";
+    std::string estimate;
     if (const auto at = r.status.find("error estimate "); at != std::string::npos)
       estimate = r.status.substr(at + 15, r.status.find(' ', at + 15) - at - 15);
     std::string status = r.status;
     std::replace(status.begin(), status.end(), ',', ';');
-    std::printf("%g,%g,%.6g,%.6g,%.2e,%.2e,%.2e,%.2e,%s,%s,%.3e,%.3e,%.3e,%s\n", c.alpha, c.k, ratio, eps,
-                std::abs(L / moment_length(m, S1, S2, load) - 1),
-                std::abs(r.hysteretic_friction - cf_step) / std::max(std::abs(cf_step), std::min(S1, S2)), e_rh, e_step,
-                c.alpha == 0 && c.k == 0 ? format_number(e_exact, 3).c_str() : "", estimate.c_str(), t_full.seconds,
-                t_fast.seconds, t_full.cpu_seconds, status.c_str());
+    std::printf("%g,%g,%.6g,%.6g,%s,%.2e,%.2e,%.2e,%.2e,%zu,%s,%s,%s,%s,%s,%.2e,%s,%zu,%.3e,%.3e,%.3e,%s\n",
+                c.alpha, c.k, ratio,
+                static_cast<double>(moments.eps), rh_path ? "rh" : "step", err_eps,
+                relative_error(L, static_cast<double>(moments.L)),
+                wedge_friction_error(r.hysteretic_friction, cf_rh, S1, S2), e_rh,
+                p_ref.size(), elastic ? format_number(e_exact, 3).c_str() : "",
+                elastic ? format_number(std::abs(r.hysteretic_friction) / std::min(S1, S2), 3).c_str() : "",
+                cf_step_cell.c_str(), p_step_cell.c_str(), status_step.c_str(),
+                r.error_estimate, estimate.c_str(), r.degree,
+                t_full.seconds, t_fast.seconds, t_full.cpu_seconds, status.c_str());
     std::fflush(stdout);
   }
   return 0;

@@ -33,9 +33,13 @@ constexpr double pi = boost::math::constants::pi<double>();
 constexpr double boundary_width = 1e-12;  // |alpha + beta/2 - 1/2| below this is "boundary"
 // Wedge below the boundary, apex at distance min(eps, 1 - eps) L from an edge. abel::solve_step
 // maps an apex with min(eps, 1 - eps) < 1/4 toward the centre (Moebius map, abel/step_enrichment.hpp)
-// and converges at 65-195 points down to 1e-3 (FIGURES). Below enrich_limit the isolated wedge
-// takes C_f and the pressure samples from the Riemann-Hilbert route (wedge_by_rh, rh_pressure) and
-// the density is the plain Jacobi series (residual and displacement only).
+// and converges at 65 points down to ~1e-2, 195 down to 1e-3 and 585 down to 1e-4 (C_f <= 1e-12,
+// pressure <= 1.1e-11 of the peak against the Riemann-Hilbert route: study_wedge_near_edge). Within
+// enrich_limit the isolated wedge takes C_f and the pressure samples from the Riemann-Hilbert route
+// (wedge_by_rh, rh_pressure: 4.2-4.5 ms, C_f <= 2.7e-12, pressure 4e-14) and the plain Jacobi
+// series the residual and the displacement (see solve_wedge); a coupled wedge keeps the series.
+// (Between 1e-4 and 5e-4 the mapped solve at 585 points costs 4.4 ms without the residual, about
+// the route's cost: the limit sits where the mapped solve stops converging.)
 constexpr double enrich_limit = 1e-4;
 
 using detail::edge_exponents;
@@ -729,10 +733,13 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
     return;
   }
   // Within enrich_limit of an edge (see the top): C_f and the pressure samples of the isolated
-  // wedge from the Riemann-Hilbert route; the density is the plain series, which then serves
-  // only the residual and the displacement. A coupled
-  // wedge keeps the plain series for everything (pressure unresolved next to the apex; C_f by
-  // Richardson extrapolation of the series).
+  // wedge from the Riemann-Hilbert route; the density is the plain series, which then serves only
+  // the residual and the displacement (its error_estimate says how rough it is: ~1 there). An
+  // enriched density capped at 195 points was measured instead: error_estimate 7e-7 .. 4e-4 at
+  // 1e-4 .. 1e-5 L and ~1 at the slope ratios 1e-6, 1e6, for 1.5-2.5x the time of the whole solve
+  // (4-30 ms without the residual): no better evidence for the cost. A coupled wedge within
+  // enrich_limit keeps the plain series for everything (pressure unresolved next to the apex; C_f
+  // by Richardson extrapolation of the series).
   const double edge_distance = std::min(eps, one_minus_eps);
   const bool enrich = cx.options.wedge_apex_split && edge_distance > enrich_limit;
   if (isolated && !enrich) {
@@ -754,7 +761,7 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
         if (4 * n >= 3 * N) tail = std::max(tail, std::abs(st.g.jacobi.coefficients[n]));
       }
       st.g.tail = largest > 0 ? tail / largest : 0;
-      st.status = "apex next to an edge (or wedge_apex_split disabled): plain Jacobi series for the "
+      st.status = "apex within 1e-4 L of an edge (or wedge_apex_split disabled): plain Jacobi series for the "
                   "residual and the displacement; C_f and the pressure grid by the Riemann-Hilbert route";
     }
     const auto rh = wedge_by_rh(cx, S1, S2, eps, one_minus_eps);
@@ -1166,7 +1173,9 @@ scene_result solve(const scene& s, const solve_options& options) {
     r.contact_length = g.length();
     r.epsilon = st[i].epsilon;
     r.load = ps * g.integral();
-    r.degree = g.jacobi.coefficients.empty() ? 0 : g.jacobi.coefficients.size() - 1;
+    // Mapped wedge density (abel's Moebius map): its series lives in apex.smooth, jacobi holds a c_0.
+    const auto& series = g.has_apex && g.apex.mobius != 0 ? g.apex.smooth.coefficients : g.jacobi.coefficients;
+    r.degree = series.empty() ? 0 : series.size() - 1;
     r.error_estimate = g.tail;
     r.status = st[i].status;
     // Hysteretic friction C_f = int f' g / int g with the indentor's own f'.

@@ -22,11 +22,25 @@
 //                                     common ones (the latter two print the code's default).
 //   run_record                        wall and CPU time of the run, CPU model and load average
 //                                     (/proc), for the head and foot of a study's markdown output.
+//   wedge_moment_reference<Big>(...)  eps, 1 - eps and the contact length L of the isolated wedge
+//                                     below the boundary, in the precision Big (pass
+//                                     cpp_bin_float_50): the wedge studies' reference for eps and L.
+//   wedge_friction, wedge_friction_error  C_f of a wedge from int g and int_a^apex g; its error
+//                                     relative to max(|C_f|, min(S1, S2)).
 //
-// Header-only, no dependency beyond the standard library. Include it from a studies/*.cpp as
-// "support/study_support.hpp" (quoted includes resolve relative to the including file, so the
-// studies need no extra include directory; studies/CMakeLists.txt builds only studies/*.cpp).
+// Header-only; beyond the standard library it needs Boost.Math (incomplete beta and its inverse,
+// for wedge_moment_reference only; a template, so a study that does not call it instantiates
+// nothing of it). A study that calls it with cpp_bin_float_50 must #define
+// BOOST_MATH_DISABLE_FLOAT128 before its first include: ibeta_inv at 50 digits instantiates erf_inv
+// initialisers that reference libquadmath otherwise (the studies link no libquadmath).
+// Include it from a studies/*.cpp as "support/study_support.hpp" (quoted includes resolve relative
+// to the including file, so the studies need no extra include directory; studies/CMakeLists.txt
+// builds only studies/*.cpp).
 #pragma once
+
+#include <boost/math/constants/constants.hpp>
+#include <boost/math/special_functions/beta.hpp>
+#include <boost/math/special_functions/gamma.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -192,6 +206,72 @@ inline std::string format_duration(double seconds) {
   else
     std::snprintf(buffer, sizeof buffer, "%.3g s", seconds);
   return buffer;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The isolated wedge below the boundary: eps and L at high precision.
+
+/// eps = (apex - a)/L, 1 - eps = (b - apex)/L and L = b - a of the isolated wedge (slopes S1 ahead
+/// of the apex, S2 behind it) under `load`, below the boundary alpha + beta/2 < 1/2 (gam > 0).
+template <class Big>
+struct wedge_moments {
+  Big eps, one_minus_eps, L;
+};
+
+/// The reference of study_scene_timing and study_wedge_near_edge for eps and L, every operation
+/// in Big (pass cpp_bin_float_50; see the top of this header for BOOST_MATH_DISABLE_FLOAT128):
+///   eps from I_eps(del, gam) = S2/(S1 + S2), 1 - eps from I_(1-eps)(gam, del) = S1/(S1 + S2)
+///   (each accurate where it is tiny), gam = (1 - 2 alpha - beta)/2, del = (1 + beta)/2 (math.md
+///   section 5);
+///   L from the load moment int g = (cos(beta pi/2)/(pi Gamma(1-alpha))) L^(1-alpha)
+///   [S1 B_eps(P, Q) - S2 (B(P, Q) - B_eps(P, Q))], P = (1 + beta)/2, Q = (3 - beta)/2 - alpha (the
+///   moment formula for int_a^b g of the Riemann-Hilbert route, riemann/abel_solver.hpp, for
+///   piecewise constant F), and load = (pi/2) E_U int g. The solver (punch/src/contact.cpp) takes
+///   L from the cancellation-free form (S1 + S2) eps^del (1-eps)^gam / (1 - alpha) of the same
+///   integral: a different formula. The bracket here amplifies the rounding of the beta
+///   functions by up to max(S1, S2)/min(S1, S2) (1e6 at the slope ratios 1e-6 and 1e6 of the
+///   studies, checked at 80 digits): 50 digits leave far more than double needs.
+/// E_U = E1 Gamma(1 - alpha) U^alpha / (1 - nu^2) (material::effective_modulus). Throws
+/// std::domain_error if alpha + beta/2 >= 1/2 or a slope, the load or E_U is not positive.
+template <class Big>
+wedge_moments<Big> wedge_moment_reference(const Big& alpha, const Big& beta, const Big& S1, const Big& S2,
+                                          const Big& load, const Big& E_U) {
+  using std::cos;
+  using std::pow;
+  auto require = [](bool ok, const char* parameter, const Big& value, const char* range) {
+    if (!ok)
+      throw std::domain_error(std::string("wedge_moment_reference: ") + parameter + " = " +
+                              format_number(static_cast<double>(value)) + " outside " + range);
+  };
+  require(alpha + beta / 2 < Big(0.5), "alpha + beta/2", alpha + beta / 2, "(-inf, 1/2) (below the boundary)");
+  require(S1 > 0, "S1", S1, "(0, inf)");
+  require(S2 > 0, "S2", S2, "(0, inf)");
+  require(load > 0, "load", load, "(0, inf)");
+  require(E_U > 0, "E_U", E_U, "(0, inf)");
+  const Big pi = boost::math::constants::pi<Big>();
+  const Big gam = (1 - 2 * alpha - beta) / 2, del = (1 + beta) / 2;
+  const Big ratio = S2 / (S1 + S2);
+  wedge_moments<Big> out;
+  out.eps = boost::math::ibeta_inv(del, gam, ratio);
+  out.one_minus_eps = boost::math::ibeta_inv(gam, del, 1 - ratio);
+  const Big P = (1 + beta) / 2, Q = (3 - beta) / 2 - alpha;
+  const Big B = boost::math::beta(P, Q), Be = boost::math::beta(P, Q, out.eps);
+  const Big unit = cos(beta * pi / 2) / (pi * boost::math::tgamma(1 - alpha)) * (S1 * Be - S2 * (B - Be));
+  out.L = pow(load / (pi / 2 * E_U * unit), 1 / (1 - alpha));
+  return out;
+}
+
+/// C_f of a wedge from its density g: (S1 int_a^apex g - S2 int_apex^b g) / int_a^b g, given
+/// total = int_a^b g and ahead = int_a^apex g (the definition used by tests/punch/support.hpp's
+/// wedge_oracle and by the wedge studies' references).
+inline double wedge_friction(double S1, double S2, double total, double ahead) {
+  return (S1 * ahead - S2 * (total - ahead)) / total;
+}
+
+/// Error of a wedge's C_f relative to max(|C_f_ref|, min(S1, S2)): C_f vanishes for the elastic
+/// frictionless wedge, and min(S1, S2) is the scale of its two faces' shares.
+inline double wedge_friction_error(double cf, double cf_ref, double S1, double S2) {
+  return std::abs(cf - cf_ref) / std::max(std::abs(cf_ref), std::min(S1, S2));
 }
 
 // ---------------------------------------------------------------------------------------------

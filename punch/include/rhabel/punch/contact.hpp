@@ -37,10 +37,9 @@
 //   "above"    alpha + beta/2 > 1/2 (kappa < 0): wedge contact ends at the apex, flat punch contact
 //              collapses to a moving line load at its leading corner (paper 24-25).
 //
-// METHOD AND ACCURACY (measured; commands: build-punch3/tests/punch_test_contact,
-//   build-punch4/tests/punch_test_wedge, build-punch4/bin/study_scene_timing,
-//   build-punch4/bin/study_wedge_near_edge, build-punch3/bin/study_wedge_table,
-//   build-punch3/bin/study_wedge_stationarity)
+// METHOD AND ACCURACY (measured; commands: build/tests/punch_test_contact,
+//   build/tests/punch_test_wedge, build/bin/study_scene_timing, build/bin/study_wedge_near_edge,
+//   build/bin/study_wedge_table, build/bin/study_wedge_stationarity)
 //   * Parabola, general smooth profile: the forcing is smooth, the Jacobi degree is chosen adaptively
 //     by abel::solve (Chebyshev tail below options.tolerance; with corners: projection with the
 //     jumps in closed form); the edges come from a TOMS 748 root of the orthogonality coefficient
@@ -55,41 +54,31 @@
 //     cancellation; 1e-15 relative at slope ratios 1e-6 .. 1e6 against a 50-digit evaluation).
 //     The density has a |s - apex|^-alpha (log at alpha = 0) singularity at the apex: it is built in
 //     by abel::solve_step (g = C phi + w sum c_n P_n, C from the jump in closed form, the remainder by
-//     adaptive Chebyshev interpolation up to 2 max_degree + 1 points), then c_0 is set to the exact
-//     load. C_f = (S1 int_a^apex g - S2 int_apex^b g)/int g with the smaller share integrated directly.
-//     Measured against the Riemann-Hilbert route (riemann::solve_abel_rh, order 16; tests/punch/
-//     test_wedge.cpp, build-punch4/bin/study_scene_timing) with the apex at least 0.1 L from both
-//     edges (tolerance 1e-12, alpha in {0, 1e-3, 0.05, 0.2, 0.3, 0.45}, k in {0, 0.5}): C_f to
-//     9e-16 .. 1.1e-12 relative, the 1000 pressure samples to 1.8e-15 .. 3.3e-11 of the peak sample
-//     (worst: alpha = 0.2, k = 0.5, eps = 0.84). error_estimate = max(Chebyshev
-//     tail, relative load defect of the enriched density before c_0 is corrected): an estimate.
-//     Apex within 0.1 L of an edge (min(eps, 1 - eps) <= 0.1; slope ratios beyond ~10, or alpha +
-//     beta/2 near 1/2; e.g. eps = 0.907 for alpha = 0.3, S1 = S2): solve_step's accuracy degrades
-//     (its pressure was 1e-9 .. 2e-6 of the peak for min(eps, 1 - eps) in [0.01, 0.1], 1e-4 at
-//     1e-3), so an isolated wedge takes C_f AND the pressure samples from the Riemann-Hilbert route
-//     (riemann::solve_abel_rh, order 16, on the unit interval; C_f with int_a^apex g directly:
-//     ~1e-15 relative for eps -> 0, ~1e-16 (S1 + S2) absolute for eps -> 1; the samples from a
-//     piecewise Chebyshev interpolant of its density, graded towards the apex, built from one
-//     abel_rh_solution::densities call at ~100-200 nodes, the short side of the apex and the few
-//     samples next to it directly; the status says so and gives the samples' error estimate).
-//     The threshold 0.1 is where the enriched pressure stops meeting 1e-10 (measured at
-//     tolerance 1e-10: 2e-11 .. 1e-10 of the peak for min(eps, 1 - eps) in [0.105, 0.15],
-//     2.8e-10 once at 0.15, alpha 0.05, k 0.5) while the route costs ~10-20x more. abel::solve_step
-//     (edge-damped enrichment) reaches 1e-10 there only at 513 points and more (eps 0.972: 3e-11
-//     in 16 ms; 0.99: 5e-10 in 18 ms; at 257 points 4.6e-10 .. 1.5e-6), so the route
-//     stays the choice by measurement.
-//     Measured (build-punch4/bin/study_wedge_near_edge; eps 0.907, 0.953, 0.972, 0.99, 0.999,
-//     0.01): pressure 2.4e-14 .. 5.2e-14 of the peak against the route's pointwise g at order 24,
-//     1e-13 .. 2.5e-12 against abel::solve_step at 1025 points (to eps 0.99; its own error
-//     beyond), 3e-14 and 5e-14 against the closed form of the elastic frictionless wedge at eps
-//     0.972 and 0.999 (tests/punch/test_wedge.cpp); C_f 1e-15 .. 2e-13 against that solve_step.
-//     The enriched density is still built (solve_step; the plain Jacobi series within 1e-3 L of
-//     an edge): it carries the residual and the displacement (its error_estimate says how good).
-//     Within 1e-14 L of the trailing edge the contact is solved as ending at the apex (C_f from
-//     the Riemann-Hilbert route while 1 - eps > 1e-30, else S1).
+//     adaptive Chebyshev interpolation on 65, 195, 585 points, at most max(2 max_degree + 1, 585)),
+//     then c_0 is set to the exact load. An apex within L/4 of an edge (eps outside [1/4, 3/4]:
+//     slope ratios beyond ~2.4, or alpha + beta/2 near 1/2; eps = 0.907 for alpha = 0.3, S1 = S2) is
+//     moved toward the centre by solve_step's Moebius map (abel/step_enrichment.hpp), which keeps
+//     65 points down to ~1e-2 L from the edge and 195-585 down to 1e-4 L. C_f = (S1 int_a^apex g -
+//     S2 int_apex^b g)/int g with the smaller share integrated directly. error_estimate =
+//     max(Chebyshev tail, relative load defect of the enriched density before c_0 is corrected): an
+//     estimate (it understated the pressure error up to 55x at eps 0.9995: 2e-13 against 1.1e-11).
+//     Measured against the Riemann-Hilbert route (riemann::solve_abel_rh at order 24: C_f and the
+//     pointwise density; tests/punch/test_wedge.cpp, build/bin/study_wedge_near_edge,
+//     build/bin/study_scene_timing; tolerance 1e-10): eps 0.84 .. 0.999 and 0.01, alpha 0.1 .. 0.3:
+//     C_f 2.4e-15 .. 9.9e-13, the 1000 pressure samples 1e-14 .. 1.1e-11 of the peak; elastic
+//     frictionless wedge at eps 0.972 and 0.999 against its closed form: pressure 4.3e-14, 2.8e-13,
+//     C_f 8.3e-15, 2.2e-14; all 41 step-path cases of study_scene_timing (alpha in {0, 1e-3, 0.05,
+//     0.2, 0.3, 0.45}, k in {0, 0.5}, S2/S1 in {0.1, 1, 10}): C_f <= 2.2e-12, pressure <= 5.3e-11.
+//     Within 1e-4 L of an edge (enrich_limit) the isolated wedge takes C_f AND the pressure samples
+//     from the Riemann-Hilbert route (order 16 on the unit interval, the samples from a piecewise
+//     Chebyshev interpolant of its density graded towards the apex; the status says so and gives
+//     the samples' error estimate): eps 0.9999, 0.99999: C_f 1.4e-14 .. 2.7e-12, pressure 4e-14 of
+//     the peak; the plain Jacobi series carries the residual and the displacement (its
+//     error_estimate, ~1 there, says how rough it is). Within 1e-14 L of the trailing edge the contact is solved as ending at the apex
+//     (C_f from the Riemann-Hilbert route while 1 - eps > 1e-30, else S1).
 //     A coupled wedge (other indentors present) finds eps by the orthogonality root and takes C_f
 //     and the pressure from its enriched density (Richardson-extrapolated series for C_f within
-//     1e-3 L of an edge; no Riemann-Hilbert route for coupled contacts).
+//     1e-4 L of an edge; no Riemann-Hilbert route for coupled contacts).
 //   * Flat punch below the boundary: nu = +1, spectral, 1e-15; above/on the boundary a line load.
 //   * Several indentors: block Gauss-Seidel on system 41 (each interval re-solved with the others'
 //     action on its right side, computed with the graded cross-term nodes and kernel of
@@ -104,39 +93,30 @@
 //     by abel's direct quadrature of A[phi] (the one solve_step used to build the data: for that part
 //     only the smooth remainder is checked), the other indentors by abel_operator::apply / abel::apply.
 //     Measured: <= 7e-13 for single indentors at alpha in {0, 1e-8, 5e-4} (tests/punch/
-//     test_contact.cpp); 3e-11 for examples/default_scene.json (coupled wedge + parabola; it was 7e-6
-//     with the former apex split and 2e-10 with solve_step capped at 129 points).
+//     test_contact.cpp); 7.9e-14 for examples/default_scene.json (coupled wedge + parabola, the wedge's
+//     apex at eps 0.88, mapped; it was 7e-6 with the former apex split, 2e-10 with solve_step capped
+//     at 129 points, 3e-11 before the map).
 //   * Displacement: outside the contact from the slope integral (paper 27, 28) integrated in closed
 //     form in s, then Gauss-Jacobi in t (series part), abel's composite quadrature of the apex enrichment;
 //     the datum (log-singular at t = a) by tanh-sinh in offsets from a, the apex and b; inside the own
 //     contact f(x) - f(a) exactly. Elastic flat punch against -(2P/(pi E*)) arccosh(x/c): < 1e-8 for
 //     |x| >= 1.4 c; accuracy degrades next to the edges (log kernel nearly singular there).
-//   * Cost (Release, warm caches; build/bin/study_scene_timing: median wall time of 5 calls of
-//     solve_single after a warm-up, grid_points = 1000, displacement off, quiet machine (load
-//     ~1.3); the cheapest solve_options::tolerance at which C_f and the pressure reach 1e-10):
-//     single parabola ~0.2 ms. Single wedge below the boundary, apex >= 0.1 L from the edges,
-//     residual on / off (solve_options::residual): alpha = 0 (S1 = S2, k = 0, 0.5) 1.19 / 0.96 and
-//     1.30 / 1.02 ms; alpha = 1e-3: 1.43 / 1.11 and 2.01 / 1.66 ms; alpha = 0.05: 0.57 / 0.42 and
-//     0.71 / 0.48 ms, C_f <= 3.1e-14, pressure <= 5.6e-13 of the peak; alpha = 0.2 (k = 0, eps =
-//     0.75): 0.65 / 0.46 ms, C_f 6.1e-13, pressure 4.1e-12; alpha = 0.2, k = 0.5 (eps = 0.84):
-//     1.85 / 1.17 ms at tolerance 1e-14 (126 points), C_f 1.1e-12, pressure 3.3e-11; alpha = 0.3
-//     (S2/S1 = 0.1, k = 0.5): 0.73 / 0.48 ms, C_f 8.3e-12, pressure 4.8e-11; alpha = 0.45 (S2/S1 =
-//     0.1, k = 0): 0.65 / 0.46 ms, C_f 2.4e-15, pressure 1.7e-13. (The pressure references are the
-//     Riemann-Hilbert density, whose far-panel defect, fixed in session 3, had put 1e-11 .. 1e-6
-//     outliers into the former figures.) So the target of issue #4 (1e-10 relative for eps, L, C_f
-//     and 1000 samples in < 1 ms) is met for alpha in [0.05, 0.45] with the apex >= 0.1 L from the
-//     edges except alpha = 0.2, k = 0.5, S1 = S2 (1.17 ms without the residual); not for alpha <=
-//     1e-3 (1.0-1.7 ms without the residual: solve_step's normalized logarithmic enrichment), nor
-//     with the apex within 0.1 L of an edge: there the Riemann-Hilbert route gives 2e-14 .. 5e-14
-//     of the peak (was 1e-9 .. 1e-4) in 14-24 ms (alpha > 0; 20-32 ms at alpha = 0; eps 0.907 ..
-//     0.999 and 0.01; study_wedge_near_edge, minimum over 0.3 s; before 10-90 ms): ~100-200
-//     densities at 50-130 us each, most of it the far part of g(y) graded to rounding level
-//     towards the log singularity of A~ at the apex (riemann/abel_solver.hpp), plus the enriched
-//     solve for the residual and the displacement. Where the time goes otherwise (alpha = 0.2, k =
-//     0): abel::solve_step's quadrature of A[phi], ~30% the independent residual (0.2-0.9 ms: two
-//     one-sided Gauss-Jacobi integrals of the series at 7 points plus the enrichment's image;
-//     fewer nodes lost accuracy: the parabola's residual went from 7e-16 to 7e-14), ~0.2-0.5 ms
-//     the 1000 samples. Coupled scenes with wedges 0.05-0.3 s (examples/default_scene.json:
+//   * Cost (Release, warm caches; build/bin/study_scene_timing and study_wedge_near_edge: wall time
+//     of solve_single, grid_points = 1000, displacement off, load ~0.9, minimum of 3 runs; the
+//     cheapest solve_options::tolerance at which C_f and the pressure reach 1e-10, with / without
+//     the residual): single parabola ~0.2 ms. Single wedge below the boundary, alpha >= 0.05:
+//     apex >= 0.01 L from both edges (65 points) 0.57-1.03 / 0.41-0.58 ms (eps 0.843: 0.45 ms;
+//     0.907: 0.48; 0.972: 0.52); apex 1e-3 .. 1e-2 L from an edge (195 points) 1.6-4.5 / 1.1-1.7
+//     ms; 5e-4 L (585 points) 9.4 / 4.4 ms; within 1e-4 L (Riemann-Hilbert route) 4.2-4.5 /
+//     3.5-3.8 ms. alpha <= 1e-3 (solve_step's logarithmic enrichment, ~3x the quadrature nodes per
+//     point): 1.03-1.69 / 0.81-1.20 ms with the apex >= 0.01 L from the edges. Slope ratios 1e-6
+//     and 1e6 (the apex within 1e-11 L of an edge, Riemann-Hilbert route): 2.5-18.7 ms, C_f
+//     within 3e-12 .. 2.7e-9 of the order-16 reference (the reference itself is weak there). So
+//     the target of issue #4 (1e-10 for eps, L, C_f and 1000 samples in < 1 ms) is met for alpha
+//     >= 0.05 with the apex >= 0.01 L from the edges; not for alpha <= 1e-3 (0.8-1.2 ms) nor closer
+//     to an edge (1.1-4.4 ms). Where the time goes (alpha = 0.3, S2/S1 = 0.1): abel::solve_step's
+//     quadrature of A[phi] ~0.33 ms (65 points), the 1000 samples ~0.2 ms, the independent
+//     residual 0.1-0.3 ms. Coupled scenes with wedges 0.05-0.3 s (examples/default_scene.json:
 //     ~0.05-0.08 s).
 //
 // UNITS: any consistent set; the comments use SI: lengths in m, E1 in Pa s^alpha, speed in m/s,
@@ -211,7 +191,7 @@ struct solve_options {
   bool displacement = true;     ///< with grid_points > 0: also the displacement grid (the costlier one)
   double tolerance = 1e-12;     ///< relative tolerance of the root finders and of the expansions
   std::size_t max_degree = 128; ///< largest Jacobi degree of a density expansion (cost ~ degree^2);
-                                ///< the wedge's enriched solve may use up to 2 max_degree + 1 points
+                                ///< the wedge's enriched solve may use up to max(2 max_degree + 1, 585) points
   /// Wedge below the boundary with min(eps, 1 - eps) > 1e-3: build the apex singularity into the
   /// density (abel::solve_step's singular enrichment; spectral convergence, no Gibbs oscillation at
   /// the apex). L and eps are exact either way. false: plain Jacobi series of degree max_degree
@@ -255,7 +235,7 @@ struct indentor_result {
   double residual = 0;              ///< max |LHS - RHS of (8)| / max |F| at check points
                                     ///< (NaN if solve_options::residual is false)
   double error_estimate = 0;        ///< estimated relative error of the density (an estimate)
-  std::size_t degree = 0;           ///< Jacobi degree used
+  std::size_t degree = 0;           ///< Jacobi degree used (wedge with an apex near an edge: in the mapped variable)
   std::string status;               ///< "ok", or what went wrong / was approximated
 };
 
