@@ -292,7 +292,8 @@ struct enriched_density {
     if (mobius != 0) return integrate([](const Real&) { return Real(1); });
     return smooth.integral() + enrichment * half_length() * phi_integral_to(Real(1));
   }
-  /// int_{-1}^{X} phi dx (reference variable), X in [-1, 1].
+  /// int_{-1}^{X} phi dx (reference variable), X in [-1, 1]. Mapped: the integral in sigma, without
+  /// the map's jacobian (integral() and integral_to() then use integrate).
   Real phi_integral_to(const Real& X) const;
 
   /// Leading-edge intensity lim g (t-a)^(-gam): smooth part plus C 2^del q(-1) E(-1), times (2/L)^gam;
