@@ -252,7 +252,7 @@ class inside_action {
     const double t = d[0] <= d[1] ? g_.a() + h * d[0] : g_.b() - h * d[1];
     const double mapped = evaluate_mapped_([&](double x) { return mapped_series_(x); }, t) +
                           std::pow(h, alpha) * apex.enrichment * abel::detail::enrichment_image_any(apex, op_.parameters(), split_, y);
-    return result + std::pow((1 - apex.mobius) * (1 + apex.mobius), alpha) * std::pow(d[2], 1 - alpha) * mapped;
+    return result + apex.covariance_factor(d[2]) * mapped;
   }
 
  private:
@@ -1267,15 +1267,16 @@ scene_result solve(const scene& s, const solve_options& options) {
       const std::size_t n = options.grid_points;
       r.grid_x.resize(n);
       r.pressure.resize(n);
-      // g.value(t) = w(x) [S(x) + C q(x) E(x - x0)] (jacobi_density::value_at_distance plus
-      // enriched_density::phi, whose own series is empty here) with the series' recurrence
-      // coefficients computed once for all samples and the weight w = (1-x)^del (1+x)^gam computed
-      // once per sample instead of three times (the same values to a few ulps).
-      const rhabel::quadrature::jacobi_series<double> series(g.line_load ? std::vector<double>{} : g.jacobi.coefficients,
-                                                             g.jacobi.del, g.jacobi.gam);
+      // g.value(t) at every sample through one abel::enriched_evaluator (the series' recurrence
+      // coefficients once, the weight w = (1-x)^del (1+x)^gam once per sample): without a map the
+      // density whose series is g.jacobi and whose enrichment is g.apex's; mapped (apex near an
+      // edge) g.apex itself, whose series lives in the mapped variable, plus g.jacobi's c_0.
+      const bool mapped = g.has_apex && g.apex.mobius != 0;
+      abel::enriched_density<double> whole = g.apex;
+      if (!mapped) whole.smooth = g.jacobi;
+      if (!g.has_apex) whole.enrichment = 0;
+      const abel::enriched_evaluator<double> density(whole);
       const double h = g.jacobi.half_length();
-      std::optional<abel::enriched_evaluator<double>> mapped_apex;
-      if (g.has_apex && g.apex.mobius != 0) mapped_apex.emplace(g.apex);
       for (std::size_t k = 0; k < n; ++k) {
         const double t = g.jacobi.lo + g.length() * (static_cast<double>(k) + 0.5) / static_cast<double>(n);
         r.grid_x[k] = t;
@@ -1284,16 +1285,9 @@ scene_result solve(const scene& s, const solve_options& options) {
           r.pressure[k] = 0.0;
           continue;
         }
-        const double one_plus_x = (t - g.jacobi.lo) / h, one_minus_x = (g.jacobi.hi - t) / h;
-        const double x = one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x;
-        double inner = series(x);
-        if (g.has_apex && g.apex.mobius == 0) {
-          const double u = x - g.apex.x0;
-          inner += g.apex.enrichment * g.apex.q_at(x) * (u > 0 ? g.apex.E_full(u, true) : g.apex.E_full(-u, false));
-        }
-        r.pressure[k] = ps * (std::pow(one_minus_x, g.jacobi.del) * std::pow(one_plus_x, g.jacobi.gam) * inner);
-        // Mapped (apex near an edge): the whole density is in apex (abel's evaluator maps back).
-        if (mapped_apex) r.pressure[k] += ps * (*mapped_apex)(one_plus_x, one_minus_x);
+        double value = density((t - g.jacobi.lo) / h, (g.jacobi.hi - t) / h);
+        if (mapped) value += g.jacobi.value_at_distance(t - g.jacobi.lo, g.jacobi.hi - t);
+        r.pressure[k] = ps * value;
       }
       if (st[i].rh_unit) {
         const double estimate = rh_pressure(*st[i].rh_unit, -*st[i].epsilon, st[i].rh_one_minus_eps, g.jacobi.gam,

@@ -261,10 +261,19 @@ struct enriched_density {
     const Real h = half_length();
     return value_at_distance((t - smooth.lo) / h, (smooth.hi - t) / h);
   }
+  /// (1 - s^2)^alpha (1 + s sigma)^(1 - alpha), the covariance factor of the map (header):
+  /// A[g](M(sigma)) = this times A[g~](sigma); 1 without a map.
+  Real covariance_factor(const Real& one_plus_s_sigma) const {
+    using std::pow;
+    return pow((1 - mobius) * (1 + mobius), alpha) * pow(one_plus_s_sigma, 1 - alpha);
+  }
+  /// The apex on the x axis: x_of(1 + x0, 1 - x0) = {1 + x_apex, 1 - x_apex, 1 + s sigma0} (the
+  /// last is 1 without a map).
+  std::array<Real, 3> apex_in_x() const { return x_of(1 + x0, 1 - x0); }
   /// Reference abscissa of the apex (x0 mapped back when mobius != 0).
   Real apex_reference() const {
     if (mobius == 0) return x0;
-    const auto d = x_of(1 + x0, 1 - x0);
+    const auto d = apex_in_x();
     return d[0] <= d[1] ? d[0] - 1 : 1 - d[1];
   }
 
@@ -353,7 +362,7 @@ class enriched_evaluator {
  public:
   explicit enriched_evaluator(const enriched_density<Real>& d)
       : d_(d), series_(d.smooth.series_evaluator()),
-        one_plus_s_sigma0_(d.mobius != 0 ? d.x_of(1 + d.x0, 1 - d.x0)[2] : Real(1)) {}
+        one_plus_s_sigma0_(d.apex_in_x()[2]) {}
   /// g at the point with reference distances 1 + x, 1 - x (x != x_apex).
   Real operator()(const Real& one_plus_x, const Real& one_minus_x) const {
     return value(d_, series_, one_plus_s_sigma0_, one_plus_x, one_minus_x, nullptr);
@@ -400,14 +409,12 @@ class enriched_evaluator {
 
 template <class Real>
 Real enriched_density<Real>::value_at_distance(const Real& one_plus_x, const Real& one_minus_x) const {
-  const Real one_plus_s_sigma0 = mobius != 0 ? x_of(1 + x0, 1 - x0)[2] : Real(1);
-  return enriched_evaluator<Real>::value(*this, [this](const Real& x) { return smooth.series(x); }, one_plus_s_sigma0,
+  return enriched_evaluator<Real>::value(*this, [this](const Real& x) { return smooth.series(x); }, apex_in_x()[2],
                                          one_plus_x, one_minus_x, nullptr);
 }
 template <class Real>
 Real enriched_density<Real>::value_with_offset(const Real& one_plus_x, const Real& one_minus_x, const Real& dx) const {
-  const Real one_plus_s_sigma0 = mobius != 0 ? x_of(1 + x0, 1 - x0)[2] : Real(1);
-  return enriched_evaluator<Real>::value(*this, [this](const Real& x) { return smooth.series(x); }, one_plus_s_sigma0,
+  return enriched_evaluator<Real>::value(*this, [this](const Real& x) { return smooth.series(x); }, apex_in_x()[2],
                                          one_plus_x, one_minus_x, &dx);
 }
 
@@ -921,7 +928,7 @@ Real apply(const abel_operator<Real>& op, const enriched_density<Real>& g, const
       const detail::split_integrator<Real> si(g.quadrature_nodes() - 4);
       const Real t = d[0] <= d[1] ? op.lo() + h * d[0] : op.hi() - h * d[1];
       const Real mapped = op.apply(g.smooth, t) + pow(h, alpha) * g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, y);
-      return pow((1 - g.mobius) * (1 + g.mobius), alpha) * pow(d[2], 1 - alpha) * mapped;
+      return g.covariance_factor(d[2]) * mapped;
     }
     // t - s from the distances to the facing end (no cancellation).
     const Real gap = below ? op.lo() - s : s - op.hi();
@@ -1016,24 +1023,23 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   // The data of the solved problem at the point with reference distances (1 + sigma, 1 - sigma):
   // F, or with the map F~(sigma) = (1 - s^2)^-alpha (1 + s sigma)^(alpha - 1) F(M(sigma)) (header).
   const Real s_map = g.mobius;
-  auto map_factor = [&](const Real& one_plus_s_sigma) {  // F~ / F
-    return pow((1 - s_map) * (1 + s_map), -alpha) * pow(one_plus_s_sigma, alpha - 1);
-  };
+  auto map_factor = [&](const Real& one_plus_s_sigma) { return 1 / g.covariance_factor(one_plus_s_sigma); };  // F~ / F
   // nu = -1 solves A g = F - defect with a CONSTANT defect (F projected on the range: the image-P_0
   // coefficient <F, w'>/<1, w'>, w' = (1 - x)^(gam-1) (1 + x)^(del-1), the weight of the image
   // family P^(gam+nu, del+nu) (math.md section 4: the orthogonality condition); A[phi] has none). Mapped, a
   // constant is not constant in sigma, so the physical defect is removed from F before the map:
   // by Gauss-Jacobi on [-1, x0] and [x0, 1] (F smooth on each), graded toward the far end.
+  // F at the point with reference distances 1 + x, 1 - x (x axis), checked finite.
+  auto f_at = [&](const Real& one_plus, const Real& one_minus) {
+    const Real t = one_plus <= one_minus ? op.lo() + h * one_plus : op.hi() - h * one_minus;
+    const Real v = f(t);
+    detail::check_finite_value("rhabel::abel::solve_step", v, t);
+    return v;
+  };
   Real physical_defect = 0;
   if (s_map != 0 && e.nu == -1) {
     const Real inf = std::numeric_limits<Real>::infinity();
     const detail::panel_integrator<Real> left_piece(Real(0), e.del - 1, 32), right_piece(e.gam - 1, Real(0), 32);
-    auto f_at = [&](const Real& one_plus, const Real& one_minus) {
-      const Real t = one_plus <= one_minus ? op.lo() + h * one_plus : op.hi() - h * one_minus;
-      const Real v = f(t);
-      detail::check_finite_value("rhabel::abel::solve_step", v, t);
-      return v;
-    };
     const Real moment = left_piece.integrate(one_plus_x0, inf, one_minus_x0, [&](const Real& u, const Real& v) {
       return pow(one_minus_x0 + v, e.gam - 1) * f_at(u, one_minus_x0 + v);
     }) + right_piece.integrate(one_minus_x0, one_plus_x0, inf, [&](const Real& u, const Real& v) {
@@ -1042,15 +1048,9 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
     physical_defect = moment / (pow(Real(2), e.gam + e.del - 1) * boost::math::beta(e.gam, e.del));
   }
   auto data_at = [&](const Real& one_plus_sigma, const Real& one_minus_sigma) {
-    Real one_plus = one_plus_sigma, one_minus = one_minus_sigma, factor = 1;
-    if (s_map != 0) {
-      const auto d = g.x_of(one_plus_sigma, one_minus_sigma);
-      one_plus = d[0], one_minus = d[1], factor = map_factor(d[2]);
-    }
-    const Real t = one_plus <= one_minus ? op.lo() + h * one_plus : op.hi() - h * one_minus;
-    const Real v = f(t);
-    detail::check_finite_value("rhabel::abel::solve_step", v, t);
-    return factor * (v - physical_defect);
+    if (s_map == 0) return f_at(one_plus_sigma, one_minus_sigma);
+    const auto d = g.x_of(one_plus_sigma, one_minus_sigma);
+    return map_factor(d[2]) * (f_at(d[0], d[1]) - physical_defect);
   };
   // Jump of F at t0 from one-sided values (F is evaluated on each side only, in the physical
   // variable: the map compresses distances next to the apex), times the map's factor there.
@@ -1058,7 +1058,7 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   const Real left_value = f(t0 - delta), right_value = f(t0 + delta);
   detail::check_finite_value("rhabel::abel::solve_step", left_value, t0 - delta);
   detail::check_finite_value("rhabel::abel::solve_step", right_value, t0 + delta);
-  const Real jump = (left_value - right_value) * (s_map != 0 ? map_factor(g.x_of(1 + g.x0, 1 - g.x0)[2]) : Real(1));
+  const Real jump = (left_value - right_value) * map_factor(g.apex_in_x()[2]);  // factor 1 without a map
   const Real w0 = pow(1 - g.x0, e.del) * pow(1 + g.x0, e.gam);
   g.normalized = alpha < normalized_enrichment_threshold<Real>();
   g.one_minus_kappa_over_alpha = op.parameters().one_minus_kappa_over_alpha();
@@ -1087,7 +1087,7 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   // Mapped: distances at the apex shrink by M'(sigma0) = (1 - s^2)/(1 + s sigma0)^2 on the x axis.
   Real margin = sqrt(std::numeric_limits<Real>::epsilon()) * (1 + max(abs(op.lo()), abs(op.hi())) / h);
   if (s_map != 0) {
-    const Real one_plus_s_sigma0 = g.x_of(1 + g.x0, 1 - g.x0)[2];
+    const Real one_plus_s_sigma0 = g.apex_in_x()[2];
     margin *= max(Real(1), one_plus_s_sigma0 * one_plus_s_sigma0 / ((1 - s_map) * (1 + s_map)));
   }
   std::size_t used = m;
@@ -1204,7 +1204,7 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
       const Real Fs = data_at(one_plus_y, one_minus_y);
       // Mapped: the residual of the physical equation A g = F - defect is that of the mapped one
       // times F/F~ here.
-      const Real back = s_map != 0 ? 1 / map_factor(g.x_of(one_plus_y, one_minus_y)[2]) : Real(1);
+      const Real back = g.covariance_factor(g.x_of(one_plus_y, one_minus_y)[2]);  // 1 without a map
       worst = max(worst, abs(Ag - (Fs - defect)) * back);
       scale = max(scale, abs(Fs) * back);
     }
