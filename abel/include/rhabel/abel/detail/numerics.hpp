@@ -326,16 +326,20 @@ const laguerre_rule<Real>& gauss_laguerre_rule(std::size_t n) {
 /// one log per factor instead of one pow (glibc's correctly rounded pow costs about twice log + exp;
 /// these products are the inner loops of the step enrichment's quadratures: 30-55% of a wedge solve
 /// was pow). Factors with e_i = 0 are skipped (0^0 = 1, never 0 * log 0). Relative error <=
-/// (sum_i |e_i log d_i| + 2 n) eps: ~10 eps for distances above 1e-4; larger only where the
-/// product itself is tiny or huge (nodes next to an end, whose weight in the sums is negligible).
-/// e_i = -1 (the kernel at alpha = 0) is a division.
+/// (sum_i |e_i log d_i| + 2 n) eps for products between sqrt(min) (~1.5e-154 in double) and
+/// its reciprocal: ~10 eps for distances above 1e-4. e_i = -1 (the kernel at alpha = 0) is a
+/// division while the running factor stays in that range, else it joins the logarithms.
 template <class Real>
 class power_product {
  public:
   power_product& times(const Real& d, const Real& e) {
     using std::log;
-    if (e == -1) {  // the alpha = 0 kernel: a division, exact to rounding
+    using std::sqrt;
+    // Range in which a division keeps factor_ far from overflow and underflow.
+    static const Real small = sqrt((std::numeric_limits<Real>::min)()), large = 1 / small;
+    if (e == -1 && d > small && d < large) {  // the alpha = 0 kernel: a division, exact to rounding
       factor_ /= d;
+      if (!(factor_ > small && factor_ < large)) exponent_ += log(factor_), factor_ = 1;
     } else if (e != 0) {
       exponent_ += e * log(d);
     }
