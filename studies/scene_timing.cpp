@@ -36,13 +36,17 @@
 //   * Where 1 - eps < 1e-14 the solver reports eps = 1 (contact ending at the apex): err_eps = 1
 //     there by construction; where 1 - eps < 1e-30 it reports C_f = S1, and the reference (int_a^y g
 //     for y within 1e-30 L of b, riemann's known weak spot) is not trustworthy either.
-// Time: median wall clock of 5 calls of solve_single (grid_points = 1000, displacement off) after a
-// warm-up call (Gauss-Jacobi rules and abel's panel rules are cached per thread).
+// Time: minimum per call of solve_single (grid_points = 1000, displacement off) over a 0.1 s budget
+// per measurement (rhabel_study::min_time_per_call, studies/support/study_support.hpp), after a
+// warm-up call (Gauss-Jacobi rules and abel's panel rules are cached). The minimum, not the median
+// of a few calls: on this shared host the same binary ran 1.5x slower for seconds at a time
+// (measured 0.54 and 0.77 ms for one scene within a minute), and the least disturbed run is the
+// reproducible figure.
 //
 // CSV on stdout: case,alpha,k,S2_over_S1,eps,setting,err_eps,err_L,err_Cf,err_pressure,
 //                n_pressure_ref (reference samples kept, of 100),degree,error_estimate,residual (the
-//                solver's independent residual of (8)),seconds,seconds_no_residual (median of 5 calls
-//                with solve_options::residual = false),status
+//                solver's independent residual of (8)),seconds,seconds_no_residual (minimum per call,
+//                the latter with solve_options::residual = false),status
 //   degree, error_estimate and residual are the solver's indentor_result fields as reported: degree
 //   is 0 where solve_step's Moebius map is on (eps outside [1/4, 3/4]: punch reports the size of the
 //   unmapped series, which keeps only c_0 there); on the Riemann-Hilbert path (apex within 1e-4 L
@@ -61,7 +65,6 @@
 #include <boost/multiprecision/cpp_bin_float.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <exception>
@@ -115,6 +118,7 @@ double rel(double x, double ref) { return ref == 0 ? std::abs(x) : std::abs(x / 
 }  // namespace
 
 int main() {
+  const double budget_seconds = 0.1;
   std::printf("case,alpha,k,S2_over_S1,eps,setting,err_eps,err_L,err_Cf,err_pressure,n_pressure_ref,degree,error_estimate,residual,seconds,seconds_no_residual,status\n");
   const std::size_t grid = 1000;
   int case_id = 0;
@@ -140,24 +144,12 @@ int main() {
           o.grid_points = grid;
           o.displacement = false;
           o.tolerance = tol;
-          auto r = solve_single(m, 1.0, ind, o);  // warm-up
-          std::vector<double> secs;
-          for (int rep = 0; rep < 5; ++rep) {
-            const auto t0 = std::chrono::steady_clock::now();
-            r = solve_single(m, 1.0, ind, o);
-            secs.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-          }
-          std::sort(secs.begin(), secs.end());
+          auto r = solve_single(m, 1.0, ind, o);  // warm-up, and the result checked below
+          const auto with_residual = rhabel_study::min_time_per_call([&] { return solve_single(m, 1.0, ind, o).hysteretic_friction; }, budget_seconds);
           // The same solve without the independent residual (solve_options::residual = false).
           solve_options o_fast = o;
           o_fast.residual = false;
-          std::vector<double> secs_fast;
-          for (int rep = 0; rep < 5; ++rep) {
-            const auto t0 = std::chrono::steady_clock::now();
-            static_cast<void>(solve_single(m, 1.0, ind, o_fast));
-            secs_fast.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-          }
-          std::sort(secs_fast.begin(), secs_fast.end());
+          const auto without_residual = rhabel_study::min_time_per_call([&] { return solve_single(m, 1.0, ind, o_fast).hysteretic_friction; }, budget_seconds);
           // Pressure: the solver's samples are the midpoints of 1000 cells of [a, b]; compare at
           // the reference abscissae through the library's own grid index (same formula).
           double perr = 0, pmax = 0;
@@ -175,7 +167,7 @@ int main() {
           std::printf("%d,%g,%g,%g,%.6g,%g,%.2e,%.2e,%.2e,%.2e,%zu,%zu,%.2e,%.2e,%.3e,%.3e,%s\n", case_id, alpha, k, ratio, eps_ref, tol,
                       err_eps, rel(r.contact_length, ref.L),
                       rhabel_study::wedge_friction_error(r.hysteretic_friction, ref.Cf, S1, S2), perr, ref.p.size(),
-                      r.degree, r.error_estimate, r.residual, secs[2], secs_fast[2], status.c_str());
+                      r.degree, r.error_estimate, r.residual, with_residual.seconds, without_residual.seconds, status.c_str());
           std::fflush(stdout);
         }
       }

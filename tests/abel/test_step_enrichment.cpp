@@ -10,6 +10,7 @@
 #include "support.hpp"
 
 #include <boost/math/quadrature/tanh_sinh.hpp>
+#include <boost/multiprecision/cpp_bin_float.hpp>
 #include <boost/math/special_functions/beta.hpp>
 
 #include <algorithm>
@@ -496,30 +497,46 @@ TEST_CASE("power_product: exp of summed logs within its documented bound") {
   CHECK(detail::power_product<double>().times(4.0, -1.0).value() == 0.25);
 }
 
-// The Gauss-Laguerre rule behind the log-type end rule of the small-alpha enrichment: exact for
-// polynomials of degree < 64 (int_0^inf e^-t t^k dt = k!), and for e^-kt = (u/delta)^k, the
-// terms it meets after u = delta e^-t, 1/(k+1) to the accuracy the header claims for k <= 8 with
-// the factor 16^-k of delta = distance/16 (oracle: the closed forms, no shared code).
-TEST_CASE("Gauss-Laguerre end rule: exact moments and the e^-kt terms") {
-  const auto& rule = detail::gauss_laguerre_rule<double>(32);
-  REQUIRE(rule.x.size() == 32);
-  double factorial = 1;
-  for (int k = 0; k <= 40; k += 1) {
-    if (k > 0) factorial *= k;
-    double sum = 0;
-    for (std::size_t i = 0; i < rule.x.size(); ++i) sum += rule.weight[i] * std::pow(rule.x[i], k);
-    // 64 eps per unit of k: the terms grow like t^k with t up to ~120, rounding relative to k!.
-    CHECK(sum == doctest::Approx(factorial).epsilon(64 * eps * (k + 1)));
+// The Gauss rule for the weight W(t) = (t^-alpha - 1)/alpha on [0, 1], the end rule of the
+// small-alpha enrichment at x0. Oracle: the exact monomial moments int_0^1 W t^k dt =
+// 1/((k+1)(k+1-alpha)) (an independent formula: the rule is built from shifted Legendre moments),
+// exact for k < 2n; in double and at 50 digits, where the same rule matches the double one to
+// rounding.
+TEST_CASE("log-power end rule: exact moments, 50-digit agreement, bad input") {
+  using mp = boost::multiprecision::cpp_bin_float_50;
+  // (8 + k/2) eps: the sum has n positive terms, each a weight (<= 1 ulp, measured 0.4 ulp
+  // against the 50-digit rule) times std::pow (<= 1 ulp), plus the n - 1 additions relative to
+  // the total; a node's rounding (<= 0.5 ulp) is amplified k-fold in t^k.
+  auto moment_tolerance = [](std::size_t k) { return (8 + double(k) / 2) * eps; };
+  for (const double alpha : {0.0, 1e-8, 1e-3, 0.0099, 0.5})
+    for (const std::size_t n : {8, 16, 26}) {
+      const auto& rule = detail::gauss_log_power_rule<double>(n, alpha);
+      REQUIRE(rule.x.size() == n);
+      for (std::size_t k = 0; k < 2 * n; ++k) {
+        double sum = 0;
+        for (std::size_t i = 0; i < n; ++i) sum += rule.weight[i] * std::pow(rule.x[i], double(k));
+        const double exact = 1 / (double(k + 1) * (double(k + 1) - alpha));
+        INFO("alpha=" << alpha << " n=" << n << " k=" << k);
+        CHECK(std::abs(sum / exact - 1) <= moment_tolerance(k));
+      }
+      // Same rule at 50 digits: the double one is its rounding (2 ulps: the long double
+      // construction leaves ~0.1 ulp, the final rounding 0.5).
+      const auto& exact_rule = detail::gauss_log_power_rule<mp>(n, mp(alpha));
+      for (std::size_t i = 0; i < n; ++i) {
+        CHECK(std::abs(rule.x[i] / static_cast<double>(exact_rule.x[i]) - 1) <= 2 * eps);
+        CHECK(std::abs(rule.weight[i] / static_cast<double>(exact_rule.weight[i]) - 1) <= 2 * eps);
+      }
+    }
+  // The 50-digit rule against the moments: 1e-45 (its own rounding, 1e-50, times n).
+  for (const double alpha : {0.0, 1e-3}) {
+    const mp a = alpha;
+    const auto& rule = detail::gauss_log_power_rule<mp>(20, a);
+    for (std::size_t k = 0; k < 40; ++k) {
+      mp sum = 0;
+      for (std::size_t i = 0; i < 20; ++i) sum += rule.weight[i] * pow(rule.x[i], int(k));
+      CHECK(abs(sum * mp(k + 1) * (mp(k + 1) - a) - 1) < mp(1e-45));
+    }
   }
-  // Truncation errors of the 32-point rule for e^-kt, computed independently with a 40-digit
-  // mpmath Golub-Welsch rule: 1.8e-30 (k = 1), 2.35e-19 (2), 1.33e-11 (4), 7.48e-7 (8). Check
-  // them to 4 eps of rounding + 1% ; in the end rule the term k carries a factor 16^-k, so the
-  // worst contribution is 2e-16 (k = 4) relative.
-  const std::pair<int, double> truncation[] = {{1, 1.8e-30}, {2, 2.35e-19}, {4, 1.33e-11}, {8, 7.48e-7}};
-  for (const auto& [k, expected] : truncation) {
-    double sum = 0;
-    for (std::size_t i = 0; i < rule.x.size(); ++i) sum += rule.weight[i] * std::exp(-k * rule.x[i]);
-    CHECK(std::abs(sum - 1.0 / (k + 1)) <= 4 * eps + 1.01 * expected);
-    CHECK(std::abs(sum - 1.0 / (k + 1)) * std::pow(16.0, -k) < 3e-16);
-  }
+  CHECK_THROWS_AS(detail::gauss_log_power_rule<double>(8, 1.0), std::domain_error);
+  CHECK_THROWS_AS(detail::gauss_log_power_rule<double>(0, 0.1), std::domain_error);
 }

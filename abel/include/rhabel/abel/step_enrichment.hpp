@@ -32,9 +32,9 @@
 //     J_E/alpha = (pi alpha/sin(pi alpha)) [((1-kappa)/alpha)^2 + 4 kappa (sin(pi alpha/2)/alpha)^2]
 // (pi^2/cos^2(beta pi/2) at alpha = 0); the kernel singularity at the evaluation point is
 // subtracted on a neighbourhood (closed form f(y) eps^alpha (1-kappa)/alpha), and the log-type
-// singularity at x0 is integrated by a Gauss-Laguerre end rule after u = delta e^-t (exact for
-// the log; see detail::enrichment_piece). Above the threshold the plain E loses ~ eps/alpha^2 to
-// cancellation (measured 1.3e-13 at alpha = 0.01).
+// factor at x0 is the weight of a Gauss rule of its own on the panel next to x0
+// (detail::gauss_log_power_rule for (t^-alpha - 1)/alpha; see detail::enrichment_piece). Above
+// the threshold the plain E loses ~ eps/alpha^2 to cancellation (measured 1.3e-13 at alpha = 0.01).
 // F may also have higher-order jumps at t0 (kinks); then only the step is removed and the
 // convergence is algebraic, of order (2 - alpha) faster than without enrichment.
 //
@@ -98,7 +98,9 @@
 // median wall time, residual off, machine load ~1.3).
 // Step at t0 = 0.1 on [-1, 1], beta = 0.2, relative error of int g against the exact Rodrigues
 // value (int_a^t0 g against the degree-257 solution: same level):
-//     alpha = 0, 1e-3 (normalized path):      65 points, <= 1.1e-15,   0.67-1.08 ms
+//     alpha = 0, 1e-3 (normalized path):      65 points, <= 1.3e-15,   0.40-0.52 ms (was 0.67-1.08:
+//                                               Gauss-Laguerre end rule and grading toward x0;
+//                                               1.6-1.8x the plain path, was 2.7-3.3x)
 //     alpha = 0.01:                             65 points, <= 1.9e-13,   0.26-0.27 ms (was 195 for nu = -1)
 //     alpha = 0.049, 0.05:                      65 points, <= 8.1e-15,   0.26 ms (was 195)
 //     alpha = 0.25, 0.5, 0.9:                   65 points, <= 1.0e-14,   0.26 ms
@@ -650,17 +652,38 @@ namespace detail {
 /// singular points beyond a and b (grading). k(x, dist_from_a, dist_from_b) is an extra factor,
 /// smooth on the piece.
 /// Normalized mode (alpha < 0.01) with x0 as an end: the factor (|u|^-alpha - 1)/alpha is
-/// log-singular at x0 and not a Gauss-Jacobi weight. The sub-piece [0, delta] next to x0
-/// (delta = 1/16 of the distance to every other singular point) is integrated after the
-/// substitution u = delta e^-t by 32-point Gauss-Laguerre: e^-t times a polynomial in t (the
-/// log) times a function analytic in e^-t with radius >= 16 (terms (e^-t/16)^k, each integrated
-/// to <= 3e-16 relative by 32 nodes; tests: "Gauss-Laguerre end rule"); e^{alpha t} from
-/// |u|^-alpha is entire. The rest is
-/// graded toward x0 from distance delta (a few panels). This replaces the former geometric
-/// grading down to a gap of 1e-18 (~60 panels per piece) and cuts the cost of the small-alpha
-/// path by ~5 (26 -> 5 ms at alpha = 0, measured with the Gauss-Jacobi rule cache; now ~0.9 ms
-/// for a whole 65-point solve, see the header).
+/// log-type at x0 and not a Gauss-Jacobi weight. The panel [0, D] next to x0 (D = half the distance
+/// to every other singular point) carries it as the weight of gauss_log_power_rule (with u = D t,
+/// E(D t) = kappa_side D^-alpha W(t) + E(D): that rule for the first term, Gauss-Legendre for the
+/// constant; both exact for polynomials of degree < 2n, and the rest of the integrand is analytic
+/// 3 panel half-widths from the panel's centre, as on panel_integrator's panels); the rest is
+/// graded toward x0 from distance D. Before: 32-point Gauss-Laguerre after u = delta e^-t on
+/// [0, distance/16] plus ~4 graded panels (and before that, geometric grading down to 1e-18, ~60
+/// panels per piece); the log-power rule halved the nodes of the two pieces at x0, and a 65-point
+/// solve went from 0.67-1.08 to 0.40-0.52 ms (header).
 enum class piece_end { interval_end, x0, interior };
+
+/// An extra factor of the form coefficient (offset + distance)^exponent, distance = the node's
+/// distance from the piece end a (from_a) or b: the kernel of the small-alpha image. The piece
+/// quadratures fold its power into the node's power_product (one exp per node fewer than a
+/// separate power; the normalized image's inner loop is a handful of log/exp per node).
+template <class Real>
+struct distance_power {
+  Real coefficient, offset, exponent;
+  bool from_a;
+};
+
+/// The factor k at a node (x, distance u from a, v from b): a distance_power joins `powers` and
+/// returns its coefficient; any other callable is called.
+template <class Real, class K>
+Real extra_factor(K& k, power_product<Real>& powers, const Real& x, const Real& u, const Real& v) {
+  if constexpr (std::is_same_v<std::remove_cv_t<K>, distance_power<Real>>) {
+    powers.times(k.offset + (k.from_a ? u : v), k.exponent);
+    return k.coefficient;
+  } else {
+    return k(x, u, v);
+  }
+}
 
 /// Composite Gauss-Jacobi part of enrichment_piece (no log-type end). k is called with the
 /// distances from the ends of the ORIGINAL piece: (u + offset_a, v + offset_b).
@@ -694,7 +717,8 @@ Real enrichment_piece_panels(const enriched_density<Real>& d, const Real& a, con
     } else {
       E = d.E_full(dist, right_side);
     }
-    return powers.value() * E * d.q_at(one_plus_x, one_minus_x) * k(x, u + offset_a, v + offset_b);
+    const Real extra = extra_factor(k, powers, x, u + offset_a, v + offset_b);
+    return powers.value() * E * d.q_at(one_plus_x, one_minus_x) * extra;
   });
 }
 
@@ -709,26 +733,39 @@ Real enrichment_piece(const enriched_density<Real>& d, const Real& a, const Real
   if (!d.normalized || !(x0_at_a || x0_at_b))
     return enrichment_piece_panels(d, a, b, a_end, b_end, d_left, d_right, Real(0), Real(0), k);
   const Real len = b - a;
-  // Other singular points: the far end of the piece (at distance len), whatever lies beyond it,
-  // and the nearest singular point across x0.
-  const Real delta = min(len, x0_at_a ? d_left : d_right) / 16;
-  const auto& lag = gauss_laguerre_rule<Real>(32);
-  // int_0^delta G(u) du = delta int_0^inf e^-t G(delta e^-t) dt (u = delta e^-t: the distance
-  // from x0, exact however small).
-  Real near = 0;
-  for (std::size_t i = 0; i < lag.x.size(); ++i) {
-    const Real dist = delta * exp(-lag.x[i]);
+  // First panel [0, D] in the distance u from x0, D = half the distance to every other singular
+  // point (the far end of the piece, whatever lies beyond it, and the nearest singular point
+  // across x0), so the smooth factor G = w q k is analytic on a disc 3 panel half-widths from the
+  // panel's centre, as on panel_integrator's panels. With u = D t,
+  //     E(D t) = kappa_side (D^-alpha W(t) + core(D)) - c_side = kappa_side D^-alpha W(t) + E(D),
+  // W(t) = (t^-alpha - 1)/alpha, core(u) = (u^-alpha - 1)/alpha (left of x0: kappa_side = 1,
+  // c_side = 0; right: kappa, (1 - kappa)/alpha; E_full's two forms), so
+  //     int_0^D E G du = D [kappa_side D^-alpha sum_W G(D t_i) + E(D) sum_Legendre G(D s_j)]:
+  // the log-type factor is the weight of gauss_log_power_rule; both sums have positive weights and
+  // D^-alpha, E(D) are exact closed forms (no cancellation between the two terms beyond that of E
+  // itself). The rest is graded toward x0 from distance D.
+  const Real D = min(len, x0_at_a ? d_left : d_right) / 2;
+  const std::size_t nodes = d.quadrature_nodes();
+  const auto& log_rule = gauss_log_power_rule<Real>(nodes, d.alpha);
+  const auto& legendre = cached_gauss_jacobi_rule<Real>(nodes, Real(0), Real(0));
+  const bool right_side = x0_at_a;
+  auto G = [&](const Real& dist) {  // w q k at distance dist from x0 inside the piece
     const Real u = x0_at_a ? dist : len - dist, v = x0_at_a ? len - dist : dist;
     const Real one_plus_x = (a + 1) + u, one_minus_x = (1 - b) + v;
     const Real x = one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x;
-    const Real value = power_product<Real>().times(one_plus_x, d.smooth.gam).times(one_minus_x, d.smooth.del).value() *
-                       d.E_full(dist, x0_at_a);
-    near += lag.weight[i] * value * d.q_at(one_plus_x, one_minus_x) * k(x, u, v);
-  }
-  near *= delta;
+    power_product<Real> powers;
+    powers.times(one_plus_x, d.smooth.gam).times(one_minus_x, d.smooth.del);
+    const Real extra = extra_factor(k, powers, x, u, v);
+    return powers.value() * d.q_at(one_plus_x, one_minus_x) * extra;
+  };
+  Real log_sum = 0, plain_sum = 0;
+  for (std::size_t i = 0; i < log_rule.x.size(); ++i) log_sum += log_rule.weight[i] * G(D * log_rule.x[i]);
+  for (std::size_t j = 0; j < legendre->size(); ++j) plain_sum += legendre->weight[j] * G(D * legendre->x_minus_lo[j] / 2);
+  plain_sum /= 2;  // Gauss-Legendre on [-1, 1] moved to [0, 1]
+  const Real near = D * ((right_side ? d.kappa : Real(1)) * pow(D, -d.alpha) * log_sum + d.E_full(D, right_side) * plain_sum);
   if (x0_at_a)
-    return near + enrichment_piece_panels(d, a + delta, b, piece_end::interior, b_end, delta, d_right, delta, Real(0), k);
-  return near + enrichment_piece_panels(d, a, b - delta, a_end, piece_end::interior, d_left, delta, Real(0), delta, k);
+    return near + enrichment_piece_panels(d, a + D, b, piece_end::interior, b_end, D, d_right, D, Real(0), k);
+  return near + enrichment_piece_panels(d, a, b - D, a_end, piece_end::interior, d_left, D, Real(0), D, k);
 }
 
 }  // namespace detail
@@ -884,12 +921,10 @@ Real enrichment_image_uniform(const enriched_density<Real>& d, const abel_parame
   Real total = R - kappa * L + f_y * pow(eps, alpha) * par.one_minus_kappa_over_alpha();
   // Far pieces, kernel (x-y)^(alpha-1) right of y, -kappa (y-x)^(alpha-1) left of y.
   const Real ya = y - eps, yb = y + eps;
-  auto kernel_left_of_y = [&](const Real& b) {  // piece ending at b <= ya
-    return [&, b](const Real&, const Real&, const Real& v) { return -kappa * power_product<Real>().times((y - b) + v, alpha - 1).value(); };
-  };
-  auto kernel_right_of_y = [&](const Real& a) {
-    return [&, a](const Real&, const Real& u, const Real&) { return power_product<Real>().times((a - y) + u, alpha - 1).value(); };
-  };
+  // -kappa ((y - b) + v)^(alpha-1) on a piece ending at b <= ya; ((a - y) + u)^(alpha-1) on one
+  // starting at a >= yb.
+  auto kernel_left_of_y = [&](const Real& b) { return distance_power<Real>{-kappa, y - b, alpha - 1, false}; };
+  auto kernel_right_of_y = [&](const Real& a) { return distance_power<Real>{Real(1), a - y, alpha - 1, true}; };
   if (y < x0) {
     total += enrichment_piece(d, Real(-1), ya, piece_end::interval_end, piece_end::interior, inf, eps, kernel_left_of_y(ya));
     total += enrichment_piece(d, yb, x0, piece_end::interior, piece_end::x0, eps, 1 - x0, kernel_right_of_y(yb));
