@@ -48,8 +48,8 @@
 //                solver's independent residual of (8)),seconds,seconds_no_residual (minimum per call,
 //                the latter with solve_options::residual = false),status
 //   degree, error_estimate and residual are the solver's indentor_result fields as reported: degree
-//   is 0 where solve_step's Moebius map is on (eps outside [1/4, 3/4]: punch reports the size of the
-//   unmapped series, which keeps only c_0 there); on the Riemann-Hilbert path (apex within 1e-4 L
+//   is that of the series in the mapped variable where solve_step's Moebius map is on (eps outside
+//   [1/4, 3/4]); on the Riemann-Hilbert path (apex within 1e-4 L
 //   of an edge) all three describe the plain Jacobi series of degree 127, which does not resolve
 //   the apex and serves only the residual and the displacement (error_estimate ~0.1-1, residual
 //   ~0.1-40): the pressure grid's own error estimate is in the status there.

@@ -60,7 +60,7 @@
 //                cpu_seconds,status (commas replaced by semicolons)
 //   error_estimate and degree are indentor_result's fields as reported: on the rh path they
 //   describe the plain series of degree 127 (residual and displacement only; error_estimate ~1);
-//   degree is 0 on the mapped step path (see study_scene_timing).
+//   degree on the mapped step path is that of the series in the mapped variable.
 // Usage: study_wedge_near_edge [> wedge_near_edge.csv]
 #define BOOST_MATH_DISABLE_FLOAT128  // see studies/support/study_support.hpp
 #include "support/study_support.hpp"

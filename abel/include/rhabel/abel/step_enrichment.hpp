@@ -725,7 +725,6 @@ Real enrichment_piece_panels(const enriched_density<Real>& d, const Real& a, con
 template <class Real, class K>
 Real enrichment_piece(const enriched_density<Real>& d, const Real& a, const Real& b, piece_end a_end, piece_end b_end,
                       const Real& d_left, const Real& d_right, K&& k) {
-  using std::exp;
   using std::min;
   using std::pow;
   if (!(b > a)) return Real(0);
