@@ -24,6 +24,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 namespace rhabel::punch {
 
@@ -1277,17 +1278,25 @@ scene_result solve(const scene& s, const solve_options& options) {
       if (!g.has_apex) whole.enrichment = 0;
       const abel::enriched_evaluator<double> density(whole);
       const double h = g.jacobi.half_length();
+      std::vector<std::size_t> inside;  // samples strictly inside the contact, evaluated in one batch
+      std::vector<double> one_plus, one_minus;
       for (std::size_t k = 0; k < n; ++k) {
         const double t = g.jacobi.lo + g.length() * (static_cast<double>(k) + 0.5) / static_cast<double>(n);
         r.grid_x[k] = t;
+        r.pressure[k] = 0.0;
         if (st[i].rh_unit) continue;  // filled by rh_pressure below
-        if (g.line_load || !(t > g.a()) || !(t < g.b())) {
-          r.pressure[k] = 0.0;
-          continue;
-        }
-        double value = density((t - g.jacobi.lo) / h, (g.jacobi.hi - t) / h);
+        if (g.line_load || !(t > g.a()) || !(t < g.b())) continue;
+        inside.push_back(k);
+        one_plus.push_back((t - g.jacobi.lo) / h);
+        one_minus.push_back((g.jacobi.hi - t) / h);
+      }
+      std::vector<double> values(inside.size());
+      density.values(one_plus.data(), one_minus.data(), values.data(), inside.size());
+      for (std::size_t j = 0; j < inside.size(); ++j) {
+        const double t = r.grid_x[inside[j]];
+        double value = values[j];
         if (mapped) value += g.jacobi.value_at_distance(t - g.jacobi.lo, g.jacobi.hi - t);
-        r.pressure[k] = ps * value;
+        r.pressure[inside[j]] = ps * value;
       }
       if (st[i].rh_unit) {
         const double estimate = rh_pressure(*st[i].rh_unit, -*st[i].epsilon, st[i].rh_one_minus_eps, g.jacobi.gam,

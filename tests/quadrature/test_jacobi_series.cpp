@@ -93,6 +93,34 @@ TEST_CASE("jacobi_series agrees with jacobi_clenshaw: bit-identical in both bran
   }
 }
 
+TEST_CASE("jacobi_series::evaluate equals operator() at every point, bit for bit, in every branch and lane count") {
+  // evaluate sums four points at a time with the recurrences interleaved, after sorting the points
+  // by branch; the per-point operations are those of operator(). Points: all three branches in
+  // shuffled order, the branch switches x = +-1/2, the ends, |x| > 1 (Clenshaw, as operator()), and
+  // counts 0 ... 9 so that every remainder of the 4-point blocks occurs in every branch.
+  for (std::size_t K : {std::size_t(1), std::size_t(2), std::size_t(3), std::size_t(84), std::size_t(700)}) {
+    for (const auto& [p, q] : std::vector<std::pair<double, double>>{{0.0, 0.0}, {-0.45, 0.2}, {-0.999, 0.5}}) {
+      const rq::jacobi_series<double> s(test_coefficients(K), p, q);
+      std::vector<double> xs{0.5, -0.5, 1.0, -1.0, 1.02, -1.01, 0.0, std::ldexp(1.0, -40) - 1, 1 - std::ldexp(1.0, -30)};
+      for (int i = 0; i < 61; ++i) xs.push_back(std::sin(1.3 * i + 0.2));  // shuffled over [-1, 1]
+      std::vector<std::size_t> counts{xs.size()};
+      for (std::size_t count = 0; count < 10; ++count) counts.push_back(count);
+      for (std::size_t count : counts) {
+        std::vector<double> out(count, -7.0);
+        s.evaluate(xs.data(), out.data(), count);
+        for (std::size_t i = 0; i < count; ++i) CHECK(out[i] == s(xs[i]));
+      }
+    }
+  }
+  const std::vector<double> none;
+  CHECK_NOTHROW(rq::jacobi_series<double>().evaluate(none.data(), nullptr, 0));
+  const std::vector<double> bad{0.1, std::nan(""), 0.2};
+  std::vector<double> out(3, 5.0);
+  rhabel_test::check_domain_error_mentions([&] { rq::jacobi_series<double>(test_coefficients(3), 0.0, 0.0).evaluate(bad.data(), out.data(), 3); },
+                                           {"jacobi_series::evaluate", "x = ", "finite"});
+  CHECK(out[0] == 5.0);  // nothing written before the error
+}
+
 TEST_CASE("jacobi_series of a Legendre sum matches the 50-digit sum to O(K eps)") {
   constexpr std::size_t K = 300;
   constexpr double legendre_tolerance = 4 * K * eps;  // |P_k| <= 1, sum of K terms each O(k eps)/k
