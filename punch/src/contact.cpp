@@ -1268,8 +1268,9 @@ scene_result solve(const scene& s, const solve_options& options) {
       const std::size_t n = options.grid_points;
       r.grid_x.resize(n);
       r.pressure.resize(n);
-      // g.value(t) at every sample through one abel::enriched_evaluator (the series' recurrence
-      // coefficients once, the weight w = (1-x)^del (1+x)^gam once per sample): without a map the
+      // g.value(t) at every sample through one abel::enriched_evaluator, in one values() call (the
+      // series' recurrence coefficients once, the series of four samples summed together, the
+      // weight w = (1-x)^del (1+x)^gam once per sample): without a map the
       // density whose series is g.jacobi and whose enrichment is g.apex's; mapped (apex near an
       // edge) g.apex itself, whose series lives in the mapped variable, plus g.jacobi's c_0.
       const bool mapped = g.has_apex && g.apex.mobius != 0;

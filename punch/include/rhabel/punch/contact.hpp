@@ -116,8 +116,11 @@
 //     (1e-10 for eps, L, C_f and 1000 samples in < 1 ms) is met with the apex >= 0.01 L from the
 //     edges for every alpha (without the residual); not closer to an edge (1.1-5.5 ms).
 //     Where the time goes (alpha = 0.3, S2/S1 = 0.1): abel::solve_step's quadrature of A[phi]
-//     ~0.3 ms (65 points), the 1000 samples ~0.1-0.2 ms, the independent residual 0.1-0.3 ms. Coupled scenes with wedges 0.05-0.3 s (examples/default_scene.json:
-//     ~0.05-0.08 s).
+//     ~0.3 ms (65 points), the 1000 samples ~0.11 ms (their series summed four points at a time,
+//     quadrature::jacobi_series::evaluate: was 0.17 ms one point at a time; the figures above
+//     predate this and are 8-18% high, measured by interleaved runs of the old and new binaries),
+//     the independent residual 0.1-0.3 ms. Coupled scenes with wedges 0.05-0.3 s
+//     (examples/default_scene.json: ~0.05-0.08 s).
 //
 // UNITS: any consistent set; the comments use SI: lengths in m, E1 in Pa s^alpha, speed in m/s,
 //   load per unit length in N/m, pressure in Pa. Slopes and friction coefficients are dimensionless.
