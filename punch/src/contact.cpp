@@ -236,7 +236,7 @@ class inside_action {
   inside_action& operator=(const inside_action&) = delete;
   double operator()(double s) const {
     // g.jacobi.series(x) with the recurrence coefficients computed once (same sum to a few ulps).
-    double result = evaluate_([&](double x) { return series_(x); }, s);
+    double result = series_sum(evaluate_, series_, s);
     if (!g_.has_apex) return result;
     // A[C phi] as abel::apply computes it inside the interval, with the split rules built once
     // for all check points (abel::apply builds them per call).
@@ -251,12 +251,22 @@ class inside_action {
     const auto d = apex.sigma_of((s - g_.a()) / h, (g_.b() - s) / h);
     const double y = d[0] <= d[1] ? d[0] - 1 : 1 - d[1];
     const double t = d[0] <= d[1] ? g_.a() + h * d[0] : g_.b() - h * d[1];
-    const double mapped = evaluate_mapped_([&](double x) { return mapped_series_(x); }, t) +
+    const double mapped = series_sum(evaluate_mapped_, mapped_series_, t) +
                           std::pow(h, alpha) * apex.enrichment * abel::detail::enrichment_image_any(apex, op_.parameters(), split_, y);
     return result + apex.covariance_factor(d[2]) * mapped;
   }
 
  private:
+  // The quadrature of the series part at s, its series summed in batches from degree 48 on
+  // (quadrature_evaluator::with_series: the same value bit for bit; the rule's work is done twice,
+  // so short series keep the one-node-at-a-time path). Whole scene with the residual, interleaved
+  // runs: degree 174 (eps 0.999) 4.9 -> 3.4 ms, 84 (eps 0.994) 2.3 -> 2.0, 51 (alpha 0.3) 0.94 -> 0.89.
+  static double series_sum(const abel::abel_operator<double>::quadrature_evaluator& evaluate,
+                           const rhabel::quadrature::jacobi_series<double>& series, double s) {
+    if (series.size() >= 48) return evaluate.with_series(series, s);
+    return evaluate([&](double x) { return series(x); }, s);
+  }
+
   const contact_density& g_;
   abel::abel_operator<double> op_;
   abel::abel_operator<double>::quadrature_evaluator evaluate_, evaluate_mapped_;
