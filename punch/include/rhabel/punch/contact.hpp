@@ -102,24 +102,24 @@
 //     contact f(x) - f(a) exactly. Elastic flat punch against -(2P/(pi E*)) arccosh(x/c): < 1e-8 for
 //     |x| >= 1.4 c; accuracy degrades next to the edges (log kernel nearly singular there).
 //   * Cost (Release, warm caches; build/bin/study_scene_timing and study_wedge_near_edge: wall time
-//     of solve_single, grid_points = 1000, displacement off, minimum per call; the cheapest
-//     solve_options::tolerance at which C_f and the pressure reach 1e-10, with / without the
-//     residual): single parabola ~0.2 ms. Single wedge below the boundary, alpha >= 0.05:
-//     apex >= 0.01 L from both edges (65 points) 0.52-0.97 / 0.37-0.58 ms (eps 0.843: 0.45 ms;
-//     0.907: 0.48; 0.972: 0.52); apex 1e-3 .. 1e-2 L from an edge (195 points) 1.6-4.5 / 1.1-1.7
-//     ms; 5e-4 L (585 points) 9.4 / 4.4 ms; within 1e-4 L (Riemann-Hilbert route) 4.3-4.5 /
-//     3.6-3.7 ms. alpha <= 1e-3 (solve_step's logarithmic enrichment, its end rule at the apex a
-//     Gauss rule for the weight (t^-alpha - 1)/alpha): 0.74-1.51 / 0.54-0.82 ms with the apex >=
-//     0.01 L from the edges (was 1.03-1.69 / 0.81-1.20). Slope ratios 1e-6 and 1e6 (the apex
-//     within 1e-11 L of an edge, Riemann-Hilbert route): 2.4-26.5 ms, C_f within 3e-12 .. 2.7e-9
+//     of solve_single, grid_points = 1000, displacement off, minimum per call, then over 3 and 2
+//     runs; the cheapest solve_options::tolerance at which C_f and the pressure reach 1e-10, with /
+//     without the residual): single parabola ~0.2 ms. Single wedge below the boundary, alpha >= 0.05:
+//     apex >= 0.01 L from both edges (65 points) 0.45-0.69 / 0.32-0.44 ms (eps 0.843: 0.37 ms;
+//     0.907: 0.39; 0.972: 0.42); apex 1e-3 .. 1e-2 L from an edge (195 points) 1.27-2.62 / 0.97-1.42
+//     ms; 5e-4 L (585 points) 6.0 / 3.9 ms; within 1e-4 L (Riemann-Hilbert route) 3.7-3.9 /
+//     3.4-3.6 ms. alpha <= 1e-3 (solve_step's logarithmic enrichment, its end rule at the apex a
+//     Gauss rule for the weight (t^-alpha - 1)/alpha): 0.61-0.92 / 0.47-0.64 ms with the apex >=
+//     0.01 L from the edges. Slope ratios 1e-6 and 1e6 (the apex
+//     within 1e-11 L of an edge, Riemann-Hilbert route): 2.0-23 ms, C_f within 3e-12 .. 2.7e-9
 //     of the order-16 reference (the reference itself is weak there). So the target of issue #4
 //     (1e-10 for eps, L, C_f and 1000 samples in < 1 ms) is met with the apex >= 0.01 L from the
-//     edges for every alpha (without the residual); not closer to an edge (1.1-5.5 ms).
+//     edges for every alpha (without the residual), just met at 0.005-0.01 L (0.97-1.02 ms), not
+//     closer to an edge (1.2-3.9 ms).
 //     Where the time goes (alpha = 0.3, S2/S1 = 0.1): abel::solve_step's quadrature of A[phi]
 //     ~0.3 ms (65 points), the 1000 samples ~0.11 ms (their series summed four points at a time,
-//     quadrature::jacobi_series::evaluate: was 0.17 ms one point at a time; the figures above
-//     predate this and are 8-18% high, measured by interleaved runs of the old and new binaries),
-//     the independent residual 0.1-0.3 ms. Coupled scenes with wedges 0.05-0.3 s
+//     quadrature::jacobi_series::evaluate: was 0.17 ms one point at a time), the independent
+//     residual 0.1-0.3 ms. Coupled scenes with wedges 0.05-0.3 s
 //     (examples/default_scene.json: ~0.05-0.08 s).
 //
 // UNITS: any consistent set; the comments use SI: lengths in m, E1 in Pa s^alpha, speed in m/s,
