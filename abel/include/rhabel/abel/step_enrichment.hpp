@@ -538,6 +538,31 @@ class split_integrator {
     return sum;
   }
 
+  /// integrate with the panels' powers of the piece's own end distances left to f, as
+  /// f(k, u, v, q_here, p_here) (panel_integrator::for_each_node_deferred: the node's weight is then
+  /// u^q_here v^p_here times what is summed), for integrands that form their powers in one
+  /// power_product.
+  template <class F>
+  Real integrate_deferred(const std::vector<Real>& cuts, const std::vector<Real>& left_exponent,
+                          const std::vector<Real>& right_exponent, F&& f) const {
+    const Real inf = std::numeric_limits<Real>::infinity();
+    Real sum = 0;
+    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+      const Real len = cuts[k + 1] - cuts[k];
+      if (!(len > 0)) continue;
+      const auto& rule = integrator(right_exponent[k], left_exponent[k]);
+      const Real d_left = k == 0 ? inf : cuts[k] - cuts[k - 1];
+      const Real d_right = k + 2 == cuts.size() ? inf : cuts[k + 2] - cuts[k + 1];
+      Real piece = 0;
+      rule.for_each_node_deferred(len, d_left, d_right, [&](const Real& u, const Real& v, const Real& weight,
+                                                            const Real& q_here, const Real& p_here) {
+        piece += weight * f(k, u, v, q_here, p_here);
+      });
+      sum += piece;
+    }
+    return sum;
+  }
+
  private:
   const panel_integrator<Real>& integrator(const Real& p, const Real& q) const {
     const auto key = std::make_pair(static_cast<double>(p), static_cast<double>(q));
@@ -642,8 +667,10 @@ Real enrichment_image(const enriched_density<Real>& d, const abel_parameters<Rea
   auto exponent_of = [&](int k) { return k == 0 ? -alpha : alpha - 1; };
   left_exp = {d.smooth.gam, exponent_of(kind[0]), exponent_of(kind[1])};
   right_exp = {exponent_of(kind[0]), exponent_of(kind[1]), d.smooth.del};
-  return si.integrate(cuts, left_exp, right_exp, [&](std::size_t k, const Real& u, const Real& v) {
-    // Node at distance u from cuts[k], v from cuts[k+1].
+  return si.integrate_deferred(cuts, left_exp, right_exp, [&](std::size_t k, const Real& u, const Real& v,
+                                                               const Real& q_here, const Real& p_here) {
+    // Node at distance u from cuts[k], v from cuts[k+1]; u^q_here v^p_here: the piece's end
+    // exponents on panels inside the piece (their Gauss-Jacobi weight only on the end panels).
     // Distances to every singular point, accurate near the piece ends.
     auto distance_to = [&](std::size_t point) -> Real {  // point index into cuts
       if (point == k) return u;
@@ -655,6 +682,7 @@ Real enrichment_image(const enriched_density<Real>& d, const abel_parameters<Rea
     // does not end at (those are the Gauss-Jacobi weight), as one power_product.
     Real coefficient = 1;
     power_product<Real> powers;
+    powers.times(u, q_here).times(v, p_here);
     const Real one_plus_x = distance_to(0), one_minus_x = distance_to(3);
     if (k != 0) powers.times(one_plus_x, d.smooth.gam);
     if (k != 2) powers.times(one_minus_x, d.smooth.del);
@@ -728,13 +756,17 @@ Real enrichment_piece_panels(const enriched_density<Real>& d, const Real& a, con
   const Real qa = a_end == piece_end::interval_end ? d.smooth.gam : (a_end == piece_end::x0 ? d.x0_exponent() : Real(0));
   const Real pb = b_end == piece_end::interval_end ? d.smooth.del : (b_end == piece_end::x0 ? d.x0_exponent() : Real(0));
   const panel_integrator<Real> rule(pb, qa, d.quadrature_nodes());
-  return rule.integrate(b - a, d_left, d_right, [&](const Real& u, const Real& v) {
+  Real sum = 0;
+  rule.for_each_node_deferred(b - a, d_left, d_right, [&](const Real& u, const Real& v, const Real& weight,
+                                                          const Real& q_here, const Real& p_here) {
     const Real one_plus_x = (a + 1) + u, one_minus_x = (1 - b) + v;
     const Real x = one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x;
-    // The edge powers this piece does not carry as weight, and E: E_over_weight at x0 (the rest of
-    // E is the weight), else kappa or 1 times dist^-alpha in the same power_product (normalized
-    // mode: E_full's log form).
+    // The piece's end powers on panels inside it (for_each_node_deferred), the edge powers this
+    // piece does not carry as weight, and E: E_over_weight at x0 (the rest of E is the weight),
+    // else kappa or 1 times dist^-alpha in the same power_product (normalized mode: E_full's log
+    // form).
     power_product<Real> powers;
+    powers.times(u, q_here).times(v, p_here);
     if (a_end != piece_end::interval_end) powers.times(one_plus_x, d.smooth.gam);
     if (b_end != piece_end::interval_end) powers.times(one_minus_x, d.smooth.del);
     const Real dist = right_side ? (a - d.x0) + u : (d.x0 - b) + v;
@@ -749,8 +781,9 @@ Real enrichment_piece_panels(const enriched_density<Real>& d, const Real& a, con
       E = d.E_full(dist, right_side);
     }
     const Real extra = extra_factor(k, powers, x, u + offset_a, v + offset_b);
-    return powers.value() * E * d.q_at(one_plus_x, one_minus_x) * extra;
+    sum += weight * (powers.value() * E * d.q_at(one_plus_x, one_minus_x) * extra);
   });
+  return sum;
 }
 
 template <class Real, class K>

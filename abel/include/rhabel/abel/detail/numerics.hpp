@@ -224,6 +224,23 @@ class panel_integrator {
   /// (len-u)^p u^q and the panel scaling).
   template <class Visit>
   void for_each_node(const Real& len, const Real& d_left, const Real& d_right, Visit&& visit) const {
+    visit_nodes<false>(len, d_left, d_right, visit);
+  }
+
+  /// for_each_node with the powers that the Gauss-Jacobi weights do not carry left to the
+  /// visitor: visit(u, len - u, weight, q_here, p_here), where weight has the rule weight and the
+  /// panel scaling, and the node's full weight is weight u^q_here (len - u)^p_here (q_here = 0 on
+  /// the panel touching 0, where u^q is the rule's weight, else q; p_here likewise). For visitors
+  /// that fold these powers into a detail::power_product of their own: one log each and a shared
+  /// exp instead of a pow each (the quadrature of A[phi] in solve_step, ~4 powers a node).
+  template <class Visit>
+  void for_each_node_deferred(const Real& len, const Real& d_left, const Real& d_right, Visit&& visit) const {
+    visit_nodes<true>(len, d_left, d_right, visit);
+  }
+
+ private:
+  template <bool deferred, class Visit>
+  void visit_nodes(const Real& len, const Real& d_left, const Real& d_right, Visit& visit) const {
     using std::pow;
     // Breakpoints as pairs (distance from 0, distance from len): 0, then d, 3d, 7d, ... (panel
     // widths doubling) up to the middle, graded toward a singularity at distance d from that end.
@@ -258,14 +275,17 @@ class panel_integrator {
         const Real u = a.left + from_a;              // distance from 0
         const Real v = b.right + to_b;               // distance from len
         Real weight = rule.weight[i];
-        if (!touches_left && q_ != 0) weight *= pow(u, q_);   // (the exponent is often exactly 0)
-        if (!touches_right && p_ != 0) weight *= pow(v, p_);
-        visit(u, v, scale * weight);
+        if constexpr (deferred) {
+          visit(u, v, scale * weight, touches_left ? Real(0) : q_, touches_right ? Real(0) : p_);
+        } else {
+          if (!touches_left && q_ != 0) weight *= pow(u, q_);  // (the exponent is often exactly 0)
+          if (!touches_right && p_ != 0) weight *= pow(v, p_);
+          visit(u, v, scale * weight);
+        }
       }
     }
   }
 
- private:
   Real p_, q_;
   std::shared_ptr<const rhabel::quadrature::quadrature_rule<Real>> legendre_, left_, right_, both_;
 };
