@@ -95,32 +95,35 @@
 //
 // Accuracy and cost (command: build-lead/bin/study_abel_convergence out.csv, CSV rows
 // step_adaptive_*, step_apex_eps_*, step_apex_rh_*; default options as the punch layer calls it;
-// median wall time, residual off, machine load ~1.3).
+// median wall time, residual off; one run, 2026-11-21 21:34 UTC, after the node powers joined one
+// power_product, panel_integrator::for_each_node_deferred).
 // Step at t0 = 0.1 on [-1, 1], beta = 0.2, relative error of int g against the exact Rodrigues
 // value (int_a^t0 g against the degree-257 solution: same level):
-//     alpha = 0, 1e-3 (normalized path):      65 points, <= 1.3e-15,   0.40-0.52 ms (was 0.67-1.08:
+//     alpha = 0, 1e-3 (normalized path):      65 points, <= 1.3e-15,   0.38-0.43 ms (was 0.67-1.08:
 //                                               Gauss-Laguerre end rule and grading toward x0;
-//                                               1.6-1.8x the plain path, was 2.7-3.3x)
-//     alpha = 0.01:                             65 points, <= 1.9e-13,   0.26-0.27 ms (was 195 for nu = -1)
-//     alpha = 0.049, 0.05:                      65 points, <= 8.1e-15,   0.26 ms (was 195)
-//     alpha = 0.25, 0.5, 0.9:                   65 points, <= 1.0e-14,   0.26 ms
+//                                               1.8-2.0x the plain path, was 2.7-3.3x)
+//     alpha = 0.01:                             65 points, <= 1.7e-13,   0.21 ms (was 195 for nu = -1)
+//     alpha = 0.049, 0.05:                      65 points, <= 9.1e-15,   0.21 ms (was 195)
+//     alpha = 0.25, 0.5, 0.9:                   65 points, <= 9.8e-15,   0.21 ms
 // Apex position eps = (t0 - a)/L, wedge data of the class nu = -1 satisfying the orthogonality
 // condition (alpha = 0.3, beta = 0.2; rows step_apex_rh_*), max relative error of int g and
 // int_a^t0 g against the independent Riemann-Hilbert route riemann::solve_abel_rh (its error
 // estimates <= 1e-15 here):
 //     eps      map        65 pts     195 pts    585 pts    adaptive (default options)
-//     0.5      none       8.9e-16    1.2e-15    1.2e-15     66 pts, 8.9e-16, 0.26 ms
-//     0.8      s = 0.48   < 1e-16    1.4e-16    2.7e-16     65 pts, < 1e-16, 0.27 ms (was 195 pts, 7.5e-13, 0.91 ms)
-//     0.9      s = 0.68   3.0e-15    1.0e-14    4.0e-15     65 pts, 3.0e-15, 0.28 ms (was 585 pts, 15 ms)
-//     0.97     s = 0.86   3.2e-13    2.0e-13    8.0e-14     65 pts, 3.2e-13, 0.32 ms (was 1024 pts, 44 ms)
-//     0.99     s = 0.94   1.0e-12    8.7e-13    8.7e-13    195 pts, 8.7e-13, 0.86 ms (was not_converged, 49 ms)
-//     0.999    s = 0.99   1.1e-6     7.4e-13    2.6e-13    195 pts, 6.2e-13, 0.82 ms (was 2.7e-9, 95 ms)
-//     0.03     s = -0.86  1.2e-14    1.5e-14    2.0e-14     65 pts, 1.2e-14, 0.30 ms (was 1024 pts, 88 ms)
-//     0.001    s = -0.99  1.4e-5     4.2e-13    1.9e-13    195 pts, 4.2e-13, 0.92 ms (was 4.6e-11, 130 ms)
+//     0.5      none       1.2e-15    1.2e-15    1.2e-15     66 pts, 1.2e-15, 0.21 ms
+//     0.8      s = 0.48   4.4e-16    4.1e-16    2.2e-16     65 pts, 4.4e-16, 0.21 ms (was 195 pts, 7.5e-13, 0.91 ms)
+//     0.9      s = 0.68   4.0e-15    7.0e-15    5.0e-15     65 pts, 4.0e-15, 0.21 ms (was 585 pts, 15 ms)
+//     0.97     s = 0.86   4.4e-13    3.3e-13    1.4e-13     65 pts, 4.4e-13, 0.23 ms (was 1024 pts, 44 ms)
+//     0.99     s = 0.94   1.0e-12    7.5e-13    6.3e-13    195 pts, 7.5e-13, 0.66 ms (was not_converged, 49 ms)
+//     0.999    s = 0.99   1.1e-6     5.0e-13    2.6e-13    195 pts, 3.8e-13, 0.64 ms (was 2.7e-9, 95 ms)
+//     0.03     s = -0.86  1.2e-14    1.5e-14    1.7e-14     65 pts, 1.2e-14, 0.23 ms (was 1024 pts, 88 ms)
+//     0.001    s = -0.99  1.4e-5     4.2e-13    1.9e-13    195 pts, 4.5e-13, 0.66-1.1 ms (was 4.6e-11, 130 ms)
+// (The fixed 195-point solve at eps = 0.001 took 0.66 ms in the same run; the adaptive row's 1.1 ms
+// is the host's noise or the 65-point level before it.)
 // (~1e-12 is the level at which the Taylor factor's floor (max|q| ~ 1e4) and the reference's own
 // int_a^y meet: a variant with max|q| <= 1e2 converged to the same value at 195 points.) The punch
 // layer's hardest former case (alpha = 0.2, k = 0.5, S1 = S2: eps = 0.84) now takes 65 points:
-// 1.1e-15 (alpha = 0.2, 0.45 ms), 4.1e-16 (1e-3, 0.88 ms), 2.1e-15 (0, 0.68 ms); before 195.
+// 6.7e-16 (alpha = 0.2, 0.22 ms), 1.4e-16 (1e-3, 0.71-0.77 ms), 1.8e-15 (0, 0.39 ms); before 195.
 // The same study with F = +-1 in both classes (rows step_apex_eps_*, error of int g against the
 // exact Rodrigues value): eps in [0.1, 0.9] converged at 65-66 points, <= 1.8e-12; eps = 0.01,
 // 0.99, 1e-3, 0.999 at 195 points, <= 5.1e-13 (was 1024 points, not_converged at 1e-3 and 0.999).
