@@ -524,6 +524,41 @@ TEST_CASE("power_product: exp of summed logs within its documented bound") {
   CHECK(detail::power_product<double>().times(4.0, -1.0).value() == 0.25);
 }
 
+// panel_integrator::for_each_node_deferred (the quadrature of A[phi]) must visit the nodes of
+// for_each_node in the same order, leaving out exactly the powers u^q, (len - u)^p of panels that
+// do not touch that end (q_here = 0 on the panel touching 0, p_here = 0 on the one touching len).
+// Oracle: for_each_node's own weights; the two products differ only in the order of three roundings.
+TEST_CASE("for_each_node_deferred: the nodes of for_each_node, the interior panels' powers left to the visitor") {
+  constexpr double reassociation_tolerance = 4 * eps;  // (s w) u^q v^p against s (w u^q v^p): <= 3 roundings
+  for (const auto& [p, q] : std::vector<std::pair<double, double>>{{-0.3, 0.7}, {0.0, -0.5}, {0.25, 0.0}}) {
+    const detail::panel_integrator<double> rule(p, q, 12);
+    struct visited {
+      double u, v, weight, q_here, p_here;
+    };
+    std::vector<visited> plain, deferred;
+    const double len = 2.0, d_left = 1e-6, d_right = 3e-4;  // graded at both ends: interior panels
+    rule.for_each_node(len, d_left, d_right, [&](double u, double v, double w) { plain.push_back({u, v, w, 0, 0}); });
+    rule.for_each_node_deferred(len, d_left, d_right, [&](double u, double v, double w, double qh, double ph) {
+      deferred.push_back({u, v, w, qh, ph});
+    });
+    REQUIRE(plain.size() == deferred.size());
+    REQUIRE(plain.size() > 5 * 12);  // several panels
+    std::size_t interior = 0;
+    for (std::size_t i = 0; i < plain.size(); ++i) {
+      CHECK(plain[i].u == deferred[i].u);
+      CHECK(plain[i].v == deferred[i].v);
+      CHECK((deferred[i].q_here == 0 || deferred[i].q_here == q));
+      CHECK((deferred[i].p_here == 0 || deferred[i].p_here == p));
+      if (deferred[i].q_here != 0 || deferred[i].p_here != 0) ++interior;
+      const double rebuilt = deferred[i].weight * std::pow(deferred[i].u, deferred[i].q_here) * std::pow(deferred[i].v, deferred[i].p_here);
+      CHECK(std::abs(rebuilt / plain[i].weight - 1) <= reassociation_tolerance);
+    }
+    CHECK(interior > 0);
+    CHECK(deferred.front().q_here == 0);  // the first panel touches 0 and carries u^q as its weight
+    CHECK(deferred.back().p_here == 0);
+  }
+}
+
 // The Gauss rule for the weight W(t) = (t^-alpha - 1)/alpha on [0, 1], the end rule of the
 // small-alpha enrichment at x0. Oracle: the exact monomial moments int_0^1 W t^k dt =
 // 1/((k+1)(k+1-alpha)) (an independent formula: the rule is built from shifted Legendre moments),
