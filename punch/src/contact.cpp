@@ -39,7 +39,7 @@ constexpr double boundary_width = 1e-12;  // |alpha + beta/2 - 1/2| below this i
 // enrich_limit the isolated wedge takes C_f and the pressure samples from the Riemann-Hilbert route
 // (wedge_by_rh, rh_pressure: 3.5-3.6 ms, C_f <= 2.7e-12, pressure 4e-14) and the plain Jacobi
 // series the residual and the displacement (see solve_wedge); a coupled wedge keeps the series.
-// (Between 1e-4 and 5e-4 the mapped solve at 585 points costs 3.0-3.4 ms without the residual, about
+// (Between 1e-4 and 5e-4 the mapped solve at 585 points costs 2.7-3.4 ms without the residual, about
 // the route's 3.5-3.6 ms: the limit sits where the mapped solve stops converging.)
 constexpr double enrich_limit = 1e-4;
 

@@ -106,8 +106,8 @@
 //     runs; the cheapest solve_options::tolerance at which C_f and the pressure reach 1e-10, with /
 //     without the residual): single parabola ~0.2 ms. Single wedge below the boundary, alpha >= 0.05:
 //     apex >= 0.01 L from both edges (65 points) 0.42-0.64 / 0.30-0.38 ms (eps 0.843: 0.35 ms;
-//     0.907: 0.36; 0.972: 0.38); apex 1e-3 .. 1e-2 L from an edge (195 points) 1.17-2.29 / 0.85-1.07
-//     ms; 5e-4 L (585 points) 5.1 / 3.0 ms; within 1e-4 L (Riemann-Hilbert route) 3.7-3.9 /
+//     0.907: 0.36; 0.972: 0.38); apex 1e-3 .. 1e-2 L from an edge (195 points) 1.07-2.29 / 0.78-1.05
+//     ms; 5e-4 L (585 points) 4.8 / 2.7 ms; within 1e-4 L (Riemann-Hilbert route) 3.7-3.9 /
 //     3.5-3.6 ms. alpha <= 1e-3 (solve_step's logarithmic enrichment, its end rule at the apex a
 //     Gauss rule for the weight (t^-alpha - 1)/alpha): 0.59-0.90 / 0.46-0.62 ms with the apex >=
 //     0.01 L from the edges. Slope ratios 1e-6 and 1e6 (the apex
@@ -115,7 +115,7 @@
 //     of the order-16 reference (the reference itself is weak there). So the target of issue #4
 //     (1e-10 for eps, L, C_f and 1000 samples in < 1 ms) is met, without the residual, with the
 //     apex >= 0.01 L from the edges for every alpha, and down to 0.002 L where measured (alpha
-//     0.05, 0.2: 0.85-0.96 ms); not at 0.001 L (1.07 ms; 1.44 ms elastic) nor closer (1.6-3.6 ms
+//     0.05, 0.2: 0.78-0.96 ms); not at 0.001 L (1.02 ms; 1.40 ms elastic) nor closer (1.6-3.5 ms
 //     within 5e-4 L).
 //     Where the time goes (alpha = 0.3, S2/S1 = 0.1): abel::solve_step's quadrature of A[phi]
 //     ~0.3 ms (65 points), the 1000 samples ~0.11 ms (their series summed four points at a time,
