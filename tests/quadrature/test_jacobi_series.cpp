@@ -19,6 +19,7 @@
 #include <cmath>
 #include <cstddef>
 #include <stdexcept>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -119,6 +120,32 @@ TEST_CASE("jacobi_series::evaluate equals operator() at every point, bit for bit
   rhabel_test::check_domain_error_mentions([&] { rq::jacobi_series<double>(test_coefficients(3), 0.0, 0.0).evaluate(bad.data(), out.data(), 3); },
                                            {"jacobi_series::evaluate", "x = ", "finite"});
   CHECK(out[0] == 5.0);  // nothing written before the error
+}
+
+// Regression: beyond [-1, 1] a long series overflows (P_700(-3) ~ 1e535); the sum came back as
+// NaN (inf - inf in Clenshaw's recurrence). Now std::overflow_error naming the function and x, from
+// every entry point; moderate |x| > 1 still sums.
+TEST_CASE("jacobi_series and jacobi_clenshaw: a sum beyond the range of double is an overflow_error, never NaN") {
+  const auto c = test_coefficients(700);
+  const rq::jacobi_series<double> s(c, 0.3, -0.2);
+  auto check_overflow = [](auto&& call, const char* function) {
+    bool thrown = false;
+    try {
+      call();
+    } catch (const std::overflow_error& e) {
+      thrown = true;
+      const std::string what = e.what();
+      CHECK(what.find(function) != std::string::npos);
+      CHECK(what.find("x = -3") != std::string::npos);
+    }
+    CHECK(thrown);
+  };
+  check_overflow([&] { (void)s(-3.0); }, "jacobi_series");
+  check_overflow([&] { (void)rq::jacobi_clenshaw(c, 0.3, -0.2, -3.0); }, "jacobi_clenshaw");
+  const std::vector<double> xs{0.1, -3.0, 0.2};
+  std::vector<double> out(xs.size());
+  check_overflow([&] { s.evaluate(xs.data(), out.data(), xs.size()); }, "jacobi_series::evaluate");
+  CHECK(std::isfinite(s(1.02)));  // P_700(1.02) ~ e^140: in range
 }
 
 TEST_CASE("jacobi_series of a Legendre sum matches the 50-digit sum to O(K eps)") {

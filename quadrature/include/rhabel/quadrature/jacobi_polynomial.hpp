@@ -22,7 +22,8 @@
 //  * jacobi_norm_squared: h_n = int w P_n^2, through lgamma, so nothing overflows; relative
 //    error a few eps for any n.
 //  * jacobi_clenshaw: sum_k c_k P_k(x) by Clenshaw's algorithm for |x| < 1/2, by the forward
-//    difference-form recurrence near the ends; O(K).
+//    difference-form recurrence near the ends; O(K). Any finite x; a sum beyond the range of Real
+//    (|x| far beyond 1) is std::overflow_error, as in jacobi_series, never inf or NaN.
 //  * jacobi_series<Real>: the same sum with the recurrence coefficients computed once (O(K)
 //    setup, then O(K) multiply-adds per point, no divisions): for many evaluations of one series.
 //    Same algorithms, switches and operation order as jacobi_clenshaw (the difference-form
@@ -77,6 +78,22 @@ template <class Real>
   message << function << ": " << parameter << " = " << value << " is outside the valid range "
           << valid_range;
   throw std::domain_error(message.str());
+}
+
+// A sum that is not finite (the polynomial beyond the range of Real: |x| well beyond 1, or
+// coefficients near overflow; NaN from inf - inf) is reported as std::overflow_error naming the
+// function and x, never returned.
+template <class Real>
+Real finite_sum(const char* function, const Real& x, const Real& sum) {
+  using std::isfinite;
+  if (!isfinite(sum)) {
+    std::ostringstream message;
+    message.precision(17);
+    message << function << ": the sum at x = " << x << " is " << sum
+            << ", beyond the range of the type (|x| too far beyond 1 for this degree, or coefficients near overflow)";
+    throw std::overflow_error(message.str());
+  }
+  return sum;
 }
 
 template <class Real>
@@ -310,7 +327,7 @@ Real jacobi_clenshaw(const std::vector<Real>& c, const Real& p, const Real& q, c
                                     [&](std::size_t k, const Real& v) {
                                       sum += (upper || k % 2 == 0) ? Real(c[k] * v) : Real(-c[k] * v);
                                     });
-    return sum;
+    return detail::finite_sum("jacobi_clenshaw", x, sum);
   }
   Real b1 = 0, b2 = 0;  // b_{k+1}, b_{k+2}
   for (std::size_t k = c.size(); k-- > 0;) {
@@ -320,7 +337,7 @@ Real jacobi_clenshaw(const std::vector<Real>& c, const Real& p, const Real& q, c
     b2 = b1;
     b1 = b0;
   }
-  return b1;
+  return detail::finite_sum("jacobi_clenshaw", x, b1);
 }
 
 /// (1 - x)^p (1 + x)^q from the complements one_minus_x = 1 - x, one_plus_x = 1 + x, both in
@@ -548,14 +565,15 @@ class jacobi_series {
   const Real& q() const { return q_; }
   std::size_t size() const { return c_.size(); }
 
-  /// The sum at x (any finite x, else std::domain_error; the difference form is used for 1/2 <= |x| <= 1).
+  /// The sum at x (any finite x, else std::domain_error; the difference form is used for 1/2 <= |x| <= 1;
+  /// a sum beyond the range of Real, possible for |x| > 1: std::overflow_error, never inf or NaN).
   Real operator()(const Real& x) const {
     using std::isfinite;
     if (!isfinite(x)) detail::throw_bad_parameter("jacobi_series", "x", x, "finite");
     if (c_.empty()) return Real(0);
-    if (x >= Real(0.5) && x <= 1) return near_end(upper_, p_, q_, Real(1 - x), false);
-    if (x <= Real(-0.5) && x >= -1) return near_end(lower_, q_, p_, Real(1 + x), true);
-    return clenshaw(x);
+    if (x >= Real(0.5) && x <= 1) return detail::finite_sum("jacobi_series", x, near_end(upper_, p_, q_, Real(1 - x), false));
+    if (x <= Real(-0.5) && x >= -1) return detail::finite_sum("jacobi_series", x, near_end(lower_, q_, p_, Real(1 + x), true));
+    return detail::finite_sum("jacobi_series", x, clenshaw(x));
   }
 
   /// The sum at x given the complements one_minus_x = 1 - x and one_plus_x = 1 + x (both in
@@ -564,13 +582,15 @@ class jacobi_series {
     detail::check_complement("jacobi_series", "one_minus_x", one_minus_x);
     detail::check_complement("jacobi_series", "one_plus_x", one_plus_x);
     if (c_.empty()) return Real(0);
-    if (one_minus_x <= Real(0.5)) return near_end(upper_, p_, q_, one_minus_x, false);
-    if (one_plus_x <= Real(0.5)) return near_end(lower_, q_, p_, one_plus_x, true);
-    return clenshaw(Real(one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x));
+    const Real x = one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x;
+    if (one_minus_x <= Real(0.5)) return detail::finite_sum("jacobi_series", x, near_end(upper_, p_, q_, one_minus_x, false));
+    if (one_plus_x <= Real(0.5)) return detail::finite_sum("jacobi_series", x, near_end(lower_, q_, p_, one_plus_x, true));
+    return detail::finite_sum("jacobi_series", x, clenshaw(x));
   }
 
   /// The sum at the n points x[0], ..., x[n-1] (each finite, else std::domain_error before anything
-  /// is written), into out[0], ..., out[n-1]: the values of operator()(x[i]), bit for bit (the
+  /// is written; a sum that overflows: std::overflow_error after, as operator() would throw it),
+  /// into out[0], ..., out[n-1]: the values of operator()(x[i]), bit for bit (the
   /// same operations in the same order per point). The points are sorted by branch
   /// (difference form at each end, Clenshaw in the middle) and summed `lanes` at a time with the
   /// recurrences interleaved: one sum is a chain of dependent multiply-adds that leaves the
@@ -606,6 +626,7 @@ class jacobi_series {
         [&](const Real& u) { return near_end(lower_, q_, p_, u, true); });
     run(middle, [](const Real& xi) { return xi; }, [&](const Real* xs, Real* v) { clenshaw_lanes(xs, v); },
         [&](const Real& xi) { return clenshaw(xi); });
+    for (std::size_t i = 0; i < n; ++i) detail::finite_sum("jacobi_series::evaluate", x[i], out[i]);
   }
 
  private:
