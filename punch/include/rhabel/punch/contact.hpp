@@ -93,7 +93,7 @@
 //     by abel's direct quadrature of A[phi] (the one solve_step used to build the data: for that part
 //     only the smooth remainder is checked), the other indentors by abel_operator::apply / abel::apply.
 //     Measured: <= 7e-13 for single indentors at alpha in {0, 1e-8, 5e-4} (tests/punch/
-//     test_contact.cpp); 7.9e-14 for examples/default_scene.json (coupled wedge + parabola, the wedge's
+//     test_contact.cpp); 8.9e-14 for examples/default_scene.json (coupled wedge + parabola, the wedge's
 //     apex at eps 0.88, mapped; it was 7e-6 with the former apex split, 2e-10 with solve_step capped
 //     at 129 points, 3e-11 before the map).
 //   * Displacement: outside the contact from the slope integral (paper 27, 28) integrated in closed
