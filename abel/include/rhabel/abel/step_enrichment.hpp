@@ -518,33 +518,13 @@ class split_integrator {
   explicit split_integrator(std::size_t nodes) : nodes_(nodes) {}
   std::size_t nodes() const { return nodes_; }
 
-  /// points: sorted interior break/singular points in (-1, 1) with the exponent of the
-  /// singularity there on its left side and right side; ends with exponents (q at -1, p at +1).
-  /// f(x, one_plus_x, one_minus_x, distances...) must return the integrand WITHOUT the end
-  /// factors of the current piece; `piece_factor(x, piece_index, dist_left_end, dist_right_end)`
-  /// is given the distances to both ends of the piece.
-  template <class F>
-  Real integrate(const std::vector<Real>& cuts, const std::vector<Real>& left_exponent,
-                 const std::vector<Real>& right_exponent, F&& f) const {
-    // cuts[0] = -1, cuts.back() = 1; piece k = [cuts[k], cuts[k+1]] with weight
-    // (x - cuts[k])^left_exponent[k] (cuts[k+1] - x)^right_exponent[k].
-    const Real inf = std::numeric_limits<Real>::infinity();
-    Real sum = 0;
-    for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
-      const Real len = cuts[k + 1] - cuts[k];
-      if (!(len > 0)) continue;
-      const auto& rule = integrator(right_exponent[k], left_exponent[k]);
-      const Real d_left = k == 0 ? inf : cuts[k] - cuts[k - 1];
-      const Real d_right = k + 2 == cuts.size() ? inf : cuts[k + 2] - cuts[k + 1];
-      sum += rule.integrate(len, d_left, d_right, [&](const Real& u, const Real& v) { return f(k, u, v); });
-    }
-    return sum;
-  }
-
-  /// integrate with the panels' powers of the piece's own end distances left to f, as
-  /// f(k, u, v, q_here, p_here) (panel_integrator::for_each_node_deferred: the node's weight is then
-  /// u^q_here v^p_here times what is summed), for integrands that form their powers in one
-  /// power_product.
+  /// int_{-1}^{1} over the pieces [cuts[k], cuts[k+1]] (cuts[0] = -1, cuts.back() = 1), piece k
+  /// with the Gauss-Jacobi weight (x - cuts[k])^left_exponent[k] (cuts[k+1] - x)^right_exponent[k]
+  /// on its end panels and graded toward the neighbouring cuts. f(k, u, v, q_here, p_here) gets the
+  /// node's distances u, v from the piece's ends and must return the integrand WITHOUT the piece's
+  /// end factors, times u^q_here v^p_here: the end powers of panels inside the piece, which
+  /// panel_integrator::for_each_node_deferred leaves to the integrand so that it can form all its
+  /// powers in one power_product (q_here = 0, p_here = 0 on the end panels, where they are weights).
   template <class F>
   Real integrate_deferred(const std::vector<Real>& cuts, const std::vector<Real>& left_exponent,
                           const std::vector<Real>& right_exponent, F&& f) const {
