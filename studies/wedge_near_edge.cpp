@@ -3,21 +3,19 @@
 // 0.907 for alpha = 0.3, S1 = S2; 0.972 for alpha = 0.2, S2/S1 = 3).
 //
 // What the solver does there (punch/src/contact.cpp, solve_wedge): eps in closed form (incomplete
-// beta inversion), L from the exact load; with the apex at least enrich_limit = 1e-4 L from the
-// edges, C_f, the pressure samples, the residual and the displacement all come from
-// abel::solve_step's enriched density (an apex nearer an edge than L/4, eps outside [1/4, 3/4], is
-// first moved toward the centre by a Moebius map: abel/step_enrichment.hpp); within 1e-4 L of an
-// edge, C_f and the pressure samples come from the Riemann-Hilbert route instead
-// (riemann::solve_abel_rh, order 16, on the unit interval; samples from a piecewise Chebyshev
-// interpolant of its density built with abel_rh_solution::densities) and the status says so
-// (column `path`).
+// beta inversion), L from the exact load; with the apex nearer an edge than L/4 (every case below)
+// the density is the split form of build_wedge_near_edge: the long side's constant in closed form
+// plus the short side's step by abel::solve_step with the apex mapped to the centre
+// (apex_placement::centred, abel/step_enrichment.hpp); C_f, the pressure samples, the residual and
+// the displacement all come from it (column `path`: step). The Riemann-Hilbert path (`rh`, named
+// in the status) is taken only with solve_options::wedge_apex_split off. (Before: the balanced
+// Moebius map down to 1e-4 L, the Riemann-Hilbert route within 1e-4 L.)
 //
 // Cases (nu = 0.3, E1 = 1, U = 1, unit load): eps in {0.84, 0.907, 0.953, 0.972} (alpha = 0.2, 0.3,
 // 0.1, 0.2 with k in {0, 0.5} and S2/S1 = 1 or 3), eps in {0.99, 0.995, 0.998, 0.999, 0.9995,
 // 0.9999, 0.99999} and 0.01 at alpha = 0.2, k = 0 (the slope ratio that gives this eps), and the
 // elastic frictionless wedge (alpha = k = 0: closed form) at eps 0.972, 0.999, 0.9999 and 0.99999.
-// 0.9999 lies at the switch (the solver's own 1 - eps decides the path); 0.99999 is on the
-// Riemann-Hilbert path.
+// (0.9999 and 0.99999 were on the Riemann-Hilbert path before the split form.)
 //
 // References, each computed once per case, and how independent they are:
 //   * eps, L: study_support.hpp's wedge_moment_reference at 50 digits: eps by the 50-digit
@@ -33,8 +31,8 @@
 //       err_p_rh24   its pointwise g(y) at every 10th of the 1000 samples, max |p - p_ref| over the
 //                    largest reference sample; samples where its two orders disagree by more than
 //                    1e-12 relative are left out (n_p_ref says how many of the 100 were kept).
-//     On the solver's step path (apex >= 1e-4 L from the edges) this is independent by method. On
-//     its Riemann-Hilbert path (within 1e-4 L) it is the same method at a different order, on the
+//     On the solver's step path this is independent by method. On
+//     its Riemann-Hilbert path (wedge_apex_split off) it is the same method at a different order, on the
 //     solver's interval instead of the unit one, pointwise instead of interpolated: it then checks
 //     the order, the scaling and the interpolant, not the method; the next reference and the
 //     closed form below are the independent checks of that path.

@@ -32,15 +32,17 @@ namespace {
 
 constexpr double pi = boost::math::constants::pi<double>();
 constexpr double boundary_width = 1e-12;  // |alpha + beta/2 - 1/2| below this is "boundary"
-// Wedge below the boundary, apex at distance min(eps, 1 - eps) L from an edge. abel::solve_step
-// maps an apex with min(eps, 1 - eps) < 1/4 toward the centre (Moebius map, abel/step_enrichment.hpp)
-// and converges at 65 points down to ~1e-2, 195 down to 1e-3 and 585 down to 1e-4 (C_f <= 1e-12,
-// pressure <= 1.1e-11 of the peak against the Riemann-Hilbert route: study_wedge_near_edge). Within
-// enrich_limit the isolated wedge takes C_f and the pressure samples from the Riemann-Hilbert route
-// (wedge_by_rh, rh_pressure: 3.5-3.6 ms, C_f <= 2.7e-12, pressure 4e-14) and the plain Jacobi
-// series the residual and the displacement (see solve_wedge); a coupled wedge keeps the series.
-// (Between 1e-4 and 5e-4 the mapped solve at 585 points costs 2.7-3.4 ms without the residual, about
-// the route's 3.5-3.6 ms: the limit sits where the mapped solve stops converging.)
+// Wedge below the boundary, apex at distance min(eps, 1 - eps) L from an edge. The isolated wedge
+// with the apex in an outer quarter (min(eps, 1 - eps) < 1/4) is solved in the split form of
+// build_wedge_near_edge (the long side's constant in closed form plus the short side's step with
+// the apex mapped to the centre): 66 points from 1/4 down to 1 - eps = 1e-14, C_f and pressure
+// within 2e-14 of the Riemann-Hilbert route and of the elastic closed form (study_wedge_near_edge),
+// 0.35-0.58 ms without the residual. A coupled wedge keeps abel::solve_step's balanced map
+// (converges at 65 points down to ~1e-2, 195 down to 1e-3, 585 down to 1e-4) and, within
+// enrich_limit, the plain Jacobi series for everything (pressure unresolved next to the apex; C_f
+// by Richardson extrapolation of the series). With options.wedge_apex_split off, the isolated
+// wedge takes C_f and the pressure samples from the Riemann-Hilbert route (wedge_by_rh,
+// rh_pressure: 3.5-3.6 ms) and the plain series the residual and the displacement.
 constexpr double enrich_limit = 1e-4;
 
 using detail::edge_exponents;
@@ -635,6 +637,54 @@ contact_density build_wedge_step(double a, double b, double apex, int nu, const 
   return g;
 }
 
+// Isolated wedge below the boundary with the apex in an outer quarter of [a, b] (min(eps, 1 - eps)
+// < 1/4), F constant on each side of the apex. Write F = F_long + (F - F_long), F_long its value
+// on the long side (the side of the far edge), and solve both in the class nu = 0 singular at the
+// NEAR edge (math.md sections 3-4; both exist below the boundary):
+//   * g_long: A g_long = F_long, the closed form c_0 w (abel::solve_image_series, one coefficient);
+//   * g_short: A g_short = F - F_long, data VANISHING on the long side, by abel::solve_step with
+//     apex_placement::centred: the Moebius map puts the apex at the centre, and its factor
+//     (1 + s sigma)^(alpha - 1), whose branch point lies ~ 2 (1 - eps)/eps beyond the far end,
+//     multiplies data only on the short side, ~1 away from it. The balanced map (any F) must leave
+//     the apex off centre to keep that point away from data on the long side, and needed 195 points
+//     at 1e-3 L from an edge, 585 at 1e-4 L and did not converge within 1025 closer still.
+// g = g_long + g_short is the nu = -1 solution: eps solves the orthogonality condition, which is
+// the vanishing of the singular part at the near edge, so the two singular parts cancel (to the
+// error of g_short; g is bounded there and its density is formed as the difference). Measured at
+// the abel level (alpha = 0.3, 1 - eps = 1e-3 .. 1e-13): 66 points, tail <= 2e-15, values and
+// int_a^t0 within 1e-12 of a long double solve.
+// F is given by its two values (f' / Gamma(1 - alpha) of the faces): formed as S1 plus the step
+// -(S1 + S2), the trailing value -S2 of a slope ratio 1e-6 lost 1e-10 to cancellation (measured:
+// the load 2.9e-11 off at S2/S1 = 1e-6).
+contact_density build_wedge_near_edge(double eps, double one_minus_eps, const context& cx, double f_leading, double f_trailing) {
+  const double a = -eps, b = one_minus_eps;  // apex at 0, L = 1
+  const bool near_trailing = one_minus_eps <= eps;
+  const edge_exponents physical = cx.exponents(-1);
+  const abel::edge leading = near_trailing ? abel::edge::bounded : abel::edge::unbounded;
+  const abel::edge trailing = near_trailing ? abel::edge::unbounded : abel::edge::bounded;
+  const abel::abel_operator<double> op(cx.par, a, b);
+  const double f_long = near_trailing ? f_leading : f_trailing, f_short = near_trailing ? f_trailing : f_leading;
+  auto long_part = abel::solve_image_series(op, leading, trailing, std::vector<double>{std::pow(op.half_length(), -cx.alpha) * f_long});
+  abel::solve_options<double> o;
+  o.residual_points = 0;
+  o.tolerance = cx.options.tolerance;
+  o.max_degree = std::max<std::size_t>(2 * std::max<std::size_t>(cx.options.max_degree, 8) + 1, 585);
+  // Exactly 0 on the long side (solve_step checks it): the step's value there is f_long itself.
+  const double short_value = f_short - f_long;  // -(S1 + S2) or S1 + S2 (over Gamma(1 - alpha)): no cancellation
+  auto short_data = [&](double s) { return (near_trailing ? s > 0 : s < 0) ? short_value : 0.0; };
+  auto sol = abel::solve_step(op, leading, trailing, short_data, 0.0, o, 0, abel::apex_placement::centred);
+  contact_density g;
+  g.nu = 0;
+  g.physical = physical;
+  g.jacobi = std::move(long_part.density);
+  g.apex = std::move(sol.density);
+  g.has_apex = true;
+  g.update_apex_integral();
+  g.tail = sol.coefficient_tail;
+  if (sol.status != abel::solve_status::converged) g.tail = std::max(g.tail, cx.options.tolerance);
+  return g;
+}
+
 void solve_smooth_edges(indentor_state& st, const context& cx, const forcing& F, double L_guess, double b_guess,
                         double load_exponent) {
   const edge_exponents e = cx.exponents(-1);
@@ -691,6 +741,14 @@ void solve_general(indentor_state& st, const context& cx, const forcing& F) {
   }
 }
 
+// F in the variable s - origin (the isolated wedge is solved with its apex at 0).
+forcing shifted(const forcing& F, double origin) {
+  forcing out;
+  if (F.smooth) out.smooth = [smooth = F.smooth, origin](double s) { return smooth(s + origin); };
+  for (const auto& [position, jump] : F.steps) out.steps.push_back({position - origin, jump});
+  return out;
+}
+
 void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool isolated) {
   const auto& w = std::get<wedge>(st.source->shape);
   const double alpha = cx.alpha, beta = cx.beta;
@@ -743,15 +801,27 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
     }
     return;
   }
-  // Within enrich_limit of an edge (see the top): C_f and the pressure samples of the isolated
-  // wedge from the Riemann-Hilbert route; the density is the plain series, which then serves only
-  // the residual and the displacement (its error_estimate says how rough it is: ~1 there). An
-  // enriched density capped at 195 points was measured instead: error_estimate 7e-7 .. 4e-4 at
-  // 1e-4 .. 1e-5 L and ~1 at the slope ratios 1e-6, 1e6, for 1.5-2.5x the time of the whole solve
-  // (4-30 ms without the residual): no better evidence for the cost. A coupled wedge within
-  // enrich_limit keeps the plain series for everything (pressure unresolved next to the apex; C_f
-  // by Richardson extrapolation of the series).
+  // Isolated wedge with wedge_apex_split off (with it on, the split form below serves every apex
+  // nearer an edge than L/4): C_f and the pressure samples from the Riemann-Hilbert route; the
+  // density is the plain series, which then serves only the residual and the displacement (its
+  // error_estimate says how rough it is: ~1 next to an edge). A coupled wedge within enrich_limit
+  // keeps the plain series for everything (pressure unresolved next to the apex; C_f by Richardson
+  // extrapolation of the series).
   const double edge_distance = std::min(eps, one_minus_eps);
+  if (isolated && cx.options.wedge_apex_split && edge_distance < 0.25) {
+    // Apex in an outer quarter: the long side's constant in closed form plus the short side's
+    // step with the apex mapped to the centre (build_wedge_near_edge), on the unit interval, then
+    // scaled as below. The load is matched by scaling the whole density (c_0 of the closed form
+    // alone would break the cancellation of the singular parts at the near edge).
+    const double L = std::pow(st.target_load / unit_load, 1 / (1 - alpha));
+    st.g = build_wedge_near_edge(eps, one_minus_eps, cx, S1 / cx.gamma_factor, -S2 / cx.gamma_factor);
+    const double load_ratio = st.g.integral() / unit_load;
+    st.g.tail = std::max(st.g.tail, std::abs(load_ratio - 1));
+    st.g.scale(std::pow(L, -alpha) / load_ratio);
+    st.g.set_interval(st.apex - eps * L, st.apex + one_minus_eps * L);
+    st.epsilon = eps;
+    return;
+  }
   const bool enrich = cx.options.wedge_apex_split && edge_distance > enrich_limit;
   if (isolated && !enrich) {
     auto load_of = [&](double L) {
@@ -772,7 +842,7 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
         if (4 * n >= 3 * N) tail = std::max(tail, std::abs(st.g.jacobi.coefficients[n]));
       }
       st.g.tail = largest > 0 ? tail / largest : 0;
-      st.status = "apex within 1e-4 L of an edge (or wedge_apex_split disabled): plain Jacobi series for the "
+      st.status = "wedge_apex_split disabled: plain Jacobi series for the "
                   "residual and the displacement; C_f and the pressure grid by the Riemann-Hilbert route";
     }
     const auto rh = wedge_by_rh(cx, S1, S2, eps, one_minus_eps);
@@ -788,13 +858,7 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
   if (isolated) {
     // Solved at L = 1 with the apex at 0 (no rounding of apex +- eps), then scaled: g_L(t) =
     // L^-alpha g_1((t - apex)/L), int g_L = L^(1 - alpha) int g_1.
-    forcing F0;
-    if (F.smooth) {
-      const auto smooth = F.smooth;
-      const double apex = st.apex;
-      F0.smooth = [smooth, apex](double s) { return smooth(s + apex); };
-    }
-    for (const auto& [position, jump] : F.steps) F0.steps.push_back({position - st.apex, jump});
+    const forcing F0 = shifted(F, st.apex);
     const double exact_unit_load = unit_load;
     const double L = std::pow(st.target_load / unit_load, 1 / (1 - alpha));
     st.g = build_wedge_step(-eps, one_minus_eps, 0.0, -1, cx, F0);
@@ -877,6 +941,33 @@ void validate(const scene& s) {
 std::string indentor_name(std::size_t i, const indentor& ind) {
   static const char* names[] = {"parabolic", "wedge", "flat", "general_profile"};
   return "indentors[" + std::to_string(i) + "] (" + names[ind.shape.index()] + ")";
+}
+
+// K = lim g (distance to the edge)^-exponent at the leading or trailing edge, with g's exponents
+// (contact_density::exponents). The series' and the apex part's intensities add up, except at the
+// edge next to the apex of the split form (contact_density::physical): there both parts carry the
+// singular exponent of the class nu = 0 and cancel, and K is that of the next term, from g at
+// distances delta = 1e-3 d, d/2, d/4 (d = the apex's distance to that edge, the scale on which g
+// varies there): g/delta^exponent = K + K1 delta + K2 delta^2 + ..., Richardson-extrapolated twice
+// (truncation ~ (delta/d)^3 ~ 1e-9, the cancellation ~ eps d/delta ~ 1e-12: an estimate).
+double edge_intensity(const contact_density& g, bool trailing) {
+  const double parts = trailing ? g.jacobi.intensity_trailing() + (g.has_apex ? g.apex.intensity_trailing() : 0.0)
+                                : g.jacobi.intensity_leading() + (g.has_apex ? g.apex.intensity_leading() : 0.0);
+  if (!g.physical || g.jacobi.coefficients.empty()) return parts;
+  const double h = g.jacobi.half_length(), x_apex = g.apex.apex_reference();
+  const double d = trailing ? 1 - x_apex : 1 + x_apex;  // reference units
+  if (trailing ? !(g.jacobi.del < 0) : !(g.jacobi.gam < 0)) return parts;  // the far edge
+  const double exponent = trailing ? g.physical->del : g.physical->gam;
+  auto ratio = [&](double delta) {
+    const double near = delta, far = 2 - delta;
+    const double value = trailing ? g.jacobi.value_at_distance(far * h, near * h) + g.apex.value_at_distance(far, near)
+                                  : g.jacobi.value_at_distance(near * h, far * h) + g.apex.value_at_distance(near, far);
+    return value / std::pow(near * h, exponent);
+  };
+  const double delta = 1e-3 * d;
+  const double r1 = ratio(delta), r2 = ratio(delta / 2), r4 = ratio(delta / 4);
+  const double e12 = 2 * r2 - r1, e24 = 2 * r4 - r2;
+  return (4 * e24 - e12) / 3;
 }
 
 // Non-const: Boost 1.74 defines tanh_sinh::integrate(f, a, b) without the const of its declaration.
@@ -1226,8 +1317,9 @@ scene_result solve(const scene& s, const solve_options& options) {
     r.total_friction = r.hysteretic_friction + s.material.coulomb;
     // Edges.
     if (!g.line_load) {
-      edge_report lead{edge_side::leading, g.jacobi.lo, g.jacobi.gam < 0, g.jacobi.gam, ps * g.jacobi.intensity_leading()};
-      edge_report trail{edge_side::trailing, g.jacobi.hi, g.jacobi.del < 0, g.jacobi.del, ps * g.jacobi.intensity_trailing()};
+      const edge_exponents e = g.exponents();
+      edge_report lead{edge_side::leading, g.jacobi.lo, e.gam < 0, e.gam, ps * edge_intensity(g, false)};
+      edge_report trail{edge_side::trailing, g.jacobi.hi, e.del < 0, e.del, ps * edge_intensity(g, true)};
       r.edges = {lead, trail};
       if (lead.singular) {
         r.peak_pressure = std::numeric_limits<double>::infinity();

@@ -135,6 +135,22 @@
 // to the apex (x0 -+ d/2 and d/4, 3d/4 of the way to the near edge, in sigma), measured >=
 // error(int g)/42. For eps within 1e-3 of an edge the punch layer uses the Riemann-Hilbert route.
 //
+// Data vanishing on the long side (apex_placement::centred; derived for this module, used by
+// punch's isolated wedge). The limit above comes from F~'s factor (1 + s sigma)^(alpha - 1) on the
+// LONG side, next to the far end. If F = 0 there, F~ is 0 on the long side and the factor
+// multiplies data on the short side only, ~1 from its branch point whatever s is; the solution
+// there sees no singularity of the data's continuation (the inversion integrates the data over the
+// short side only), so the map may put the apex at the centre: s = x0, sigma0 = 0, Taylor degree
+// 12. Piecewise constant data (the wedge) reduce to this case by subtracting the long side's
+// constant, whose solution is a closed form in the class nu = 0 singular at the near edge (math.md
+// section 4, n = 0); nu = -1 is excluded (its defect, a constant, would not vanish on the long
+// side). Measured (alpha = 0.3, beta = 0 and 0.2; rows of tests/abel/test_step_enrichment.cpp):
+// 66 points, Chebyshev tail <= 2e-15, at 1 - eps = 1e-3 .. 1e-12, 0.22 ms per solve without the
+// residual; closed form plus this part against the exact int g of the wedge: <= 2.3e-16.
+// The map keeps 1 - |s| exactly (mobius_rest): s = 1 - 2e-10 rounded moves the apex's image by
+// ~1e-6 of its distance to the edge, and int_a^t0 g (|sigma|^-alpha at the apex) was off by
+// ~1e-13/d (1e-7 at d = 1e-6; now within 2e-14 of a long double solve).
+//
 // Residual: direct quadrature of the one-sided integrals at interior Chebyshev points (never at
 // a sampling node nor at x0) plus the four points next to the apex; for the phi part this is the
 // same quadrature that built the data, so the residual checks the smooth part; the phi part is
@@ -179,8 +195,21 @@ struct enriched_density {
   /// -log|x - x0| - pi tan(beta pi/2) [x > x0]); the "-1/alpha" part is w q, a smooth density.
   bool normalized = false;
   Real one_minus_kappa_over_alpha = 0;
-  /// s of the Moebius map x = M(sigma) = (sigma + s)/(1 + s sigma), |s| < 1; 0: no map.
+  /// s of the Moebius map x = M(sigma) = (sigma + s)/(1 + s sigma), |s| < 1; 0: no map. Set it
+  /// with set_mobius: every formula takes 1 - s and 1 + s from mobius_rest.
   Real mobius = 0;
+  /// 1 - |s|, exact: the apex 1e-10 from an edge has s = 1 - 2e-10, whose rounding would move the
+  /// apex's image M(0) by ~1e-6 of its distance to the edge (next to the apex the one-sided
+  /// integrals carry |sigma - x0|^-alpha: int_a^t0 g was off by ~1e-13/d relative).
+  Real mobius_rest = 1;
+
+  /// The map with s = sign * (1 - rest), from the exact complement rest in (0, 1].
+  void set_mobius(const Real& rest, bool negative) {
+    mobius_rest = rest;
+    mobius = negative ? rest - 1 : 1 - rest;
+  }
+  Real one_minus_s() const { return mobius >= 0 ? mobius_rest : 2 - mobius_rest; }
+  Real one_plus_s() const { return mobius >= 0 ? 2 - mobius_rest : mobius_rest; }
 
   Real half_length() const { return smooth.half_length(); }
 
@@ -218,15 +247,16 @@ struct enriched_density {
   /// denominators are sums of two non-negative terms ((1 - |s|) + |s| times a distance).
   std::array<Real, 3> sigma_of(const Real& one_plus_x, const Real& one_minus_x) const {
     using std::abs;
-    const Real s = mobius, rest = 1 - abs(s);
+    const Real s = mobius, rest = mobius_rest;
     const Real one_minus_sx = s >= 0 ? rest + s * one_minus_x : rest - s * one_plus_x;
-    return {(1 - s) * one_plus_x / one_minus_sx, (1 + s) * one_minus_x / one_minus_sx, (1 - s) * (1 + s) / one_minus_sx};
+    return {one_minus_s() * one_plus_x / one_minus_sx, one_plus_s() * one_minus_x / one_minus_sx,
+            one_minus_s() * one_plus_s() / one_minus_sx};
   }
   std::array<Real, 3> x_of(const Real& one_plus_sigma, const Real& one_minus_sigma) const {
     using std::abs;
-    const Real s = mobius, rest = 1 - abs(s);
+    const Real s = mobius, rest = mobius_rest;
     const Real one_plus_s_sigma = s >= 0 ? rest + s * one_plus_sigma : rest - s * one_minus_sigma;
-    return {(1 + s) * one_plus_sigma / one_plus_s_sigma, (1 - s) * one_minus_sigma / one_plus_s_sigma, one_plus_s_sigma};
+    return {one_plus_s() * one_plus_sigma / one_plus_s_sigma, one_minus_s() * one_minus_sigma / one_plus_s_sigma, one_plus_s_sigma};
   }
   /// Distance beyond the end -1 (first) and +1 (second) of the sigma axis of the pole -1/s of the
   /// map's factors (1 + s sigma)^c; infinite without a map or on the other side.
@@ -234,7 +264,7 @@ struct enriched_density {
     using std::abs;
     const Real inf = std::numeric_limits<Real>::infinity();
     if (mobius == 0) return {inf, inf};
-    const Real d = (1 - abs(mobius)) / abs(mobius);
+    const Real d = mobius_rest / abs(mobius);
     return mobius > 0 ? std::array<Real, 2>{d, inf} : std::array<Real, 2>{inf, d};
   }
 
@@ -243,11 +273,11 @@ struct enriched_density {
   /// farther than the pole). Without a map: d.
   Real beyond_in_sigma(const Real& d, bool below) const {
     using std::abs;
-    const Real s = mobius, rest = 1 - abs(s);
+    const Real s = mobius, rest = mobius_rest;
     // 1 - s x at x = -1 - d or 1 + d, as (1 - |s|) plus or minus |s| times a distance.
     const Real one_minus_sx = below ? (s >= 0 ? rest + s * (2 + d) : rest + s * d) : (s >= 0 ? rest - s * d : rest - s * (2 + d));
     if (!(one_minus_sx > 0)) return std::numeric_limits<Real>::infinity();
-    return (below ? 1 - s : 1 + s) * d / one_minus_sx;
+    return (below ? one_minus_s() : one_plus_s()) * d / one_minus_sx;
   }
 
   /// g at the point with reference distances 1 + x, 1 - x to the ends (x != x0). For many points
@@ -270,7 +300,7 @@ struct enriched_density {
   /// A[g](M(sigma)) = this times A[g~](sigma); 1 without a map.
   Real covariance_factor(const Real& one_plus_s_sigma) const {
     using std::pow;
-    return pow((1 - mobius) * (1 + mobius), alpha) * pow(one_plus_s_sigma, 1 - alpha);
+    return pow(one_minus_s() * one_plus_s(), alpha) * pow(one_plus_s_sigma, 1 - alpha);
   }
   /// The apex on the x axis: x_of(1 + x0, 1 - x0) = {1 + x_apex, 1 - x_apex, 1 + s sigma0} (the
   /// last is 1 without a map).
@@ -317,7 +347,7 @@ struct enriched_density {
     const Real mapped = smooth.intensity_leading() + enrichment * pow(2 / (smooth.hi - smooth.lo), smooth.gam) *
                                                          pow(Real(2), smooth.del) * q_at(Real(-1)) * E_full(1 + x0, false);
     const Real s = mobius;
-    return s == 0 ? mapped : mapped * pow((1 - s) / (1 + s), smooth.gam) * pow(1 - s, 1 + alpha);
+    return s == 0 ? mapped : mapped * pow(one_minus_s() / one_plus_s(), smooth.gam) * pow(one_minus_s(), 1 + alpha);
   }
   /// Trailing-edge intensity lim g (b-t)^(-del): smooth part plus C 2^gam q(1) E(+1), times (2/L)^del;
   /// mapped: that of g~ times ((1 + s)/(1 - s))^del (1 + s)^(1 + alpha).
@@ -326,7 +356,7 @@ struct enriched_density {
     const Real mapped = smooth.intensity_trailing() + enrichment * pow(2 / (smooth.hi - smooth.lo), smooth.del) *
                                                           pow(Real(2), smooth.gam) * q_at(Real(1)) * E_full(1 - x0, true);
     const Real s = mobius;
-    return s == 0 ? mapped : mapped * pow((1 + s) / (1 - s), smooth.del) * pow(1 + s, 1 + alpha);
+    return s == 0 ? mapped : mapped * pow(one_plus_s() / one_minus_s(), smooth.del) * pow(one_plus_s(), 1 + alpha);
   }
 
   /// q(x) (the Taylor polynomial) at x.
@@ -417,7 +447,7 @@ class enriched_evaluator {
       pt.one_plus = m[0], pt.one_minus = m[1];
       pt.weight.times(m[2], 1 + d.alpha);
       // 1 - s x = (1 - s^2)/(1 + s sigma), the same at the apex.
-      if (dx != nullptr) pt.u = *dx * m[2] * one_plus_s_sigma0 / ((1 - s) * (1 + s));
+      if (dx != nullptr) pt.u = *dx * m[2] * one_plus_s_sigma0 / (d.one_minus_s() * d.one_plus_s());
     }
     if (dx == nullptr) pt.u = pt.one_plus <= pt.one_minus ? pt.one_plus - (1 + d.x0) : (1 - d.x0) - pt.one_minus;
     pt.x = pt.one_plus <= pt.one_minus ? pt.one_plus - 1 : 1 - pt.one_minus;
@@ -507,6 +537,17 @@ template <class Real>
 Real moebius_apex_exponent() {
   return Real(1) / 4;
 }
+
+/// Where solve_step's Moebius map puts the apex (header, "Apex near an edge" and "Data vanishing on
+/// the long side").
+enum class apex_placement {
+  /// Any F. With |x0| > moebius_threshold the apex's ratio r becomes r^(1/4); otherwise no map.
+  balanced,
+  /// F = 0 on the long side of t0 (the side of the farther edge; checked at every sampling point,
+  /// std::invalid_argument otherwise) and nu = 0 or +1 (nu = -1 removes a constant defect, which
+  /// does not vanish there). The map puts the apex at sigma = 0 (s = x0; none when x0 = 0).
+  centred
+};
 
 namespace detail {
 
@@ -879,7 +920,7 @@ Real enriched_density<Real>::integrate_between(Fn&& f, const Real& from, const R
       if (mobius != 0) {
         const auto d = x_of(one_plus, one_minus);
         one_plus = d[0], one_minus = d[1];
-        jacobian = (1 - mobius) * (1 + mobius) * pow(d[2], alpha - 1);
+        jacobian = one_minus_s() * one_plus_s() * pow(d[2], alpha - 1);
       }
       return jacobian * f(one_plus <= one_minus ? lo + h * one_plus : hi - h * one_minus);
     };
@@ -1068,7 +1109,8 @@ Real apply(const abel_operator<Real>& op, const enriched_density<Real>& g, const
 /// residual (an estimate, see header), solvability_defect (nu = -1), degree and taylor_degree.
 template <class Real, class F>
 enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, edge trailing, F&& f, const Real& t0,
-                                   const solve_options<Real>& options = {}, std::size_t taylor_degree = 0) {
+                                   const solve_options<Real>& options = {}, std::size_t taylor_degree = 0,
+                                   apex_placement placement = apex_placement::balanced) {
   using std::abs;
   using std::cos;
   using std::max;
@@ -1078,6 +1120,9 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   if (!(t0 > op.lo() && t0 < op.hi()))
     detail::throw_bad_parameter("rhabel::abel::solve_step", "t0", t0, "(lo, hi)");
   const auto e = op.exponents(leading, trailing);
+  const bool centred = placement == apex_placement::centred;
+  if (centred && e.nu == -1)
+    detail::throw_bad_parameter("rhabel::abel::solve_step", "nu (apex_placement::centred)", Real(e.nu), "{0, +1}");
   const Real h = op.half_length();
   const Real scale_F = pow(h, -alpha);
   const Real pi = boost::math::constants::pi<Real>();
@@ -1105,13 +1150,19 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
     return std::size_t(1);
   };
   const Real one_plus_x0 = (t0 - op.lo()) / h, one_minus_x0 = (op.hi() - t0) / h;
-  if (taylor_degree == 0) {
+  if (centred) {
+    // M(0) = s: the map with s = x0 puts the apex at the centre (header, "Data vanishing on the long side").
+    g.set_mobius(std::min(one_plus_x0, one_minus_x0), one_plus_x0 < one_minus_x0);
+    g.x0 = 0;
+    if (taylor_degree == 0) taylor_degree = automatic_degree(g.x0, g.mobius);
+  } else if (taylor_degree == 0) {
     if (!(abs(x0) > moebius_threshold<Real>())) taylor_degree = automatic_degree(x0, Real(0));
     if (abs(x0) > moebius_threshold<Real>()) {
       // Apex near an edge: the Moebius map that splits r = (1 - x0)/(1 + x0) (see header).
       using std::pow;
       const Real r = one_minus_x0 / one_plus_x0, r_map = pow(r, 1 - moebius_apex_exponent<Real>());
-      g.mobius = (1 - r_map) / (1 + r_map);
+      // s = (1 - r_map)/(1 + r_map): 1 - |s| = 2 min(r_map, 1)/(1 + r_map).
+      g.set_mobius(2 * std::min(r_map, Real(1)) / (1 + r_map), r_map > 1);
       const auto apex = g.sigma_of(one_plus_x0, one_minus_x0);
       g.x0 = apex[0] <= apex[1] ? apex[0] - 1 : 1 - apex[1];
       taylor_degree = automatic_degree(g.x0, g.mobius);
@@ -1135,10 +1186,13 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   // constant is not constant in sigma, so the physical defect is removed from F before the map:
   // by Gauss-Jacobi on [-1, x0] and [x0, 1] (F smooth on each), graded toward the far end.
   // F at the point with reference distances 1 + x, 1 - x (x axis), checked finite.
+  const bool long_side_below = one_minus_x0 <= one_plus_x0;  // the apex is nearer to hi
   auto f_at = [&](const Real& one_plus, const Real& one_minus) {
     const Real t = one_plus <= one_minus ? op.lo() + h * one_plus : op.hi() - h * one_minus;
     const Real v = f(t);
     detail::check_finite_value("rhabel::abel::solve_step", v, t);
+    if (centred && v != 0 && (long_side_below ? one_plus < one_plus_x0 : one_minus < one_minus_x0))
+      detail::throw_bad_parameter("rhabel::abel::solve_step", "f on the long side of t0 (apex_placement::centred)", v, "{0}");
     return v;
   };
   Real physical_defect = 0;
@@ -1189,11 +1243,17 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   // side on which F is evaluated (s < t0 or s > t0 in the physical variable, rounded) is the
   // side on which A[phi] is evaluated, however large |t0| is compared with the length.
   using std::sqrt;
+  // A point next to the apex gets its abscissa from its distance to the nearer end, with an absolute
+  // rounding ~ eps (|that end| + |t0|); sqrt(eps) times that (reference units) leaves a wide berth.
+  // (Before: sqrt(eps) (1 + max(|lo|, |hi|)/h), which the map below turned into more than a node
+  // spacing for an apex 1e-9 from the end at 0 of [-1, 1e-9]: the residual's search for a grid
+  // avoiding x0 never ended.)
   // Mapped: distances at the apex shrink by M'(sigma0) = (1 - s^2)/(1 + s sigma0)^2 on the x axis.
-  Real margin = sqrt(std::numeric_limits<Real>::epsilon()) * (1 + max(abs(op.lo()), abs(op.hi())) / h);
+  const Real nearer_end = one_plus_x0 <= one_minus_x0 ? abs(op.lo()) : abs(op.hi());
+  Real margin = sqrt(std::numeric_limits<Real>::epsilon()) * (nearer_end + abs(t0)) / h;
   if (s_map != 0) {
     const Real one_plus_s_sigma0 = g.apex_in_x()[2];
-    margin *= max(Real(1), one_plus_s_sigma0 * one_plus_s_sigma0 / ((1 - s_map) * (1 + s_map)));
+    margin *= max(Real(1), one_plus_s_sigma0 * one_plus_s_sigma0 / (g.one_minus_s() * g.one_plus_s()));
   }
   std::size_t used = m;
   // Nested grids: the first-kind grid of size 3m contains the grid of size m (node j is node

@@ -93,7 +93,7 @@
 //     by abel's direct quadrature of A[phi] (the one solve_step used to build the data: for that part
 //     only the smooth remainder is checked), the other indentors by abel_operator::apply / abel::apply.
 //     Measured: <= 7e-13 for single indentors at alpha in {0, 1e-8, 5e-4} (tests/punch/
-//     test_contact.cpp); 8.9e-14 for examples/default_scene.json (coupled wedge + parabola, the wedge's
+//     test_contact.cpp); 8.6e-14 for examples/default_scene.json (coupled wedge + parabola, the wedge's
 //     apex at eps 0.88, mapped; it was 7e-6 with the former apex split, 2e-10 with solve_step capped
 //     at 129 points, 3e-11 before the map).
 //   * Displacement: outside the contact from the slope integral (paper 27, 28) integrated in closed
@@ -102,21 +102,17 @@
 //     contact f(x) - f(a) exactly. Elastic flat punch against -(2P/(pi E*)) arccosh(x/c): < 1e-8 for
 //     |x| >= 1.4 c; accuracy degrades next to the edges (log kernel nearly singular there).
 //   * Cost (Release, warm caches; build/bin/study_scene_timing and study_wedge_near_edge: wall time
-//     of solve_single, grid_points = 1000, displacement off, minimum per call, then over 3 and 2
+//     of solve_single, grid_points = 1000, displacement off, minimum per call, then over 2 and 2
 //     runs; the cheapest solve_options::tolerance at which C_f and the pressure reach 1e-10, with /
-//     without the residual): single parabola ~0.2 ms. Single wedge below the boundary, alpha >= 0.05:
-//     apex >= 0.01 L from both edges (65 points) 0.42-0.64 / 0.30-0.38 ms (eps 0.843: 0.35 ms;
-//     0.907: 0.36; 0.972: 0.38); apex 1e-3 .. 1e-2 L from an edge (195 points) 1.07-2.29 / 0.78-1.05
-//     ms; 5e-4 L (585 points) 4.8 / 2.7 ms; within 1e-4 L (Riemann-Hilbert route) 3.7-3.9 /
-//     3.5-3.6 ms. alpha <= 1e-3 (solve_step's logarithmic enrichment, its end rule at the apex a
-//     Gauss rule for the weight (t^-alpha - 1)/alpha): 0.59-0.90 / 0.46-0.62 ms with the apex >=
-//     0.01 L from the edges. Slope ratios 1e-6 and 1e6 (the apex
-//     within 1e-11 L of an edge, Riemann-Hilbert route): 2.0-17.4 ms, C_f within 3e-12 .. 2.7e-9
-//     of the order-16 reference (the reference itself is weak there). So the target of issue #4
-//     (1e-10 for eps, L, C_f and 1000 samples in < 1 ms) is met, without the residual, with the
-//     apex >= 0.01 L from the edges for every alpha, and down to 0.002 L where measured (alpha
-//     0.05, 0.2: 0.78-0.96 ms); not at 0.001 L (1.02 ms; 1.40 ms elastic) nor closer (1.6-3.5 ms
-//     within 5e-4 L).
+//     without the residual): single parabola ~0.2 ms. Single wedge below the boundary: apex >= L/4
+//     from both edges (65 points, no map) 0.43-0.69 / 0.30-0.52 ms; nearer an edge, the split form
+//     (the long side's constant in closed form plus the short side's step with the apex mapped to
+//     the centre, 66 points; punch/src/contact.cpp, build_wedge_near_edge) 0.52-0.97 / 0.34-0.60 ms
+//     down to 1e-3 L, 0.82-1.49 / 0.36-0.42 ms within 1e-3 L, 1.46-2.94 / 0.44-0.78 ms at slope
+//     ratios 1e-6 and 1e6 (apex within ~1e-7 L; C_f within 2.2e-12 .. 1.8e-9 of an order-16
+//     reference that is itself good to ~1e-10 there: README.md). So the target of issue #4 (1e-10
+//     for eps, L, C_f and 1000 samples in < 1 ms) is met without the residual for every measured
+//     isolated wedge (before session 7: not within 0.002 L of an edge, 1.0-17.4 ms).
 //     Where the time goes (alpha = 0.3, S2/S1 = 0.1): abel::solve_step's quadrature of A[phi]
 //     ~0.3 ms (65 points), the 1000 samples ~0.11 ms (their series summed four points at a time,
 //     quadrature::jacobi_series::evaluate: was 0.17 ms one point at a time), the independent
@@ -196,9 +192,10 @@ struct solve_options {
   double tolerance = 1e-12;     ///< relative tolerance of the root finders and of the expansions
   std::size_t max_degree = 128; ///< largest Jacobi degree of a density expansion (cost ~ degree^2);
                                 ///< the wedge's enriched solve may use up to max(2 max_degree + 1, 585) points
-  /// Wedge below the boundary with min(eps, 1 - eps) > 1e-3: build the apex singularity into the
-  /// density (abel::solve_step's singular enrichment; spectral convergence, no Gibbs oscillation at
-  /// the apex). L and eps are exact either way. false: plain Jacobi series of degree max_degree
+  /// Wedge below the boundary: build the apex singularity into the density (abel::solve_step's
+  /// singular enrichment; spectral convergence, no Gibbs oscillation at the apex; an isolated wedge
+  /// with the apex nearer an edge than L/4 in the split form, a coupled one down to 1e-4 L from an
+  /// edge). L and eps are exact either way. false: plain Jacobi series of degree max_degree
   /// (C_f and the pressure samples of an isolated wedge then from the Riemann-Hilbert route; a
   /// coupled one: pressure poor next to the apex, C_f by Richardson extrapolation, ~1e-6; residual
   /// and displacement from the series). The name is kept from the former apex split.
@@ -217,7 +214,11 @@ struct edge_report {
   double position = 0;          ///< abscissa of the edge [m]
   bool singular = false;        ///< exponent < 0 (infinite pressure at the edge)
   double exponent = 0;          ///< gam (leading) or del (trailing) of the notes
-  double intensity_factor = 0;  ///< K = lim p / distance^exponent [Pa m^-exponent]
+  /// K = lim p / distance^exponent [Pa m^-exponent], of the whole density (series and apex part;
+  /// before session 7 the apex part was left out). At the edge next to the apex of an isolated
+  /// wedge nearer an edge than L/4: an estimate (Richardson extrapolation, contact.cpp
+  /// edge_intensity), measured within 2.8e-11 of the elastic closed form.
+  double intensity_factor = 0;
 };
 
 struct indentor_result {

@@ -14,6 +14,9 @@
 //     apex near an edge (|x0| > 1/2) solve_step's Moebius map makes the series live in the mapped
 //     variable: then apex holds the WHOLE density (apex.mobius != 0) and jacobi only a c_0 (zero
 //     until set_load corrects the load);
+//   * for an isolated wedge with the apex in the outer quarters of the contact: jacobi the closed
+//     form for the long side's constant data and apex the rest, both in the class singular at the
+//     edge next to the apex, and `physical` the bounded class they sum to (see `physical`);
 //   * a line load (flat punch on/above the boundary);
 //   * forcing: the right side of (8) as smooth part + steps (projected in contact.cpp with the steps'
 //     coefficients in closed form).
@@ -23,6 +26,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -48,11 +52,17 @@ struct contact_density {
   bool has_apex = false;       ///< g additionally holds apex = C phi (wedge below the boundary)
   abel::enriched_density<double> apex;  ///< C phi; apex.smooth carries [a, b], gam, del, no coefficients
   double apex_integral = 0;    ///< int C phi (a composite quadrature: computed once, kept by scale)
+  /// Isolated wedge with the apex in the outer quarters (contact.cpp, build_wedge_near_edge): jacobi
+  /// holds the closed-form solution for the long side's constant data in the class singular at the
+  /// edge next to the apex (nu = 0) and apex the rest (abel::apex_placement::centred), in the same
+  /// class. Their singular parts at that edge cancel (the orthogonality condition), so g has these
+  /// exponents (nu = -1); empty otherwise (g has jacobi's).
+  std::optional<edge_exponents> physical;
 
   double a() const { return jacobi.lo; }
   double b() const { return jacobi.hi; }
   double length() const { return jacobi.hi - jacobi.lo; }
-  edge_exponents exponents() const { return {jacobi.gam, jacobi.del, nu}; }
+  edge_exponents exponents() const { return physical ? *physical : edge_exponents{jacobi.gam, jacobi.del, nu}; }
   /// Abscissa of the apex (has_apex only), from the enrichment's reference breakpoint.
   double apex_position() const { return a() + (1 + apex.apex_reference()) * length() / 2; }
   /// Moves the density to [lo, hi] (same reference shape).
