@@ -341,3 +341,36 @@ TEST_CASE("wedge alpha 0.2, S2/S1 = 3 (eps = 0.972): pressure against the Rieman
     CHECK(std::abs(few.pressure[k] - oracle.pressure(few.grid_x[k])) < target * peak);
   }
 }
+
+// Regression "alpha = 0.01 next to an edge": the split form's short-side solve uses the plain
+// enrichment from alpha = 0.01 up, whose rounding floor with the apex centred is ~eps/alpha^2 (the
+// Chebyshev tail at 65 points measured 1-2e-12 at alpha = 0.01); with the former floor
+// eps/(4 alpha)^2 the solve went on to 585 points (9 ms) without gaining accuracy. Oracle: the
+// Riemann-Hilbert route (wedge_apex_split = false: C_f and the pressure samples from
+// riemann::solve_abel_rh), independent by method.
+TEST_CASE("alpha = 0.01 .. 0.015, apex 0.02 L and 2e-6 L from an edge: first sampling grid, C_f and pressure against the Riemann-Hilbert route") {
+  for (double alpha : {0.01, 0.015}) {
+    for (double ratio : {10.0, 0.1, 1000.0}) {
+      CAPTURE(alpha);
+      CAPTURE(ratio);
+      const material m{alpha, 1.0, 0.3, 0.0};
+      solve_options o;
+      o.grid_points = 1000;
+      o.displacement = false;
+      o.residual = false;
+      const indentor ind{wedge{0.1, 0.1 * ratio}, 1.0, 0.0};
+      const auto split = solve_single(m, 1.0, ind, o);
+      o.wedge_apex_split = false;
+      const auto route = solve_single(m, 1.0, ind, o);
+      CHECK(split.degree < 70);  // series of the first (66-point) level; 569 before
+      CHECK(std::abs(split.hysteretic_friction / route.hysteretic_friction - 1) < target);
+      double worst = 0, peak = 0;
+      for (std::size_t k = 0; k < split.pressure.size(); ++k) {
+        worst = std::max(worst, std::abs(split.pressure[k] - route.pressure[k]));
+        peak = std::max(peak, std::abs(route.pressure[k]));
+      }
+      CAPTURE(worst / peak);
+      CHECK(worst < target * peak);
+    }
+  }
+}
