@@ -133,7 +133,8 @@
 // int g 6e-8 .. 3e-6 at 1025 points, status not_converged). The solver reports what it did not
 // reach: status not_converged and a residual sampled at the Chebyshev points of both axes and next
 // to the apex (x0 -+ d/2 and d/4, 3d/4 of the way to the near edge, in sigma), measured >=
-// error(int g)/42. For eps within 1e-3 of an edge the punch layer uses the Riemann-Hilbert route.
+// error(int g)/42. Data vanishing on the long side of t0 do not have this limit (next section):
+// the punch layer's isolated wedge is reduced to them.
 //
 // Data vanishing on the long side (apex_placement::centred; derived for this module, used by
 // punch's isolated wedge). The limit above comes from F~'s factor (1 + s sigma)^(alpha - 1) on the

@@ -55,30 +55,33 @@
 //     The density has a |s - apex|^-alpha (log at alpha = 0) singularity at the apex: it is built in
 //     by abel::solve_step (g = C phi + w sum c_n P_n, C from the jump in closed form, the remainder by
 //     adaptive Chebyshev interpolation on 65, 195, 585 points, at most max(2 max_degree + 1, 585)),
-//     then c_0 is set to the exact load. An apex within L/4 of an edge (eps outside [1/4, 3/4]:
-//     slope ratios beyond ~2.4, or alpha + beta/2 near 1/2; eps = 0.907 for alpha = 0.3, S1 = S2) is
-//     moved toward the centre by solve_step's Moebius map (abel/step_enrichment.hpp), which keeps
-//     65 points down to ~1e-2 L from the edge and 195-585 down to 1e-4 L. C_f = (S1 int_a^apex g -
-//     S2 int_apex^b g)/int g with the smaller share integrated directly. error_estimate =
-//     max(Chebyshev tail, relative load defect of the enriched density before c_0 is corrected): an
-//     estimate (it understated the pressure error up to 55x at eps 0.9995: 2e-13 against 1.1e-11).
-//     Measured against the Riemann-Hilbert route (riemann::solve_abel_rh at order 24: C_f and the
-//     pointwise density; tests/punch/test_wedge.cpp, build/bin/study_wedge_near_edge,
-//     build/bin/study_scene_timing; tolerance 1e-10): eps 0.84 .. 0.999 and 0.01, alpha 0.1 .. 0.3:
-//     C_f 2.4e-15 .. 9.9e-13, the 1000 pressure samples 1e-14 .. 1.1e-11 of the peak; elastic
-//     frictionless wedge at eps 0.972 and 0.999 against its closed form: pressure 4.3e-14, 2.8e-13,
-//     C_f 8.3e-15, 2.2e-14; all 41 step-path cases of study_scene_timing (alpha in {0, 1e-3, 0.05,
-//     0.2, 0.3, 0.45}, k in {0, 0.5}, S2/S1 in {0.1, 1, 10}): C_f <= 2.2e-12, pressure <= 5.3e-11.
-//     Within 1e-4 L of an edge (enrich_limit) the isolated wedge takes C_f AND the pressure samples
-//     from the Riemann-Hilbert route (order 16 on the unit interval, the samples from a piecewise
-//     Chebyshev interpolant of its density graded towards the apex; the status says so and gives
-//     the samples' error estimate): eps 0.9999, 0.99999: C_f 1.4e-14 .. 2.7e-12, pressure 4e-14 of
-//     the peak; the plain Jacobi series carries the residual and the displacement (its
-//     error_estimate, ~1 there, says how rough it is). Within 1e-14 L of the trailing edge the contact is solved as ending at the apex
-//     (C_f from the Riemann-Hilbert route while 1 - eps > 1e-30, else S1).
+//     then c_0 is set to the exact load. An isolated wedge with the apex within L/4 of an edge (eps
+//     outside [1/4, 3/4]: slope ratios beyond ~2.4, or alpha + beta/2 near 1/2; eps = 0.907 for
+//     alpha = 0.3, S1 = S2) is split (punch/src/contact.cpp, build_wedge_near_edge): the long
+//     side's constant of F in closed form (class nu = 0, singular at the near edge) plus the rest,
+//     which vanishes on the long side, by solve_step with the apex mapped to the centre
+//     (abel::apex_placement::centred); the singular parts cancel (the orthogonality condition) and
+//     the load is matched by scaling the whole density. 66 points from L/4 down to 1e-14 L. C_f =
+//     (S1 int_a^apex g - S2 int_apex^b g)/int g with the smaller share integrated directly.
+//     error_estimate = max(Chebyshev tail, relative load defect of the density before the load is
+//     corrected): an estimate. Measured against the Riemann-Hilbert route (riemann::solve_abel_rh at
+//     order 24: C_f and the pointwise density; tests/punch/test_wedge.cpp,
+//     build/bin/study_wedge_near_edge, build/bin/study_scene_timing; tolerance 1e-10): eps 0.84 ..
+//     0.99999 and 0.01, alpha 0.1 .. 0.3: C_f <= 1.6e-14, the 1000 pressure samples <= 2.4e-14 of
+//     the peak; elastic frictionless wedge at eps 0.972 .. 0.99999 against its closed form: pressure
+//     <= 1.1e-14, C_f <= 8.4e-16, and to 1 - eps = 2.5e-12 (tests): pressure <= 3.4e-11; the 50
+//     cases of study_scene_timing with 1 - eps >= 1e-14: C_f <= 2.4e-14 and pressure <= 9.9e-13 at
+//     slope ratios 0.1 .. 10, within 1.8e-9 of an order-16 reference that is itself good to ~1e-10
+//     at 1e-6 and 1e6 (README.md). Within 1e-14 L of the trailing edge the contact is solved as
+//     ending at the apex (C_f from the Riemann-Hilbert route while 1 - eps > 1e-30, else S1). With
+//     solve_options::wedge_apex_split off the isolated wedge takes C_f and the pressure samples
+//     from the Riemann-Hilbert route (order 16 on the unit interval, samples from a piecewise
+//     Chebyshev interpolant; the status says so) and the plain Jacobi series the rest.
 //     A coupled wedge (other indentors present) finds eps by the orthogonality root and takes C_f
-//     and the pressure from its enriched density (Richardson-extrapolated series for C_f within
-//     1e-4 L of an edge; no Riemann-Hilbert route for coupled contacts).
+//     and the pressure from its enriched density, the apex near an edge moved by solve_step's
+//     balanced Moebius map (65 points down to ~1e-2 L from the edge, 195-585 down to 1e-4 L);
+//     within 1e-4 L the Richardson-extrapolated series for C_f (no Riemann-Hilbert route for
+//     coupled contacts).
 //   * Flat punch below the boundary: nu = +1, spectral, 1e-15; above/on the boundary a line load.
 //   * Several indentors: block Gauss-Seidel on system 41 (each interval re-solved with the others'
 //     action on its right side, computed with the graded cross-term nodes and kernel of
