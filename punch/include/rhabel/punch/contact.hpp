@@ -70,8 +70,9 @@
 //     0.99999 and 0.01, alpha 0.1 .. 0.3: C_f <= 1.6e-14, the 1000 pressure samples <= 2.4e-14 of
 //     the peak; elastic frictionless wedge at eps 0.972 .. 0.99999 against its closed form: pressure
 //     <= 1.1e-14, C_f <= 8.4e-16, and to 1 - eps = 2.5e-12 (tests): pressure <= 3.4e-11; the 50
-//     cases of study_scene_timing with 1 - eps >= 1e-14: C_f <= 2.4e-14 and pressure <= 9.9e-13 at
-//     slope ratios 0.1 .. 10, within 1.8e-9 of an order-16 reference that is itself good to ~1e-10
+//     cases of study_scene_timing with 1 - eps >= 1e-14: C_f <= 8.0e-13 and pressure <= 4.1e-12 at
+//     slope ratios 0.1 .. 10 (the split ones: 1.3e-13, 9.9e-13), within 1.8e-9 of an order-16
+//     reference that is itself good to ~1e-10
 //     at 1e-6 and 1e6 (README.md). Within 1e-14 L of the trailing edge the contact is solved as
 //     ending at the apex (C_f from the Riemann-Hilbert route while 1 - eps > 1e-30, else S1). With
 //     solve_options::wedge_apex_split off the isolated wedge takes C_f and the pressure samples
