@@ -591,6 +591,26 @@ double solve_length(Fn load_of, double L0, double target, double exponent, doubl
 // ---------------------------------------------------------------------------------------------
 // Per-shape contact solvers. Each fills st.g for the current forcing (others held fixed).
 
+// Options of the wedge's abel::solve_step calls: no residual (punch computes its own), the
+// scene's tolerance, and up to 2 max_degree + 1 Chebyshev points, at least the third nested level
+// (585: an apex 1e-4 L from an edge converges there under the balanced map, abel/step_enrichment.hpp):
+// the remainder after the enrichment is smooth, so the cost is the quadrature of A[phi] at the
+// points, not the degree.
+abel::solve_options<double> step_options(const context& cx) {
+  abel::solve_options<double> o;
+  o.residual_points = 0;
+  o.tolerance = cx.options.tolerance;
+  o.max_degree = std::max<std::size_t>(2 * std::max<std::size_t>(cx.options.max_degree, 8) + 1, 585);
+  return o;
+}
+
+// The density's error estimate from a solve_step solution: its Chebyshev tail, at least the
+// tolerance when it did not converge.
+double step_tail(const abel::enriched_solution<double>& sol, const context& cx) {
+  if (sol.status != abel::solve_status::converged) return std::max(sol.coefficient_tail, cx.options.tolerance);
+  return sol.coefficient_tail;
+}
+
 // Wedge density on [a, b] for a forcing with ONE step, at the apex (jump -(S1+S2)/Gamma(1-alpha)):
 // abel::solve_step builds the apex singularity in (g = C phi + w sum c_n P_n, C from the jump in
 // closed form), the rest of F (the faces' constants, the other indentors' smooth action) is solved
@@ -598,13 +618,7 @@ double solve_length(Fn load_of, double L0, double target, double exponent, doubl
 // in g.apex (with an empty series of its own).
 contact_density build_wedge_step(double a, double b, double apex, int nu, const context& cx, const forcing& F) {
   const abel::abel_operator<double> op(cx.par, a, b);
-  abel::solve_options<double> o;
-  o.residual_points = 0;
-  o.tolerance = cx.options.tolerance;
-  // Up to 2 max_degree + 1 Chebyshev points, at least the third nested level (585: an apex 1e-4 L
-  // from an edge converges there, abel/step_enrichment.hpp): the remainder after the enrichment is
-  // smooth, so the cost is the quadrature of A[phi] at the points, not the degree.
-  o.max_degree = std::max<std::size_t>(2 * std::max<std::size_t>(cx.options.max_degree, 8) + 1, 585);
+  const auto o = step_options(cx);
   const auto smooth = F.smooth;
   const auto steps = F.steps;
   auto f = [&](double s) {
@@ -632,8 +646,7 @@ contact_density build_wedge_step(double a, double b, double apex, int nu, const 
   }
   g.has_apex = true;
   g.update_apex_integral();
-  g.tail = sol.coefficient_tail;
-  if (sol.status != abel::solve_status::converged) g.tail = std::max(g.tail, cx.options.tolerance);
+  g.tail = step_tail(sol, cx);
   return g;
 }
 
@@ -665,10 +678,7 @@ contact_density build_wedge_near_edge(double eps, double one_minus_eps, const co
   const abel::abel_operator<double> op(cx.par, a, b);
   const double f_long = near_trailing ? f_leading : f_trailing, f_short = near_trailing ? f_trailing : f_leading;
   auto long_part = abel::solve_image_series(op, leading, trailing, std::vector<double>{std::pow(op.half_length(), -cx.alpha) * f_long});
-  abel::solve_options<double> o;
-  o.residual_points = 0;
-  o.tolerance = cx.options.tolerance;
-  o.max_degree = std::max<std::size_t>(2 * std::max<std::size_t>(cx.options.max_degree, 8) + 1, 585);
+  const auto o = step_options(cx);
   // Exactly 0 on the long side (solve_step checks it): the step's value there is f_long itself.
   const double short_value = f_short - f_long;  // -(S1 + S2) or S1 + S2 (over Gamma(1 - alpha)): no cancellation
   auto short_data = [&](double s) { return (near_trailing ? s > 0 : s < 0) ? short_value : 0.0; };
@@ -680,8 +690,7 @@ contact_density build_wedge_near_edge(double eps, double one_minus_eps, const co
   g.apex = std::move(sol.density);
   g.has_apex = true;
   g.update_apex_integral();
-  g.tail = sol.coefficient_tail;
-  if (sol.status != abel::solve_status::converged) g.tail = std::max(g.tail, cx.options.tolerance);
+  g.tail = step_tail(sol, cx);
   return g;
 }
 

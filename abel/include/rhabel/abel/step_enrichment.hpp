@@ -547,7 +547,7 @@ enum class apex_placement {
   /// Any F. With |x0| > moebius_threshold the apex's ratio r becomes r^(1/4); otherwise no map.
   balanced,
   /// F = 0 on the long side of t0 (the side of the farther edge; checked at every sampling point,
-  /// std::invalid_argument otherwise) and nu = 0 or +1 (nu = -1 removes a constant defect, which
+  /// std::domain_error naming f otherwise) and nu = 0 or +1 (nu = -1 removes a constant defect, which
   /// does not vanish there). The map puts the apex at sigma = 0 (s = x0; none when x0 = 0).
   centred
 };
