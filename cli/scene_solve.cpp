@@ -146,7 +146,8 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
     item["residual"] = ir.residual;
     item["error_estimate"] = ir.error_estimate;
     item["degree"] = ir.degree;
-    item["status"] = ir.status;
+    item["status"] = punch::to_string(ir.code);
+    item["status_message"] = ir.status;
     if (request.grid > 0) {
       if (ir.grid_x.size() != ir.pressure.size() || ir.displacement_x.size() != ir.displacement.size()) {
         throw std::runtime_error("solve: the solver returned grids of mismatched sizes");
@@ -165,7 +166,10 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   doc["indentors"] = std::move(indentors);
   doc["diagnostics"] = {{"residual", r.diagnostics.residual},
                         {"seconds", r.diagnostics.seconds},
-                        {"status", r.diagnostics.status}};
+                        {"iterations", r.diagnostics.iterations},
+                        {"status", punch::to_string(r.diagnostics.code)},
+                        {"status_message", r.diagnostics.status}};
+  out.ok = r.diagnostics.code == punch::status_code::ok;
   doc["scene"] = echo_scene(spec);
   require_finite(doc, "result");
   return out;

@@ -29,6 +29,7 @@ struct run_outcome {
   nlohmann::ordered_json result;  ///< the result document (finite numbers only)
   sampled_table pressure;         ///< indentor,x,pressure (empty unless grid > 0)
   sampled_table displacement;     ///< indentor,x,displacement (empty unless grid > 0)
+  bool ok = true;                 ///< the result's status is "ok" (else `rhabel solve` exits 3)
 };
 
 /// Solves `scene`. Throws input_error if the solver rejects the scene (e.g. indentors whose

@@ -132,7 +132,8 @@ int run(const solve_arguments& args) {
   if (args.csv) write_csv_files(args.csv_prefix, outcome);
   std::fwrite(document.data(), 1, document.size(), stdout);
   std::fputc('\n', stdout);
-  return std::fflush(stdout) == 0 ? 0 : 1;
+  if (std::fflush(stdout) != 0) return 1;
+  return outcome.ok ? 0 : 3;  // 3: the result is written but its status is not "ok"
 }
 
 }  // namespace

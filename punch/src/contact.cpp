@@ -3,6 +3,7 @@
 // ../../../shared/notes/math.md. Everything here is double precision.
 #include "rhabel/punch/contact.hpp"
 #include "rhabel/punch/detail/contact_density.hpp"
+#include "internal.hpp"
 
 #include "rhabel/quadrature/gauss_jacobi.hpp"
 #include "rhabel/quadrature/jacobi_polynomial.hpp"
@@ -28,26 +29,7 @@
 
 namespace rhabel::punch {
 
-namespace {
-
-constexpr double pi = boost::math::constants::pi<double>();
-constexpr double boundary_width = 1e-12;  // |alpha + beta/2 - 1/2| below this is "boundary"
-// Wedge below the boundary, apex at distance min(eps, 1 - eps) L from an edge. The isolated wedge
-// with the apex in an outer quarter (min(eps, 1 - eps) < 1/4) is solved in the split form of
-// build_wedge_near_edge (the long side's constant in closed form plus the short side's step with
-// the apex mapped to the centre): 66 points from 1/4 down to 1 - eps = 1e-14, C_f and pressure
-// within 2e-14 of the Riemann-Hilbert route and of the elastic closed form (study_wedge_near_edge),
-// 0.35-0.58 ms without the residual. A coupled wedge keeps abel::solve_step's balanced map
-// (converges at 65 points down to ~1e-2, 195 down to 1e-3, 585 down to 1e-4) and, within
-// enrich_limit, the plain Jacobi series for everything (pressure unresolved next to the apex; C_f
-// by Richardson extrapolation of the series). With options.wedge_apex_split off, the isolated
-// wedge takes C_f and the pressure samples from the Riemann-Hilbert route (wedge_by_rh,
-// rh_pressure: 3.5-3.6 ms) and the plain series the residual and the displacement.
-constexpr double enrich_limit = 1e-4;
-
-using detail::edge_exponents;
-using detail::forcing;
-using detail::contact_density;
+namespace detail {
 
 // ---------------------------------------------------------------------------------------------
 // Material helpers.
@@ -105,10 +87,6 @@ mapped map_to_reference(double s, double a, double b) {
 // adaptive degree is judged on the smooth part's tail alone (image_expansion::tail); (4) the
 // Chebyshev fallback for a non-integrable image weight (nu = -1 above the boundary), which
 // solve_piecewise rejects. The smooth part: M + 8 Gauss-Jacobi nodes.
-struct image_expansion {
-  std::vector<double> d;
-  double tail = 0;
-};
 
 image_expansion image_coefficients(double a, double b, const edge_exponents& e, const forcing& F,
                                    std::size_t M) {
@@ -187,9 +165,6 @@ image_expansion image_coefficients(double a, double b, const edge_exponents& e, 
   return out;
 }
 
-// Edge classes of the index nu used here: -1 (bounded, bounded), 0 (bounded, unbounded), +1 (unbounded, unbounded).
-abel::edge leading_edge(int nu) { return nu == 1 ? abel::edge::unbounded : abel::edge::bounded; }
-abel::edge trailing_edge(int nu) { return nu == -1 ? abel::edge::bounded : abel::edge::unbounded; }
 
 // Density from the image coefficients of F (abel::solve_image_series: c_n = d_(n - nu) / lambda_n on
 // F~ = (L/2)^(-alpha) F). For nu = +1 the homogeneous coefficient c_0 is left at 0 (the caller adds the load).
@@ -314,41 +289,6 @@ class cross_action {
 
 // ---------------------------------------------------------------------------------------------
 // One indentor inside a scene: its shape, its own F and the solved density.
-
-enum class kind { parabola, wedge, flat, general };
-
-struct indentor_state {
-  kind k = kind::parabola;
-  const indentor* source = nullptr;
-  double apex = 0;
-  double target_load = 0;  // in units of int g (the load divided by (pi/2) E_U)
-  contact_density g;
-  std::string status = "ok";
-  std::optional<double> epsilon;
-  std::optional<double> friction;  // C_f when it does not come from g (wedge, apex next to an edge)
-  double friction_error = 0;       // its error estimate
-  // Isolated wedge with the apex within enrich_limit L of an edge: its Riemann-Hilbert solution on
-  // the unit interval, the source of the pressure samples (see wedge_by_rh).
-  std::shared_ptr<const riemann::abel_rh_solution<double>> rh_unit;
-  double rh_one_minus_eps = 0;  // its interval is [-eps, rh_one_minus_eps]
-  bool solved = false;
-};
-
-struct context {
-  double alpha = 0, beta = 0, kappa = 0, offset = 0;
-  double gamma_factor = 1;  // Gamma(1 - alpha)
-  double pressure_scale = 1;  // (pi/2) E_U
-  solve_options options;
-  // The operator's parameters for rhabel::abel; on the boundary (kappa = 0 above) kappa is exactly 0.
-  abel::abel_parameters<double> par{0.0, 0.0};
-
-  void set_parameters() {
-    par = abel::abel_parameters<double>(alpha, beta);
-    if (kappa == 0 && par.kappa() != 0) par = abel::abel_parameters<double>::from_kappa(alpha, 0.0);
-  }
-  /// Edge exponents of the class of index nu (see leading_edge, trailing_edge).
-  edge_exponents exponents(int nu) const { return par.exponents(leading_edge(nu), trailing_edge(nu)); }
-};
 
 context make_context(const material& m, double speed, const solve_options& options) {
   context cx;
@@ -616,7 +556,8 @@ double step_tail(const abel::enriched_solution<double>& sol, const context& cx) 
 // closed form), the rest of F (the faces' constants, the other indentors' smooth action) is solved
 // spectrally with adaptive Chebyshev interpolation. The series is moved to g.jacobi, C phi stays
 // in g.apex (with an empty series of its own).
-contact_density build_wedge_step(double a, double b, double apex, int nu, const context& cx, const forcing& F) {
+contact_density build_wedge_step(double a, double b, double apex, int nu, const context& cx, const forcing& F,
+                                 double* defect) {
   const abel::abel_operator<double> op(cx.par, a, b);
   const auto o = step_options(cx);
   const auto smooth = F.smooth;
@@ -628,6 +569,7 @@ contact_density build_wedge_step(double a, double b, double apex, int nu, const 
     return v;
   };
   auto sol = abel::solve_step(op, leading_edge(nu), trailing_edge(nu), f, apex, o);
+  if (defect) *defect = sol.solvability_defect;
   contact_density g;
   g.nu = nu;
   if (sol.density.mobius == 0) {
@@ -912,6 +854,18 @@ void solve_flat(indentor_state& st, const context& cx, const forcing& F) {
   st.g.jacobi.coefficients[0] += (st.target_load - particular) / unit;
 }
 
+void solve_isolated(indentor_state& st, const context& cx, bool only_indentor) {
+  const std::vector<indentor_state> none;
+  const forcing F = own_forcing(st, cx, none, 0, false);
+  switch (st.k) {
+    case kind::parabola: solve_parabola(st, cx, F); break;
+    case kind::wedge: solve_wedge(st, cx, F, only_indentor); break;
+    case kind::flat: solve_flat(st, cx, F); break;
+    case kind::general: solve_general(st, cx, F); break;
+  }
+  st.solved = true;
+}
+
 // ---------------------------------------------------------------------------------------------
 
 void validate(const scene& s) {
@@ -1133,15 +1087,107 @@ double psi_distance(double d, double alpha, double one_minus_kappa_over_alpha, d
   return 0;
 }
 
-}  // namespace
+
+// Check points of contact i for the residual of (8) and the sign of the pressure: 7 interior
+// points (1 - cos(pi k/8))/2 of [a, b], and points at 0.37 gap 3^k (k = 0, 1, ... while below L/4)
+// from an end that faces another contact at distance gap: the boundary layer of width ~ gap of
+// nearly touching contacts, which the interior points step over. Never within 1e-3 L of a
+// wedge's apex (the residual's quadrature of the enrichment needs a point off it).
+std::vector<double> check_points(const std::vector<indentor_state>& st, std::size_t i) {
+  const auto& g = st[i].g;
+  std::vector<double> out;
+  if (g.line_load) return out;
+  const double a = g.a(), b = g.b(), L = g.length();
+  for (int k = 1; k <= 7; ++k) out.push_back(a + L * (1 - std::cos(pi * k / 8)) / 2);
+  double gap_lo = std::numeric_limits<double>::infinity(), gap_hi = gap_lo;
+  for (std::size_t j = 0; j < st.size(); ++j) {
+    if (j == i) continue;
+    if (st[j].g.b() <= a) gap_lo = std::min(gap_lo, a - st[j].g.b());
+    if (st[j].g.a() >= b) gap_hi = std::min(gap_hi, st[j].g.a() - b);
+  }
+  for (double d = 0.37 * gap_lo; d < L / 4; d *= 3) out.push_back(a + d);
+  for (double d = 0.37 * gap_hi; d < L / 4; d *= 3) out.push_back(b - d);
+  if (st[i].k == kind::wedge)
+    for (double& x : out)
+      if (std::abs(x - st[i].apex) < 1e-3 * L) x = st[i].apex + (x < st[i].apex ? -2e-3 : 2e-3) * L;
+  return out;
+}
+
+// The status of one contact from its evidence (contact.hpp, status_code): the residual, the error
+// estimate, the sign of the pressure (at 64 interior points and the check points, relative to the
+// mean pressure) and the load. Keeps the solver's note (st.status) in front of the findings.
+void judge(indentor_result& r, const indentor_state& st, const std::vector<double>& points, double pressure_scale,
+           double acceptance) {
+  std::ostringstream why;
+  why.precision(3);
+  status_code code = status_code::ok;
+  auto fail = [&](status_code c, const std::string& text) {
+    if (code == status_code::ok) code = c;
+    why << (why.tellp() > 0 ? "; " : "") << text;
+  };
+  const double target = st.source->load;
+  if (r.residual > acceptance) {
+    std::ostringstream os;
+    os.precision(3);
+    os << "residual of (8) " << r.residual << " > acceptance " << acceptance;
+    fail(status_code::not_converged, os.str());
+  }
+  if (!(r.error_estimate <= acceptance)) {
+    std::ostringstream os;
+    os.precision(3);
+    os << "error estimate " << r.error_estimate << " > acceptance " << acceptance;
+    fail(status_code::not_converged, os.str());
+  }
+  if (!st.g.line_load && st.g.length() > 0) {
+    const double mean = st.g.integral() / st.g.length();
+    double lowest = std::numeric_limits<double>::infinity(), where = st.g.a();
+    auto probe = [&](double t) {
+      const double v = st.g.value(t);
+      if (v < lowest) lowest = v, where = t;
+    };
+    for (int k = 0; k < 64; ++k) probe(st.g.a() + st.g.length() * (1 - std::cos(pi * (k + 0.5) / 64)) / 2);
+    for (double t : points) probe(t);
+    if (lowest < -acceptance * std::abs(mean)) {
+      std::ostringstream os;
+      os.precision(3);
+      os << "negative pressure " << pressure_scale * lowest << " at x = " << where << " (" << lowest / mean
+         << " of the mean pressure)";
+      fail(status_code::tension, os.str());
+    }
+  }
+  if (!(std::abs(r.load - target) <= acceptance * target)) {
+    std::ostringstream os;
+    os.precision(10);
+    os << "load " << r.load << " for " << target << " requested";
+    fail(status_code::load_mismatch, os.str());
+  }
+  r.code = code;
+  if (code == status_code::ok) return;
+  r.status = (st.status == "ok" ? "" : st.status + "; ") + why.str();
+}
+
+}  // namespace detail
 
 // ---------------------------------------------------------------------------------------------
 // Public API.
+
+using namespace detail;
 
 double material::beta() const { return material_beta(*this); }
 double material::kappa() const { return material_kappa(*this); }
 double material::effective_modulus(double speed) const {
   return E1 * boost::math::tgamma(1 - alpha) * std::pow(speed, alpha) / (1 - poisson * poisson);
+}
+
+const char* to_string(status_code code) {
+  switch (code) {
+    case status_code::ok: return "ok";
+    case status_code::not_converged: return "not_converged";
+    case status_code::tension: return "tension";
+    case status_code::load_mismatch: return "load_mismatch";
+    case status_code::contacts_merge: return "contacts_merge";
+  }
+  return "unknown";
 }
 
 std::string regime(const material& m) {
@@ -1196,7 +1242,7 @@ scene_result solve(const scene& s, const solve_options& options) {
     throw std::invalid_argument("rhabel::punch::solve: options.tolerance must be in (0, 1)");
   const context cx = make_context(s.material, s.speed, options);
 
-  // Indentors sorted by apex (leading first).
+  // Indentors sorted by apex (st order; the contacts' order along x is the coupled solve's concern).
   std::vector<std::size_t> order(s.indentors.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(),
@@ -1205,69 +1251,22 @@ scene_result solve(const scene& s, const solve_options& options) {
   for (std::size_t i = 0; i < st.size(); ++i) {
     const auto& ind = s.indentors[order[i]];
     st[i].source = &ind;
+    st[i].scene_index = order[i];
     st[i].k = static_cast<kind>(ind.shape.index());
     st[i].apex = ind.apex;
     st[i].target_load = ind.load / cx.pressure_scale;
   }
   const bool isolated = st.size() == 1;
-
-  auto check_overlap = [&]() {
-    for (std::size_t i = 0; i + 1 < st.size(); ++i) {
-      if (st[i].solved && st[i + 1].solved && st[i].g.jacobi.hi >= st[i + 1].g.jacobi.lo) {
-        std::ostringstream os;
-        os << "rhabel::punch::solve: the contacts of " << indentor_name(order[i], *st[i].source) << " ["
-           << st[i].g.jacobi.lo << ", " << st[i].g.jacobi.hi << "] and " << indentor_name(order[i + 1], *st[i + 1].source) << " ["
-           << st[i + 1].g.jacobi.lo << ", " << st[i + 1].g.jacobi.hi << "] overlap; move the indentors apart";
-        throw std::domain_error(os.str());
-      }
+  coupled_outcome coupled;
+  if (isolated) {
+    try {
+      solve_isolated(st[0], cx, true);
+    } catch (const std::domain_error& err) {
+      throw std::domain_error("rhabel::punch::solve: " + indentor_name(order[0], *st[0].source) + " failed: " + err.what());
     }
-  };
-
-  // Block Gauss-Seidel over the indentors (paper system 41): each interval is solved with the
-  // action of the others' current densities moved to the right side.
-  // Pass 0 solves every indentor alone: overlapping single contacts are reported before coupling.
-  const int max_sweeps = isolated ? 1 : 200;
-  int sweeps = 0;
-  double change = 0;
-  for (; sweeps < max_sweeps; ++sweeps) {
-    change = 0;
-    for (std::size_t i = 0; i < st.size(); ++i) {
-      const double a_old = st[i].g.jacobi.lo, b_old = st[i].g.jacobi.hi, load_scale = st[i].g.length();
-      const forcing F = own_forcing(st[i], cx, st, i, sweeps > 0);
-      try {
-        switch (st[i].k) {
-          case kind::parabola: solve_parabola(st[i], cx, F); break;
-          case kind::wedge: solve_wedge(st[i], cx, F, isolated); break;
-          case kind::flat: solve_flat(st[i], cx, F); break;
-          case kind::general: solve_general(st[i], cx, F); break;
-        }
-      } catch (const std::domain_error& err) {
-        std::ostringstream os;
-        os << "rhabel::punch::solve: " << indentor_name(order[i], *st[i].source)
-           << (sweeps > 0 ? " failed in the coupled iteration (sweep " + std::to_string(sweeps) +
-                                "; contacts nearly touching or overlapping?): "
-                          : " failed: ")
-           << err.what();
-        throw std::domain_error(os.str());
-      }
-      if (st[i].solved && load_scale > 0) {
-        change = std::max(change, std::max(std::abs(st[i].g.jacobi.lo - a_old), std::abs(st[i].g.jacobi.hi - b_old)) / load_scale);
-        // Densities change even where edges do not (flat punch): compare the loads' distribution.
-      }
-      if (!st[i].solved) change = 1;
-    }
-    for (auto& x : st) x.solved = true;
-    check_overlap();
-    if (isolated || change <= 10 * options.tolerance) break;
+  } else {
+    coupled = solve_coupled(st, cx);
   }
-  // Flat punches have fixed edges: iterate a few more sweeps so their densities settle too.
-  std::string global_status = "ok";
-  if (!isolated && change > 10 * options.tolerance) {
-    std::ostringstream os;
-    os << "coupled iteration stopped after " << sweeps << " sweeps with relative edge change " << change;
-    global_status = os.str();
-  }
-
   scene_result out;
   out.beta = cx.beta;
   out.kappa = cx.kappa;
@@ -1352,18 +1351,20 @@ scene_result solve(const scene& s, const solve_options& options) {
       r.peak_pressure = std::numeric_limits<double>::infinity();
       r.peak_pressure_at = g.jacobi.lo;
     }
-    // Residual of (8) at interior check points, by an independent quadrature.
+    // Residual of (8) at check points, by an independent quadrature (evidence: see check_points).
     // abel's quadrature_evaluator and enrichment image are uniform down to alpha = 0 (kernel
     // singularity subtracted for small alpha), so the elastic limit is checked too.
+    const auto points = check_points(st, i);
     if (!options.residual) {
       r.residual = std::numeric_limits<double>::quiet_NaN();  // not asked for (documented)
       worst_residual = r.residual;
     } else if (!g.line_load) {
-      double worst = 0, scale = 0;
+      double worst = 0;
+      // Relative to the data's scale: max |F| at the points, and for a flat face (F = 0) the size
+      // of the density's own action, mean(g) (L/2)^alpha.
+      double scale = g.integral() / g.length() * std::pow(g.length() / 2, cx.alpha);
       const inside_action apply_inside(g, cx.par);
-      for (int k = 1; k <= 7; ++k) {
-        double sck = g.jacobi.lo + g.length() * (1 - std::cos(pi * k / 8)) / 2;
-        if (st[i].k == kind::wedge && std::abs(sck - st[i].apex) < 1e-3 * g.length()) sck += 2e-3 * g.length();
+      for (const double sck : points) {
         double lhs = apply_inside(sck);
         for (std::size_t j = 0; j < st.size(); ++j)
           if (j != i) lhs += apply_outside(st[j].g, sck, cx.par);
@@ -1372,8 +1373,9 @@ scene_result solve(const scene& s, const solve_options& options) {
         scale = std::max(scale, std::abs(rhs));
       }
       r.residual = scale > 0 ? worst / scale : worst;
-      worst_residual = std::max(worst_residual, r.residual);
+      if (!std::isnan(worst_residual)) worst_residual = std::max(worst_residual, r.residual);
     }
+    judge(r, st[i], points, cx.pressure_scale, options.acceptance);
     // Fields on request.
     if (options.grid_points > 0) {
       const std::size_t n = options.grid_points;
@@ -1519,10 +1521,14 @@ scene_result solve(const scene& s, const solve_options& options) {
     out.indentors[order[i]] = std::move(r);
   }
   out.diagnostics.residual = worst_residual;
-  out.diagnostics.status = global_status;
+  out.diagnostics.code = coupled.code;
+  out.diagnostics.status = coupled.code == status_code::ok ? "ok" : coupled.message;
+  out.diagnostics.iterations = coupled.iterations;
   for (std::size_t i = 0; i < out.indentors.size(); ++i)
-    if (out.indentors[i].status != "ok" && global_status == "ok")
+    if (out.indentors[i].code != status_code::ok && out.diagnostics.code == status_code::ok) {
+      out.diagnostics.code = out.indentors[i].code;
       out.diagnostics.status = "see indentors[" + std::to_string(i) + "].status";
+    }
   out.diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -204,11 +204,32 @@ struct solve_options {
   /// coupled one: pressure poor next to the apex, C_f by Richardson extrapolation, ~1e-6; residual
   /// and displacement from the series). The name is kept from the former apex split.
   bool wedge_apex_split = true;
+  /// Threshold of the evidence for status_code::ok (relative residual of (8), relative negative
+  /// pressure, relative load defect, error estimate). A result beyond it is returned with another
+  /// code, never silently.
+  double acceptance = 1e-9;
   /// Compute the independent residual of (8) at 7 interior points (indentor_result::residual,
   /// diagnostics::residual): the evidence that the solution solves the equation. false skips it
   /// (roughly a quarter to a third of a wedge solve; study_scene_timing) and reports NaN there.
   bool residual = true;
 };
+
+/// What a result's evidence says (indentor_result::code, scene_result::diagnostics_t::code). A
+/// result is `ok` only when, on its contact, the independent residual of (8) is within
+/// solve_options::acceptance (relative to the data's scale), the pressure is non-negative to that
+/// tolerance (relative to the largest sampled pressure), the load is matched to it (relative) and
+/// the error estimate is within it; anything else carries one of the other codes, and the status
+/// message gives the numbers.
+enum class status_code {
+  ok,              ///< every check above passed
+  not_converged,   ///< residual or error estimate above the acceptance, or an iteration that did not converge
+  tension,         ///< the pressure is negative somewhere (beyond the acceptance)
+  load_mismatch,   ///< the load of the solution differs from the requested one
+  contacts_merge,  ///< two contacts meet (their gap closed during the coupled solve)
+};
+
+/// "ok", "not_converged", "tension", "load_mismatch", "contacts_merge".
+const char* to_string(status_code code);
 
 enum class edge_side { leading, trailing };
 
@@ -245,7 +266,8 @@ struct indentor_result {
                                     ///< (NaN if solve_options::residual is false)
   double error_estimate = 0;        ///< estimated relative error of the density (an estimate)
   std::size_t degree = 0;           ///< Jacobi degree used (wedge with an apex near an edge: in the mapped variable)
-  std::string status;               ///< "ok", or what went wrong / was approximated
+  status_code code = status_code::ok;  ///< what the evidence says (see status_code)
+  std::string status;               ///< "ok", or what went wrong / was approximated, with the numbers
 };
 
 struct scene_result {
@@ -256,7 +278,9 @@ struct scene_result {
   struct diagnostics_t {
     double residual = 0;  ///< max over indentors of indentor_result::residual (NaN if not computed)
     double seconds = 0;   ///< wall-clock solve time [s]
+    status_code code = status_code::ok;  ///< the worst of the indentors' codes and the coupled solve's
     std::string status;   ///< "ok" or a summary of the indentors' statuses
+    std::size_t iterations = 0;  ///< Newton iterations of the coupled solve (0 for one indentor)
   } diagnostics;
 };
 

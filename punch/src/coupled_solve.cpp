@@ -1,0 +1,716 @@
+// Several contacts at once: paper system (41). See internal.hpp for where this sits.
+//
+// THE LINEAR PROBLEM FOR GIVEN EDGES. On the union of the contact intervals I_j (each with its own
+// edge class: bounded at both smooth edges, nu = -1; a wedge above the boundary ends at its apex,
+// nu = 0; a flat punch below the boundary has two corners, nu = +1; above it is a line load at its
+// leading corner) the densities satisfy
+//     sum_i A_i g_i (s) = F_j(s) - (L_j/2)^alpha d_j,      s in I_j,
+// d_j the solvability defect of a nu = -1 contact (zero at the true edges), with int g_j = P_j
+// imposed on nu = +1 contacts. It is solved in two parts:
+//   * a particular solution p_j of every contact alone with its own data, A_j p_j = F_j - h^alpha
+//     d^p_j, by the single-contact builders (spectral for smooth data, abel::solve_step's apex
+//     enrichment for a wedge, steps in closed form for corners): whatever is singular inside a
+//     contact lives here;
+//   * the coupling correction c_j with SMOOTH data D_j = -sum_{i != j} A_i p_i (the others'
+//     particular solutions seen from I_j, smooth on I_j because the intervals are disjoint), by
+//     abel::solve_union: one dense collocation solve on the union with the cross blocks by graded
+//     quadrature (diagonal blocks diagonal in the Jacobi bases), adaptive in the degree until its
+//     independent residual is within the tolerance (relative to the original data's scale).
+//   g_j = p_j + c_j, d_j = d^p_j + d^c_j.
+//
+// THE EDGES. Unknowns: a_j, b_j of every smooth contact (nu = -1), a_j of a wedge ending at its
+// apex. Conditions: d_j = 0 and int g_j = P_j (nu = -1), int g_j = P_j (nu = 0). Newton's method
+// on all of them at once, the Jacobian by forward differences (relative step 1e-7 of each contact's
+// length) and then Broyden's update, the step limited so that no contact loses more than half its
+// length and no gap closes by more than 80 % in one step. Started from the isolated contacts; when
+// those overlap or nearly touch, by continuation in the load: all loads scaled by t (contacts then
+// shrink like t^(1/(2 - alpha)) (parabola) or t^(1/(1 - alpha)) (wedge) about their apexes and
+// separate), t raised to 1 in steps, each solve starting from the previous one.
+//
+// OUTCOMES. Converged: every edge step below 10 tolerance L. A gap that closes (below 1e-12 of the
+// smaller contact) is status_code::contacts_merge with the two contacts named; an iteration that
+// stalls is status_code::not_converged with its residuals. The caller (contact.cpp) then checks the
+// result independently (residual of (8), sign of the pressure, loads) before it says ok.
+#include "internal.hpp"
+
+#include "rhabel/abel.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace rhabel::punch::detail {
+
+namespace {
+
+/// How a contact enters the coupled system.
+enum class role {
+  smooth_both,  ///< nu = -1: both edges smooth and unknown (parabola, general profile, wedge below)
+  apex_ended,   ///< nu = 0: wedge on/above the boundary, trailing edge at the apex, leading unknown
+  fixed_faces,  ///< nu = +1: flat punch below the boundary, corners fixed, load imposed
+  line_load,    ///< flat punch on/above the boundary: line load at the leading corner
+};
+
+role role_of(const indentor_state& st, const context& cx) {
+  const bool above = cx.offset >= -boundary_width;
+  switch (st.k) {
+    case kind::flat: return above ? role::line_load : role::fixed_faces;
+    case kind::wedge: return above ? role::apex_ended : role::smooth_both;
+    default: return role::smooth_both;
+  }
+}
+
+int nu_of(role r) {
+  switch (r) {
+    case role::smooth_both: return -1;
+    case role::apex_ended: return 0;
+    default: return 1;
+  }
+}
+
+/// Contact length ~ load^(1/p): p = 2 - alpha (parabola, general), 1 - alpha (wedge).
+double load_exponent(const indentor_state& st, const context& cx) {
+  return st.k == kind::wedge ? 1 - cx.alpha : 2 - cx.alpha;
+}
+
+/// Two contacts met (their gap closed): who and where.
+struct merge_error : std::runtime_error {
+  std::size_t first, second;
+  merge_error(std::size_t i, std::size_t j, const std::string& what) : std::runtime_error(what), first(i), second(j) {}
+};
+
+// ---------------------------------------------------------------------------------------------
+// The particular solution of one contact alone.
+
+struct particular {
+  contact_density g;
+  double defect = 0;  // nu = -1: A g = F - h^alpha defect on the contact (abel's normalisation)
+};
+
+/// F of the class e on [a, b] without the apex enrichment: spectral (abel::solve) when no step lies
+/// inside, else the projection with the steps' coefficients in closed form, adaptive in the smooth
+/// part's tail.
+particular series_particular(double a, double b, const edge_exponents& e, const forcing& F, const context& cx) {
+  const std::size_t max_degree = std::max<std::size_t>(cx.options.max_degree, 8);
+  bool step_inside = false;
+  for (const auto& [position, jump] : F.steps) step_inside = step_inside || (position > a && position < b);
+  particular out;
+  const abel::abel_operator<double> op(cx.par, a, b);
+  if (!step_inside) {
+    abel::solve_options<double> o;
+    o.residual_points = 0;
+    o.tolerance = cx.options.tolerance;
+    o.max_degree = max_degree + 1;
+    const auto smooth = F.smooth;
+    const auto steps = F.steps;
+    auto sol = abel::solve(op, leading_edge(e.nu), trailing_edge(e.nu), [&](double s) {
+      double v = smooth ? smooth(s) : 0.0;
+      for (const auto& [position, jump] : steps)
+        if (s > position) v += jump;
+      return v;
+    }, o);
+    out.g.jacobi = std::move(sol.density);
+    out.g.nu = e.nu;
+    out.g.tail = sol.coefficient_tail;
+    out.defect = e.nu == -1 ? sol.solvability_defect : 0.0;
+    return out;
+  }
+  for (std::size_t M = 8;; M = std::min(2 * M, max_degree)) {
+    const auto img = image_coefficients(a, b, e, F, M);
+    if (img.tail <= cx.options.tolerance || M >= max_degree) {
+      out.g = density_from_image(a, b, cx.par, e, img);
+      out.defect = e.nu == -1 ? img.d[0] * std::pow(op.half_length(), -cx.alpha) : 0.0;
+      return out;
+    }
+  }
+}
+
+particular solve_particular(const indentor_state& st, const context& cx, role r, double a, double b, double load) {
+  particular out;
+  if (r == role::line_load) {
+    out.g.jacobi.lo = out.g.jacobi.hi = a;
+    out.g.line_load = true;
+    out.g.line_weight = load;
+    return out;
+  }
+  const edge_exponents e = cx.exponents(nu_of(r));
+  if (r == role::fixed_faces) {  // a flat face: F = 0, the correction carries the load
+    out.g.jacobi = {a, b, e.gam, e.del, {0.0}};
+    out.g.nu = 1;
+    return out;
+  }
+  const std::vector<indentor_state> none;
+  const forcing F = own_forcing(st, cx, none, 0, false);
+  const double L = b - a;
+  if (st.k == kind::wedge && r == role::smooth_both && cx.options.wedge_apex_split && st.apex - a > enrich_limit * L &&
+      b - st.apex > enrich_limit * L) {
+    out.g = build_wedge_step(a, b, st.apex, -1, cx, F, &out.defect);
+    return out;
+  }
+  return series_particular(a, b, e, F, cx);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The action of one contact's density at points of another (disjoint) interval [lo, hi].
+
+class cross_field {
+ public:
+  cross_field(const contact_density& g, const abel::abel_parameters<double>& par, double lo, double hi)
+      : g_(&g), par_(par), right_of_(g.a() > hi) {
+    if (g.line_load) return;
+    const double gap = right_of_ ? g.a() - hi : lo - g.b();
+    // abel's cross-term nodes, graded toward the end facing [lo, hi] at the TRUE gap (no floor).
+    nodes_ = abel::detail::make_cross_nodes(g.jacobi, gap, right_of_,
+                                            std::max<std::size_t>(g.jacobi.coefficients.size() / 2 + 24, 32));
+    const auto series = g.jacobi.series_evaluator();
+    weighted_.resize(nodes_.x.size());
+    for (std::size_t q = 0; q < nodes_.x.size(); ++q) weighted_[q] = nodes_.weight[q] * series(nodes_.x[q]);
+    if (g.has_apex) op_ = std::make_unique<abel::abel_operator<double>>(par, g.a(), g.b());
+  }
+  double operator()(double s) const {
+    if (g_->line_load) return g_->line_weight * abel::detail::cross_kernel(par_, g_->a() - s);
+    double sum = 0;
+    for (std::size_t q = 0; q < weighted_.size(); ++q) {
+      // t - s from the distances to the facing end (no cancellation).
+      const double t_minus_s = right_of_ ? nodes_.t_minus_lo[q] + (g_->a() - s) : -(nodes_.hi_minus_t[q] + (s - g_->b()));
+      sum += weighted_[q] * abel::detail::cross_kernel(par_, t_minus_s);
+    }
+    if (op_) sum += abel::apply(*op_, g_->apex, s);
+    return sum;
+  }
+
+ private:
+  const contact_density* g_;
+  abel::abel_parameters<double> par_;
+  bool right_of_;
+  abel::detail::cross_nodes<double> nodes_;
+  std::vector<double> weighted_;
+  std::unique_ptr<abel::abel_operator<double>> op_;
+};
+
+// ---------------------------------------------------------------------------------------------
+// The coupled linear solve for given edges.
+
+struct fixed_solution {
+  std::vector<contact_density> g;  // per state
+  std::vector<double> defect;      // per state: nu = -1 defect (abel's normalisation), else 0
+  std::size_t degree = 0;          // collocation points per contact of the correction (0: none)
+  double correction_residual = 0;  // its independent residual, relative to the original data
+  bool correction_converged = true;
+};
+
+/// Scale of the data on a contact: max |f'|/Gamma(1 - alpha) at 9 points (0 for a flat face).
+double data_scale(const indentor_state& st, const context& cx, double a, double b) {
+  double m = 0;
+  for (int k = 0; k <= 8; ++k) m = std::max(m, std::abs(own_slope(st, a + (b - a) * k / 8.0)));
+  return m / cx.gamma_factor;
+}
+
+struct problem {
+  const std::vector<indentor_state>* st;
+  const context* cx;
+  std::vector<role> roles;
+  double load_factor = 1;  // continuation: every load times this
+  // > 0: the correction at exactly this many points per contact, without its residual (the
+  // finite differences of the Jacobian: the base point's degree, so that both sides of a
+  // difference share one discretisation)
+  std::size_t fixed_degree = 0;
+};
+
+fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, const std::vector<double>& b) {
+  const auto& st = *pb.st;
+  const auto& cx = *pb.cx;
+  const std::size_t n = st.size();
+  // Order along x (by leading edge); contacts must be disjoint.
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return a[i] < a[j]; });
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const std::size_t i = order[k], j = order[k + 1];
+    const double gap = a[j] - b[i];
+    const double scale = std::min(pb.roles[i] == role::line_load ? b[j] - a[j] : b[i] - a[i],
+                                  pb.roles[j] == role::line_load ? b[i] - a[i] : b[j] - a[j]);
+    if (!(gap > 1e-12 * scale)) {
+      std::ostringstream os;
+      os.precision(10);
+      os << "the contacts of " << indentor_name(st[i].scene_index, *st[i].source) << " [" << a[i] << ", " << b[i]
+         << "] and " << indentor_name(st[j].scene_index, *st[j].source) << " [" << a[j] << ", " << b[j] << "] meet";
+      throw merge_error(i, j, os.str());
+    }
+  }
+  fixed_solution out;
+  out.g.resize(n);
+  out.defect.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    auto p = solve_particular(st[i], cx, pb.roles[i], a[i], b[i], pb.load_factor * st[i].target_load);
+    out.g[i] = std::move(p.g);
+    out.defect[i] = p.defect;
+  }
+  // The correction on the intervals (line loads only act).
+  std::vector<std::size_t> targets;
+  for (std::size_t k : order)
+    if (pb.roles[k] != role::line_load) targets.push_back(k);
+  if (targets.empty()) return out;
+  std::vector<abel::interval_spec<double>> intervals;
+  std::vector<std::function<double(double)>> data;
+  std::vector<std::shared_ptr<std::vector<cross_field>>> fields;
+  abel::multi_solve_options<double> o;
+  double worst_ratio = 0;  // max over targets of (scale of D) / (scale of the data)
+  bool any_coupling = false;
+  for (std::size_t j : targets) {
+    const int nu = nu_of(pb.roles[j]);
+    intervals.push_back({a[j], b[j], leading_edge(nu), trailing_edge(nu)});
+    auto f = std::make_shared<std::vector<cross_field>>();
+    for (std::size_t i = 0; i < n; ++i)
+      if (i != j) f->emplace_back(out.g[i], cx.par, a[j], b[j]);
+    any_coupling = any_coupling || !f->empty();
+    fields.push_back(f);
+    data.push_back([f](double s) {
+      double v = 0;
+      for (const auto& field : *f) v -= field(s);
+      return v;
+    });
+    // Load left to the correction: the whole load for a flat face (its particular is 0).
+    o.loads.push_back(pb.roles[j] == role::fixed_faces ? std::optional<double>(pb.load_factor * st[j].target_load)
+                                                       : std::nullopt);
+    // Scales for the correction's residual tolerance.
+    double d_scale = 0;
+    for (int k = 0; k <= 8; ++k) d_scale = std::max(d_scale, std::abs(data.back()(a[j] + (b[j] - a[j]) * (0.5 + k) / 9.0)));
+    const double f_scale = data_scale(st[j], cx, a[j], b[j]);
+    // A flat face has no data of its own: D (and the load) is all of it.
+    worst_ratio = std::max(worst_ratio, f_scale > 0 ? d_scale / f_scale : 1.0);
+  }
+  const bool any_face = std::any_of(targets.begin(), targets.end(), [&](std::size_t j) { return pb.roles[j] == role::fixed_faces; });
+  if (!any_coupling && !any_face) return out;
+  // Residual tolerance of the correction relative to ITS data, so that the error relative to the
+  // original data is ~ the tolerance: a weak coupling (D small) needs less relative accuracy.
+  const double tol = cx.options.tolerance;
+  o.residual_tolerance = std::clamp(10 * tol / std::max(worst_ratio, 1e-300), 10 * tol, 1e-4);
+  o.degree = pb.fixed_degree > 0 ? pb.fixed_degree : 16;
+  o.residual_points = pb.fixed_degree > 0 ? 0 : 8;
+  const std::size_t K = intervals.size();
+  o.max_degree = pb.fixed_degree > 0 ? 0 : std::max<std::size_t>(o.degree, std::min<std::size_t>(600, abel::detail::union_degree_limit<double>(K, std::size_t(1) << 30)));
+  o.max_memory_bytes = std::size_t(1) << 30;
+  const auto sol = abel::solve_union(cx.par, intervals, data, o);
+  out.degree = sol.degree;
+  out.correction_residual = sol.residual * std::max(worst_ratio, 0.0);
+  out.correction_converged = sol.status == abel::solve_status::converged;
+  for (std::size_t k = 0; k < K; ++k) {
+    const std::size_t j = targets[k];
+    auto& coefficients = out.g[j].jacobi.coefficients;
+    const auto& c = sol.densities[k].coefficients;
+    if (coefficients.size() < c.size()) coefficients.resize(c.size(), 0.0);
+    for (std::size_t m = 0; m < c.size(); ++m) coefficients[m] += c[m];
+    out.g[j].tail = std::max(out.g[j].tail, sol.status == abel::solve_status::converged ? 0.0 : sol.residual);
+    if (nu_of(pb.roles[j]) == -1) out.defect[j] += sol.solvability_defects[k];
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Newton on the edge conditions.
+
+struct unknowns {
+  std::vector<std::size_t> state;  // which contact
+  std::vector<bool> trailing;      // which edge
+};
+
+unknowns list_unknowns(const problem& pb) {
+  unknowns u;
+  for (std::size_t i = 0; i < pb.roles.size(); ++i) {
+    if (pb.roles[i] == role::smooth_both) {
+      u.state.push_back(i), u.trailing.push_back(false);
+      u.state.push_back(i), u.trailing.push_back(true);
+    } else if (pb.roles[i] == role::apex_ended) {
+      u.state.push_back(i), u.trailing.push_back(false);
+    }
+  }
+  return u;
+}
+
+struct evaluation {
+  fixed_solution sol;
+  Eigen::VectorXd r;
+};
+
+/// The conditions, in the order of the unknowns: (h^alpha d_j / data scale, load/P - 1) for a
+/// smooth contact, (load/P - 1) for a wedge ending at its apex.
+evaluation evaluate(const problem& pb, const unknowns& u, const std::vector<double>& a, const std::vector<double>& b) {
+  evaluation ev{solve_fixed(pb, a, b), Eigen::VectorXd(static_cast<Eigen::Index>(u.state.size()))};
+  const auto& st = *pb.st;
+  const auto& cx = *pb.cx;
+  for (std::size_t k = 0; k < u.state.size(); ++k) {
+    const std::size_t i = u.state[k];
+    const double load = ev.sol.g[i].integral() / (pb.load_factor * st[i].target_load) - 1;
+    if (pb.roles[i] == role::smooth_both && !u.trailing[k]) {
+      const double scale = std::max(data_scale(st[i], cx, a[i], b[i]), std::numeric_limits<double>::min());
+      ev.r[static_cast<Eigen::Index>(k)] = std::pow((b[i] - a[i]) / 2, cx.alpha) * ev.sol.defect[i] / scale;
+    } else {
+      ev.r[static_cast<Eigen::Index>(k)] = load;
+    }
+  }
+  return ev;
+}
+
+struct edges {
+  std::vector<double> a, b;
+};
+
+edges moved(const problem& pb, const unknowns& u, const edges& x, const Eigen::VectorXd& dx) {
+  edges y = x;
+  for (std::size_t k = 0; k < u.state.size(); ++k) {
+    const std::size_t i = u.state[k];
+    (u.trailing[k] ? y.b[i] : y.a[i]) += dx[static_cast<Eigen::Index>(k)];
+  }
+  for (std::size_t i = 0; i < pb.roles.size(); ++i)
+    if (pb.roles[i] == role::apex_ended) y.b[i] = (*pb.st)[i].apex;
+  return y;
+}
+
+/// Smallest gap the coupled solve resolves, relative to the smaller of the two contacts: below it
+/// the correction's degree grows like sqrt(L/gap) beyond what a dense solve affords (abel/
+/// multi_interval.hpp: degree ~800 at 1e-4). A Newton step that would close a gap narrower than
+/// this ends the iteration (contacts_merge when the full step closes it).
+constexpr double resolved_gap = 1e-4;
+
+/// Two neighbours whose gap the step (x + dx) would close while it is already below resolved_gap.
+struct closing_gap {
+  std::size_t first, second;
+  double gap_ratio;
+  bool closes;  // the full step makes the gap negative
+};
+
+/// Largest t in (0, 1] such that x + t dx keeps every contact at least half as long and every gap
+/// at least a fifth as wide as now (the contacts' order is kept); `closing` reports a gap below
+/// resolved_gap that the step narrows.
+double step_limit(const problem& pb, const unknowns& u, const edges& x, const Eigen::VectorXd& dx,
+                  std::optional<closing_gap>& closing) {
+  const std::size_t n = pb.roles.size();
+  std::vector<double> da(n, 0.0), db(n, 0.0);
+  for (std::size_t k = 0; k < u.state.size(); ++k)
+    (u.trailing[k] ? db : da)[u.state[k]] = dx[static_cast<Eigen::Index>(k)];
+  double t = 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double L = x.b[i] - x.a[i], dL = db[i] - da[i];
+    if (dL < 0 && L > 0) t = std::min(t, 0.5 * L / -dL);
+  }
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return x.a[i] < x.a[j]; });
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const std::size_t i = order[k], j = order[k + 1];
+    const double gap = x.a[j] - x.b[i], dgap = da[j] - db[i];
+    if (dgap < 0 && gap > 0) t = std::min(t, 0.8 * gap / -dgap);
+    const double Li = x.b[i] - x.a[i], Lj = x.b[j] - x.a[j];
+    const double L = std::min(pb.roles[i] == role::line_load ? Lj : Li, pb.roles[j] == role::line_load ? Li : Lj);
+    if (dgap < 0 && gap < resolved_gap * L) closing = closing_gap{i, j, gap / L, gap + dgap <= 0};
+  }
+  return t;
+}
+
+struct newton_result {
+  bool converged = false;
+  edges x;
+  fixed_solution sol;
+  std::size_t iterations = 0;
+  double residual = 0;  // max |condition|
+  std::string failure;
+  std::optional<std::pair<std::size_t, std::size_t>> merged;
+};
+
+/// Forward-difference Jacobian of the edge conditions (relative step 1e-7 of each contact's
+/// length; backward where the forward step would close a gap). Up to `full_width` contacts: one
+/// evaluation per unknown. More: the contacts are coloured by their rank along x modulo
+/// full_width, and the edges of one side of one colour are moved together (Curtis-Powell-Reid): a
+/// condition of contact j is attributed to the moved contact within full_width/2 ranks of j, the
+/// rest of its row is left 0. That neglects the dependence on farther contacts (the coupling decays
+/// like distance^(alpha - 1)): Broyden's updates recover it. 2 full_width evaluations for any N.
+constexpr std::size_t full_width = 5;
+
+Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x, const Eigen::VectorXd& r,
+                         std::size_t degree) {
+  problem pb = base;
+  pb.fixed_degree = degree;
+  const auto m = static_cast<Eigen::Index>(u.state.size());
+  const std::size_t n = pb.roles.size();
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(m, m);
+  std::vector<std::size_t> order(n), rank(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return x.a[i] < x.a[j]; });
+  for (std::size_t k = 0; k < n; ++k) rank[order[k]] = k;
+  const std::size_t colours = n <= full_width ? n : full_width;
+  std::vector<double> h(static_cast<std::size_t>(m));
+  for (std::size_t k = 0; k < h.size(); ++k) h[k] = 1e-7 * (x.b[u.state[k]] - x.a[u.state[k]]);
+  for (std::size_t colour = 0; colour < colours; ++colour) {
+    for (int side = 0; side < 2; ++side) {
+      std::vector<std::size_t> moved_unknowns;
+      for (std::size_t k = 0; k < h.size(); ++k)
+        if (rank[u.state[k]] % colours == colour && u.trailing[k] == (side == 1)) moved_unknowns.push_back(k);
+      if (moved_unknowns.empty()) continue;
+      auto difference = [&](double sign) {
+        Eigen::VectorXd e = Eigen::VectorXd::Zero(m);
+        for (std::size_t k : moved_unknowns) e[static_cast<Eigen::Index>(k)] = sign * h[k];
+        const edges y = moved(pb, u, x, e);
+        return Eigen::VectorXd(sign * (evaluate(pb, u, y.a, y.b).r - r));
+      };
+      Eigen::VectorXd dr;
+      try {
+        dr = difference(1);
+      } catch (const merge_error&) {  // the forward step closes a gap: backward difference
+        dr = difference(-1);
+      }
+      for (Eigen::Index row = 0; row < m; ++row) {
+        const std::size_t ri = rank[u.state[static_cast<std::size_t>(row)]];
+        for (std::size_t k : moved_unknowns) {
+          const std::size_t ci = rank[u.state[k]];
+          const std::size_t distance = ri > ci ? ri - ci : ci - ri;
+          if (colours == n || 2 * distance < colours) J(row, static_cast<Eigen::Index>(k)) = dr[row] / h[k];
+        }
+      }
+    }
+  }
+  return J;
+}
+
+newton_result newton(const problem& pb, const edges& start) {
+  const unknowns u = list_unknowns(pb);
+  const double tol = pb.cx->options.tolerance;
+  newton_result out;
+  out.x = start;
+  for (std::size_t i = 0; i < pb.roles.size(); ++i)
+    if (pb.roles[i] == role::apex_ended) out.x.b[i] = (*pb.st)[i].apex;
+  evaluation ev;
+  try {
+    ev = evaluate(pb, u, out.x.a, out.x.b);
+  } catch (const merge_error& m) {
+    out.failure = m.what();
+    out.merged = std::make_pair(m.first, m.second);
+    return out;
+  }
+  if (u.state.empty()) {
+    out.converged = true;
+    out.sol = std::move(ev.sol);
+    return out;
+  }
+  Eigen::MatrixXd J = jacobian(pb, u, out.x, ev.r, ev.sol.degree);
+  bool fresh = true;
+  for (std::size_t it = 0; it < 60; ++it) {
+    out.iterations = it + 1;
+    const Eigen::VectorXd dx = -J.fullPivLu().solve(ev.r);
+    if (!dx.allFinite()) {
+      out.failure = "singular Jacobian of the edge conditions";
+      break;
+    }
+    std::optional<closing_gap> closing;
+    double t = step_limit(pb, u, out.x, dx, closing);
+    if (closing) {
+      const auto& st = *pb.st;
+      std::ostringstream os;
+      os.precision(3);
+      os << "the contacts of " << indentor_name(st[closing->first].scene_index, *st[closing->first].source) << " and "
+         << indentor_name(st[closing->second].scene_index, *st[closing->second].source) << " are "
+         << closing->gap_ratio << " of a contact length apart and still closing"
+         << (closing->closes ? " (the next step closes the gap: they merge)" : "")
+         << "; gaps below " << resolved_gap << " of the contact length are not resolved";
+      out.failure = os.str();
+      if (closing->closes) out.merged = std::make_pair(closing->first, closing->second);
+      break;
+    }
+    bool accepted = false;
+    evaluation next;
+    edges y;
+    for (int tries = 0; tries < 12; ++tries) {
+      y = moved(pb, u, out.x, t * dx);
+      try {
+        next = evaluate(pb, u, y.a, y.b);
+        accepted = next.r.allFinite() &&
+                   next.r.lpNorm<Eigen::Infinity>() < (1 - 1e-4 * t) * ev.r.lpNorm<Eigen::Infinity>() + 1e-14;
+      } catch (const merge_error& m) {
+        out.merged = std::make_pair(m.first, m.second);
+        out.failure = m.what();
+      }
+      if (accepted) break;
+      t /= 2;
+    }
+    if (!accepted) {
+      if (!fresh) {  // Broyden's matrix went stale: a new finite-difference Jacobian
+        J = jacobian(pb, u, out.x, ev.r, ev.sol.degree);
+        fresh = true;
+        continue;
+      }
+      if (out.failure.empty()) out.failure = "the edge iteration stalled";
+      break;
+    }
+    out.merged.reset();
+    out.failure.clear();
+    // Broyden's (good) update with the step taken.
+    const Eigen::VectorXd s = t * dx;
+    const Eigen::VectorXd dr = next.r - ev.r;
+    J += (dr - J * s) * s.transpose() / s.squaredNorm();
+    fresh = false;
+    double step = 0;
+    for (std::size_t k = 0; k < u.state.size(); ++k) {
+      const std::size_t i = u.state[k];
+      step = std::max(step, std::abs(s[static_cast<Eigen::Index>(k)]) / (y.b[i] - y.a[i]));
+    }
+    if (std::getenv("RHABEL_DEBUG_NEWTON"))
+      std::fprintf(stderr, "it %zu t %.3g |r| %.3e -> %.3e step %.3e deg %zu\n", it, t, ev.r.lpNorm<Eigen::Infinity>(),
+                   next.r.lpNorm<Eigen::Infinity>(), step, next.sol.degree);
+    out.x = y;
+    ev = std::move(next);
+    if (step <= 10 * tol) {
+      out.converged = true;
+      break;
+    }
+  }
+  out.residual = ev.r.lpNorm<Eigen::Infinity>();
+  out.sol = std::move(ev.sol);
+  return out;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Start: isolated contacts, scaled for the continuation.
+
+/// Isolated contacts at the scene's loads scaled by t: lengths and apex offsets scale like t^(1/p).
+edges scaled_guess(const problem& pb, const edges& isolated, double t) {
+  edges x = isolated;
+  const auto& st = *pb.st;
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    if (pb.roles[i] != role::smooth_both && pb.roles[i] != role::apex_ended) continue;
+    const double f = std::pow(t, 1 / load_exponent(st[i], *pb.cx));
+    x.a[i] = st[i].apex + (isolated.a[i] - st[i].apex) * f;
+    x.b[i] = st[i].apex + (isolated.b[i] - st[i].apex) * f;
+  }
+  return x;
+}
+
+/// Smallest gap between neighbours relative to the smaller of the two lengths (inf for one contact,
+/// negative when two overlap).
+double gap_ratio(const problem& pb, const edges& x) {
+  const std::size_t n = pb.roles.size();
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return x.a[i] < x.a[j]; });
+  double worst = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const std::size_t i = order[k], j = order[k + 1];
+    const double Li = x.b[i] - x.a[i], Lj = x.b[j] - x.a[j];
+    const double L = std::max(std::min(Li > 0 ? Li : Lj, Lj > 0 ? Lj : Li), std::numeric_limits<double>::min());
+    worst = std::min(worst, (x.a[j] - x.b[i]) / L);
+  }
+  return worst;
+}
+
+}  // namespace
+
+coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx) {
+  problem pb{&st, &cx, {}, 1.0};
+  edges isolated;
+  for (auto& s : st) {
+    pb.roles.push_back(role_of(s, cx));
+    solve_isolated(s, cx, true);  // the isolated contact: the start (its closed-form paths)
+    isolated.a.push_back(s.g.a());
+    isolated.b.push_back(pb.roles.back() == role::line_load ? s.g.a() : s.g.b());
+  }
+  coupled_outcome out;
+  newton_result result;
+  bool done = false;
+  // Directly from the isolated contacts when they are well apart.
+  if (gap_ratio(pb, isolated) > 0.25) {
+    result = newton(pb, isolated);
+    done = result.converged;
+  }
+  if (!done) {
+    // Continuation in the load from a t at which the scaled isolated contacts are well apart.
+    double t = 1;
+    for (int k = 0; k < 60 && !(gap_ratio(pb, scaled_guess(pb, isolated, t)) > 1); ++k) t /= 4;
+    pb.load_factor = t;
+    result = newton(pb, scaled_guess(pb, isolated, t));
+    double step = 4;  // factor by which t grows
+    std::size_t total = result.iterations;
+    while (result.converged && t < 1) {
+      const double t_next = std::min(1.0, t * step);
+      problem next = pb;
+      next.load_factor = t_next;
+      // Predictor: the current contacts scaled about their apexes as isolated ones would be.
+      edges guess = result.x;
+      for (std::size_t i = 0; i < st.size(); ++i) {
+        if (pb.roles[i] != role::smooth_both && pb.roles[i] != role::apex_ended) continue;
+        const double f = std::pow(t_next / t, 1 / load_exponent(st[i], cx));
+        guess.a[i] = st[i].apex + (guess.a[i] - st[i].apex) * f;
+        if (pb.roles[i] == role::smooth_both) guess.b[i] = st[i].apex + (guess.b[i] - st[i].apex) * f;
+      }
+      if (gap_ratio(next, guess) <= 0) guess = result.x;  // the predictor would overlap: corrector only
+      auto trial = newton(next, guess);
+      total += trial.iterations;
+      if (trial.converged) {
+        result = std::move(trial);
+        t = t_next;
+        pb = next;
+        step = std::min(4.0, step * 1.5);
+      } else if (trial.merged) {  // the contacts meet between t and t_next: that is the answer
+        result = std::move(trial);
+        break;
+      } else if (step > 1.0001) {
+        step = std::sqrt(step);  // a smaller increment
+        if (step < 1.01) {
+          result = std::move(trial);
+          break;
+        }
+      } else {
+        result = std::move(trial);
+        break;
+      }
+    }
+    result.iterations = total;
+    if (result.converged && pb.load_factor < 1) result.converged = false;
+  }
+  out.iterations = result.iterations;
+  out.union_degree = result.sol.degree;
+  if (!result.converged) {
+    std::ostringstream os;
+    os.precision(3);
+    if (result.merged) {
+      out.code = status_code::contacts_merge;
+      os << result.failure;
+    } else {
+      out.code = status_code::not_converged;
+      os << "coupled edge iteration did not converge: " << (result.failure.empty() ? "iteration limit" : result.failure)
+         << "; largest edge condition " << result.residual;
+    }
+    if (pb.load_factor < 1) os << " (at " << pb.load_factor << " of the loads)";
+    out.message = os.str();
+  }
+  // Whatever was reached is reported (with a non-ok code when it did not converge).
+  if (!result.sol.g.empty()) {
+    for (std::size_t i = 0; i < st.size(); ++i) {
+      st[i].g = std::move(result.sol.g[i]);
+      st[i].friction.reset();
+      st[i].rh_unit.reset();
+      st[i].status = "ok";
+      if (st[i].k == kind::wedge && !st[i].g.line_load)
+        st[i].epsilon = (st[i].apex - st[i].g.a()) / st[i].g.length();
+    }
+    if (!result.sol.correction_converged && out.code == status_code::ok) {
+      std::ostringstream os;
+      os.precision(3);
+      os << "coupling correction not converged at " << result.sol.degree << " points per contact (residual "
+         << result.sol.correction_residual << " of the data)";
+      out.code = status_code::not_converged;
+      out.message = os.str();
+    }
+  }
+  return out;
+}
+
+}  // namespace rhabel::punch::detail

@@ -1,0 +1,125 @@
+// punch/src/internal.hpp: what the punch layer's source files share (not installed).
+//
+//   contact.cpp        materials, shapes and their forcing F = f'/Gamma(1 - alpha), the
+//                      single-contact builders (Jacobi series, the wedge's apex enrichment, the
+//                      near-edge split), the isolated edge root finding, the report and the fields;
+//   coupled_solve.cpp  several contacts at once (paper system 41): one linear solve on the union
+//                      of the contact intervals for given edges, Newton on all edge conditions,
+//                      load continuation for close contacts.
+#pragma once
+
+#include "rhabel/punch/contact.hpp"
+#include "rhabel/punch/detail/contact_density.hpp"
+#include "rhabel/riemann/abel_solver.hpp"
+
+#include <boost/math/constants/constants.hpp>
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace rhabel::punch::detail {
+
+constexpr double pi = boost::math::constants::pi<double>();
+constexpr double boundary_width = 1e-12;  // |alpha + beta/2 - 1/2| below this is "boundary"
+// Wedge below the boundary, apex at distance min(eps, 1 - eps) L from an edge. The isolated wedge
+// with the apex in an outer quarter (min(eps, 1 - eps) < 1/4) is solved in the split form of
+// build_wedge_near_edge (the long side's constant in closed form plus the short side's step with
+// the apex mapped to the centre): 66 points from 1/4 down to 1 - eps = 1e-14, C_f and pressure
+// within 2e-14 of the Riemann-Hilbert route and of the elastic closed form (study_wedge_near_edge),
+// 0.35-0.58 ms without the residual. A coupled wedge keeps abel::solve_step's balanced map
+// (converges at 65 points down to ~1e-2, 195 down to 1e-3, 585 down to 1e-4) and, within
+// enrich_limit, the plain Jacobi series for everything (pressure unresolved next to the apex; C_f
+// by Richardson extrapolation of the series). With options.wedge_apex_split off, the isolated
+// wedge takes C_f and the pressure samples from the Riemann-Hilbert route (wedge_by_rh,
+// rh_pressure: 3.5-3.6 ms) and the plain series the residual and the displacement.
+constexpr double enrich_limit = 1e-4;
+
+/// Edge classes of the index nu used by punch: -1 (bounded, bounded), 0 (bounded, unbounded),
+/// +1 (unbounded, unbounded).
+inline abel::edge leading_edge(int nu) { return nu == 1 ? abel::edge::unbounded : abel::edge::bounded; }
+inline abel::edge trailing_edge(int nu) { return nu == -1 ? abel::edge::bounded : abel::edge::unbounded; }
+
+enum class kind { parabola, wedge, flat, general };
+
+/// One indentor inside a scene: its shape, its own F and the solved density.
+struct indentor_state {
+  kind k = kind::parabola;
+  const indentor* source = nullptr;
+  std::size_t scene_index = 0;  // position in scene::indentors
+  double apex = 0;
+  double target_load = 0;  // in units of int g (the load divided by (pi/2) E_U)
+  contact_density g;
+  std::string status = "ok";
+  status_code code = status_code::ok;
+  std::optional<double> epsilon;
+  std::optional<double> friction;  // C_f when it does not come from g (wedge, apex next to an edge)
+  double friction_error = 0;       // its error estimate
+  // Isolated wedge with the apex within enrich_limit L of an edge: its Riemann-Hilbert solution on
+  // the unit interval, the source of the pressure samples (see wedge_by_rh).
+  std::shared_ptr<const riemann::abel_rh_solution<double>> rh_unit;
+  double rh_one_minus_eps = 0;  // its interval is [-eps, rh_one_minus_eps]
+  bool solved = false;
+};
+
+struct context {
+  double alpha = 0, beta = 0, kappa = 0, offset = 0;
+  double gamma_factor = 1;  // Gamma(1 - alpha)
+  double pressure_scale = 1;  // (pi/2) E_U
+  solve_options options;
+  // The operator's parameters for rhabel::abel; on the boundary (kappa = 0 above) kappa is exactly 0.
+  abel::abel_parameters<double> par{0.0, 0.0};
+
+  void set_parameters() {
+    par = abel::abel_parameters<double>(alpha, beta);
+    if (kappa == 0 && par.kappa() != 0) par = abel::abel_parameters<double>::from_kappa(alpha, 0.0);
+  }
+  /// Edge exponents of the class of index nu (see leading_edge, trailing_edge).
+  edge_exponents exponents(int nu) const { return par.exponents(leading_edge(nu), trailing_edge(nu)); }
+};
+
+context make_context(const material& m, double speed, const solve_options& options);
+
+/// Image coefficients of F in the image basis of the class e on [a, b] (contact.cpp).
+struct image_expansion {
+  std::vector<double> d;
+  double tail = 0;
+};
+image_expansion image_coefficients(double a, double b, const edge_exponents& e, const forcing& F, std::size_t M);
+contact_density density_from_image(double a, double b, const abel::abel_parameters<double>& par, const edge_exponents& e,
+                                   const image_expansion& img);
+
+/// f'(s) of the indentor at absolute s.
+double own_slope(const indentor_state& st, double s);
+/// F = f'/Gamma(1 - alpha) (smooth part + steps), minus the others' action when couple.
+forcing own_forcing(const indentor_state& st, const context& cx, const std::vector<indentor_state>& all,
+                    std::size_t self, bool couple);
+/// Options and tail rule of the wedge's abel::solve_step calls.
+abel::solve_options<double> step_options(const context& cx);
+double step_tail(const abel::enriched_solution<double>& sol, const context& cx);
+/// Wedge density on [a, b] with the apex enrichment (abel::solve_step); `defect` (if given)
+/// receives solve_step's solvability defect (nu = -1: A g = F - (L/2)^alpha defect).
+contact_density build_wedge_step(double a, double b, double apex, int nu, const context& cx, const forcing& F,
+                                 double* defect = nullptr);
+/// A g (s) for s outside the support of g (abel_operator::apply plus the apex part).
+double apply_outside(const contact_density& g, double s, const abel::abel_parameters<double>& par);
+/// The isolated contact of one indentor (no other present): fills st.g, st.epsilon, st.status.
+void solve_isolated(indentor_state& st, const context& cx, bool only_indentor);
+/// "indentors[i] (shape)".
+std::string indentor_name(std::size_t i, const indentor& ind);
+
+/// Outcome of the coupled solve (coupled_solve.cpp).
+struct coupled_outcome {
+  status_code code = status_code::ok;
+  std::string message;      // empty when ok
+  std::size_t iterations = 0;
+  std::size_t union_degree = 0;  // collocation points per contact of the last linear solve
+};
+
+/// Solves several indentors together (paper system 41): fills every st[i].g (and epsilon for
+/// wedges). st in any order; the contacts' order along x is found, not assumed.
+coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx);
+
+}  // namespace rhabel::punch::detail
