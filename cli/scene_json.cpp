@@ -28,13 +28,7 @@ namespace {
 
 using json = nlohmann::json;
 
-// A message must stay on one line whatever the input contained.
-std::string one_line(std::string text) {
-  for (char& c : text) {
-    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
-  }
-  return text;
-}
+// A message must stay on one line whatever the input contained (commands.hpp: one_line).
 
 [[noreturn]] void fail(const std::string& message) { throw input_error("solve: " + one_line(message)); }
 
