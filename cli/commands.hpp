@@ -1,6 +1,14 @@
 // The subcommands of build/bin/rhabel. Each lives in its own <name>_command.cpp and registers
-// itself on the application; main.cpp owns parsing and the exit-code policy:
-//   0 success, 2 bad input (one line on stderr naming the parameter), 1 anything else.
+// itself on the application; main.cpp owns parsing and the exit-code policy (also printed by
+// `rhabel --help` and documented in examples/README.md):
+//   0  success: the result was written completely
+//   1  internal error (a bug: please report it)
+//   2  bad input (one line on stderr naming the parameter), a scene the solver cannot solve,
+//      or an output that could not be written (stdout or a CSV file; no partial CSV is left)
+//   3  `solve`: the result was written completely, but its status is not "ok" (the result's
+//      "status" names why: not_converged, tension, load_mismatch, contacts_merge)
+// Every message is one line on stderr, `rhabel: <command>: <message>`; control characters in
+// echoed values are escaped (one_line).
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -8,6 +16,7 @@
 #include <functional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace rhabel::cli {
 
@@ -15,6 +24,51 @@ namespace rhabel::cli {
 struct input_error : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+/// An output (stdout, a CSV file) could not be written completely: one line, exit code 2.
+struct write_error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// Exit codes of build/bin/rhabel (see the top of this file).
+inline constexpr int exit_ok = 0;
+inline constexpr int exit_internal_error = 1;
+inline constexpr int exit_bad_input = 2;  ///< also: cannot solve, cannot write
+inline constexpr int exit_not_ok = 3;     ///< solve: result written, its status is not "ok"
+
+/// The exit-code table as printed in the help texts.
+inline constexpr const char* exit_code_help =
+    "Exit codes:\n"
+    "  0  ok: the result was written completely\n"
+    "  1  internal error (please report it)\n"
+    "  2  bad input, a scene that cannot be solved, or an output that could not be written\n"
+    "     (stdout or a CSV file); one line on stderr, no partial CSV file is left\n"
+    "  3  solve: the result was written completely, but its status is not ok (see its \"status\")";
+
+/// `text` on one line: control characters (bytes 0x00-0x1f and 0x7f) become \n, \r, \t or \xHH,
+/// so that an echoed value (an argument, a file name, a JSON excerpt) cannot break the message.
+inline std::string one_line(std::string_view text) {
+  static constexpr char hex[] = "0123456789abcdef";
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else if (byte < 0x20 || byte == 0x7f) {
+      out += "\\x";
+      out += hex[byte >> 4];
+      out += hex[byte & 0xf];
+    } else {
+      out += c;
+    }
+  }
+  return out;
+}
 
 /// What a subcommand runs once the command line has been parsed; returns the exit code.
 using command_action = std::function<int()>;

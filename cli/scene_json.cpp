@@ -28,15 +28,45 @@ namespace {
 
 using json = nlohmann::json;
 
-// A message must stay on one line whatever the input contained.
-std::string one_line(std::string text) {
-  for (char& c : text) {
-    if (c == '\n' || c == '\r' || c == '\t') c = ' ';
-  }
-  return text;
-}
-
+// A message must stay on one line whatever the input contained (commands.hpp: one_line).
 [[noreturn]] void fail(const std::string& message) { throw input_error("solve: " + one_line(message)); }
+
+// What nlohmann-json does not check safely, found by one pass over the bytes before parsing:
+// - a NUL byte: nlohmann's lexer takes it for the end of the input and accepted
+//   "SCENE\0 garbage {{{" as SCENE (issue 14), so the rest of the input was never read;
+// - nesting deeper than max_scene_depth: a value nested ~75,000 deep crashed the program with a
+//   stack overflow (recursive dump and destruction of the value; issue 14). The scan counts
+//   [ and { outside strings only, so it refuses before any value exists.
+// Byte offsets count from 0.
+void check_bytes(std::string_view text, const std::string& source) {
+  std::size_t depth = 0;
+  bool in_string = false, escaped = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\0') {
+      fail("scene " + source + " contains a NUL byte at byte offset " + std::to_string(i) +
+           " (the whole input must be one JSON object)");
+    }
+    if (in_string) {
+      if (escaped) {
+        escaped = false;
+      } else if (c == '\\') {
+        escaped = true;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > max_scene_depth) {
+        fail("scene " + source + " nests arrays and objects deeper than the limit of " +
+             std::to_string(max_scene_depth) + " levels (at byte offset " + std::to_string(i) + ")");
+      }
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+}
 
 // The scene's syntax is checked by nlohmann-json; this callback adds what it does not check:
 // duplicate keys. It tracks the path of the value being parsed so that the message can name it.
@@ -234,6 +264,7 @@ indentor_spec parse_indentor(const json& value, const std::string& path) {
 }  // namespace
 
 scene_spec parse_scene(std::string_view text, const std::string& source) {
+  check_bytes(text, source);
   json root;
   duplicate_key_guard guard;
   try {
@@ -245,7 +276,9 @@ scene_spec parse_scene(std::string_view text, const std::string& source) {
     // nlohmann's message: "[json.exception.parse_error.101] parse error at line 1, column 3: ..."
     std::string what = e.what();
     if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
-    fail("scene " + source + " is not valid JSON: " + what);
+    // e.byte counts the bytes read, the offending one included: its offset is e.byte - 1.
+    const std::size_t offset = e.byte > 0 ? e.byte - 1 : 0;
+    fail("scene " + source + " is not valid JSON: " + what + " (byte offset " + std::to_string(offset) + ")");
   } catch (const json::out_of_range& e) {
     // nlohmann-json 3.11 refuses a number beyond the double range ("number overflow parsing
     // '1e400'"); the guard still knows which value was being read.

@@ -35,15 +35,24 @@
 // - Numbers that overflow a double (1e400) are errors: nlohmann-json reads them as +-inf.
 //   Numbers that underflow (1e-400) read as 0 or a subnormal and are then judged by their range.
 //   Integers (100) are accepted wherever a number is expected. Booleans and strings are not numbers.
+// - The whole input is parsed: a NUL byte anywhere, or anything but white space after the
+//   object, is an error naming its byte offset (from 0).
+// - Arrays and objects may nest at most max_scene_depth = 256 levels (a scene needs 3; any
+//   value, also inside "description", counts): deeper input is refused before it is parsed,
+//   at any depth (a value nested 75,000 deep crashed the program: issue 14).
 // - The message of every error is one line that names the field as a path
 //   (`indentors[0].radius`), the offending value and the valid range.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 #include <vector>
 
 namespace rhabel::cli {
+
+/// Deepest nesting of arrays and objects accepted in a scene (the top-level object is level 1).
+inline constexpr std::size_t max_scene_depth = 256;
 
 /// Power-law viscoelastic half-space, E(t) = E1 t^-alpha, and its interface friction.
 struct material_spec {

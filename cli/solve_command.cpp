@@ -13,7 +13,11 @@
 //
 // Output discipline: everything is computed in memory first; on any error nothing is written to
 // stdout and no CSV file is left behind; the error is one line on stderr (exit code 2 for bad
-// input, 1 for a solver failure). Numbers are printed by nlohmann-json in the shortest form that
+// input, a scene that cannot be solved, or a failed write; 1 for an internal error such as a
+// non-finite solver result). The CSV files are written to temporaries in their directory and
+// renamed into place only after stdout was written and flushed successfully; a failed write
+// (of a CSV file, or of stdout: a full disk, /dev/full) removes the temporaries. If the final
+// rename fails, stdout already holds the result, but no CSV file is left (exit code 2). Numbers are printed by nlohmann-json in the shortest form that
 // reads back to the same double (at most 17 significant digits: lossless round trip).
 #include "commands.hpp"
 #include "scene_json.hpp"
@@ -29,6 +33,10 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <utility>
+
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace rhabel::cli {
 namespace {
@@ -67,53 +75,102 @@ std::string read_scene(const std::string& path) {
   throw input_error("solve: cannot read scene file '" + path + "': read error");
 }
 
-void write_table(std::ostream& out, const sampled_table& table) {
-  for (std::size_t j = 0; j < table.columns.size(); ++j) out << (j ? "," : "") << table.columns[j];
-  out << '\n';
-  char buffer[32];
+void write_table(std::FILE* out, const sampled_table& table) {
+  for (std::size_t j = 0; j < table.columns.size(); ++j) {
+    std::fputs(j ? "," : "", out);
+    std::fputs(table.columns[j].c_str(), out);
+  }
+  std::fputc('\n', out);
   for (const auto& row : table.rows) {
-    for (std::size_t j = 0; j < row.size(); ++j) {
-      std::snprintf(buffer, sizeof buffer, "%.17g", row[j]);
-      out << (j ? "," : "") << buffer;
-    }
-    out << '\n';
+    for (std::size_t j = 0; j < row.size(); ++j) std::fprintf(out, j ? ",%.17g" : "%.17g", row[j]);
+    std::fputc('\n', out);
   }
 }
 
-// Writes both CSV files or neither: each goes to a temporary name first and is renamed only
-// once both are complete.
-void write_csv_files(const std::string& prefix, const run_outcome& outcome) {
-  const std::string names[2] = {prefix + "_pressure.csv", prefix + "_displacement.csv"};
-  const sampled_table* tables[2] = {&outcome.pressure, &outcome.displacement};
-  std::string temporaries[2];
-  auto discard = [&] {
-    for (const auto& t : temporaries) {
+// The two CSV files as one transaction: write() puts each into a fresh temporary file in the
+// same directory (PREFIX_pressure.csv.XXXXXX, mkstemp, so nothing of the user's is overwritten
+// before the end), commit() renames both into place. Until commit() succeeds the destructor
+// removes every temporary, on any error or exception, so a failed run leaves no CSV file and no
+// temporary (only a signal that kills the process can leave a temporary behind).
+class csv_transaction {
+ public:
+  csv_transaction(std::string prefix, const run_outcome& outcome) : prefix_(std::move(prefix)) {
+    names_[0] = prefix_ + "_pressure.csv";
+    names_[1] = prefix_ + "_displacement.csv";
+    tables_[0] = &outcome.pressure;
+    tables_[1] = &outcome.displacement;
+  }
+  csv_transaction(const csv_transaction&) = delete;
+  csv_transaction& operator=(const csv_transaction&) = delete;
+  ~csv_transaction() {
+    for (const auto& t : temporaries_) {
       if (!t.empty()) std::remove(t.c_str());
     }
-  };
-  for (int i = 0; i < 2; ++i) {
-    temporaries[i] = names[i] + ".partial";
-    std::ofstream out(temporaries[i], std::ios::binary | std::ios::trunc);
-    if (!out) {
-      const std::string reason = std::strerror(errno);
-      temporaries[i].clear();
-      discard();
-      throw input_error("solve: --csv " + prefix + ": cannot write '" + names[i] + "': " + reason);
-    }
-    write_table(out, *tables[i]);
-    out.close();
-    if (!out) {
-      discard();
-      throw input_error("solve: --csv " + prefix + ": writing '" + names[i] + "' failed");
+  }
+
+  void write() {
+    for (int i = 0; i < 2; ++i) write_one(i);
+  }
+
+  // Renames both temporaries into place; if the second rename fails the first file is removed.
+  void commit() {
+    for (int i = 0; i < 2; ++i) {
+      if (std::rename(temporaries_[i].c_str(), names_[i].c_str()) != 0) {
+        const std::string reason = std::strerror(errno);
+        if (i == 1) std::remove(names_[0].c_str());
+        fail("cannot create '" + names_[i] + "': " + reason);
+      }
+      temporaries_[i].clear();
     }
   }
-  for (int i = 0; i < 2; ++i) {
-    if (std::rename(temporaries[i].c_str(), names[i].c_str()) != 0) {
+
+ private:
+  [[noreturn]] void fail(const std::string& what) const {
+    throw write_error("solve: --csv " + prefix_ + ": " + what);
+  }
+
+  void write_one(int i) {
+    std::string pattern = names_[i] + ".XXXXXX";
+    errno = 0;
+    const int fd = ::mkstemp(pattern.data());
+    if (fd < 0) fail("cannot write '" + names_[i] + "': " + std::strerror(errno));
+    temporaries_[i] = pattern;
+    // mkstemp creates the file with mode 0600; give it the mode a plain open would have.
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    ::fchmod(fd, 0666 & ~mask);
+    std::FILE* out = ::fdopen(fd, "wb");
+    if (out == nullptr) {
       const std::string reason = std::strerror(errno);
-      discard();
-      if (i == 1) std::remove(names[0].c_str());
-      throw input_error("solve: --csv " + prefix + ": cannot create '" + names[i] + "': " + reason);
+      ::close(fd);
+      fail("cannot write '" + names_[i] + "': " + reason);
     }
+    errno = 0;
+    write_table(out, *tables_[i]);
+    const bool written = !std::ferror(out) && std::fflush(out) == 0;
+    const int error = errno;
+    const bool closed = std::fclose(out) == 0;
+    if (!written || !closed) {
+      fail("writing '" + names_[i] + "' failed: " + (error != 0 ? std::strerror(error) : std::strerror(errno)));
+    }
+  }
+
+  std::string prefix_;
+  std::string names_[2];
+  const sampled_table* tables_[2] = {nullptr, nullptr};
+  std::string temporaries_[2];
+};
+
+// Writes the document and a newline to stdout and flushes; throws write_error on any failure
+// (a full disk, /dev/full, a closed descriptor).
+void write_stdout(const std::string& document) {
+  errno = 0;
+  std::fwrite(document.data(), 1, document.size(), stdout);
+  std::fputc('\n', stdout);
+  if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+    const int error = errno;
+    throw write_error(std::string("solve: cannot write the result to stdout: ") +
+                      (error != 0 ? std::strerror(error) : "write error") + " (no CSV file written)");
   }
 }
 
@@ -127,13 +184,21 @@ int run(const solve_arguments& args) {
   if (request.grid == 0 && args.csv) request.grid = default_csv_grid;
   const run_outcome outcome = run_scene(scene, request);
 
-  // Serialise before writing anything so that a failure cannot leave partial output.
+  // Serialise before writing anything so that a failure cannot leave partial output. Order:
+  // CSV temporaries, stdout (flushed and checked), then the renames: a CSV file appears only
+  // when the whole result was written.
   const std::string document = args.compact ? outcome.result.dump() : outcome.result.dump(2);
-  if (args.csv) write_csv_files(args.csv_prefix, outcome);
-  std::fwrite(document.data(), 1, document.size(), stdout);
-  std::fputc('\n', stdout);
-  if (std::fflush(stdout) != 0) return 1;
-  return outcome.ok ? 0 : 3;  // 3: the result is written but its status is not "ok"
+  // 3: the result is written but its status is not "ok" (examples/README.md, "Exit codes").
+  const int code = outcome.ok ? exit_ok : exit_not_ok;
+  if (!args.csv) {
+    write_stdout(document);
+    return code;
+  }
+  csv_transaction csv(args.csv_prefix, outcome);
+  csv.write();
+  write_stdout(document);
+  csv.commit();
+  return code;
 }
 
 }  // namespace
@@ -144,6 +209,7 @@ void add_solve_command(CLI::App& app, command_action& action) {
       "solve",
       "Solve a scene: rigid indentors sliding over a power-law viscoelastic half-space.\n"
       "Prints the result as JSON on stdout (schema: examples/README.md).");
+  solve->footer(exit_code_help);
   solve->add_option("SCENE", args->scene_path, "scene file (JSON), or - for stdin")->required();
   solve
       ->add_option("--grid", args->grid,

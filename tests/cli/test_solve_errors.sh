@@ -3,7 +3,9 @@
 #   bash test_solve_errors.sh <path-to-rhabel-binary> <source-dir>
 # Every class of bad input must give exit code 2, exactly one line on stderr that names the
 # field (as a path such as indentors[0].radius) and, for numbers, the valid range; nothing on
-# stdout; and no CSV file (each case is run with --csv).
+# stdout; and no CSV file (each case is run with --csv). Issue 14: a NUL byte, trailing bytes,
+# nesting beyond 256 levels (up to 10^6, which crashed), arguments holding newlines, and a failed
+# write to stdout (/dev/full, a closed descriptor: exit code 2, one line, no CSV file left).
 set -u
 rhabel="$1"
 failures=0
@@ -17,7 +19,14 @@ P='{"shape": "parabolic", "radius": 0.02, "load": 100.0}'
 expect_bad() {
   local name="$1" scene="$2"; shift 2
   printf '%s' "$scene" > "$tmp/scene.json"
-  "$rhabel" solve "$tmp/scene.json" --grid 5 --csv "$tmp/out" > "$tmp/stdout" 2> "$tmp/stderr"
+  expect_bad_file "$name" "$tmp/scene.json" "$@"
+}
+
+# expect_bad_file NAME FILE WORD...: the same for a scene already in FILE (bytes a shell
+# variable cannot hold, such as NUL).
+expect_bad_file() {
+  local name="$1" file="$2"; shift 2
+  "$rhabel" solve "$file" --grid 5 --csv "$tmp/out" > "$tmp/stdout" 2> "$tmp/stderr"
   local rc=$?
   [ "$rc" -eq 2 ] || fail "$name: exit code $rc, expected 2"
   [ -s "$tmp/stdout" ] && fail "$name: partial output on stdout"
@@ -80,6 +89,89 @@ expect_bad duplicate_nested "{$M, \"speed\": 1, \"indentors\": [$P, {\"shape\": 
 # a message stays on one line even when the input has newlines near the error
 expect_bad newline_in_error $'{"material":\n{\n"alpha": 0.3,\n"E1": x\n}}' "not valid JSON"
 
+printf '%s' "{$M, \"speed\": 1, \"indentors\": [$P]}" > "$tmp/good.json"
+
+# --- issue 14: the whole input is parsed; a NUL byte or trailing bytes name their byte offset --
+good="{$M, \"speed\": 1, \"indentors\": [$P]}"
+# "SCENE\0 garbage {{{" was accepted as SCENE: nlohmann-json takes a NUL for the end of input.
+{ printf '%s' "$good"; printf '\0 garbage {{{'; } > "$tmp/nul.json"
+expect_bad_file nul_after_scene "$tmp/nul.json" "NUL byte" "byte offset ${#good}"
+{ printf '%s' "$good"; printf '\0'; } > "$tmp/nul.json"
+expect_bad_file nul_at_end "$tmp/nul.json" "NUL byte" "byte offset ${#good}"
+{ printf '{"desc\0ription": 1}'; } > "$tmp/nul.json"
+expect_bad_file nul_in_string "$tmp/nul.json" "NUL byte" "byte offset 6"
+expect_bad trailing_bytes_offset "$good x" "not valid JSON" "byte offset $((${#good} + 1))"
+expect_bad second_object "$good$good" "not valid JSON" "byte offset ${#good}"
+
+# --- issue 14: nesting depth. 75,000 levels crashed the program (stack overflow, SIGSEGV) ----
+nest() { printf '%*s' "$1" '' | tr ' ' "$2"; }  # $1 copies of the character $2
+for depth in 100000 1000000; do
+  { printf '{"description": '; nest "$depth" '['; nest "$depth" ']'; printf '}'; } > "$tmp/deep.json"
+  expect_bad_file "nested_${depth}_in_description" "$tmp/deep.json" "deeper than the limit of 256 levels" "byte offset 271"
+  nest "$depth" '{' > "$tmp/deep.json"  # unterminated objects: refused before parsing
+  expect_bad_file "nested_${depth}_objects_unterminated" "$tmp/deep.json" "deeper than the limit of 256" "byte offset 256"
+done
+# the same on stdin
+{ printf '{"description": '; nest 100000 '['; nest 100000 ']'; printf '}'; } |
+  "$rhabel" solve - > "$tmp/stdout" 2> "$tmp/stderr"; rc=$?
+[ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && [ "$(wc -l < "$tmp/stderr")" -eq 1 ] && grep -q "(stdin) nests" "$tmp/stderr" ||
+  fail "nested 100000 on stdin: rc $rc, $(head -c 300 "$tmp/stderr")"
+# The limit counts levels (the top-level object is level 1): 256 passes the scan (and is then
+# judged by the schema), 257 does not. Brackets inside strings do not count.
+expect_bad depth_256_passes_the_scan "{\"description\": $(nest 255 '[')$(nest 255 ']')}" "description must be a string"
+expect_bad depth_257_refused "{\"description\": $(nest 256 '[')$(nest 256 ']')}" "deeper than the limit of 256" "byte offset 271"
+expect_bad brackets_in_strings_do_not_count "{\"description\": \"$(nest 1000 '[')\\\"$(nest 1000 '{')\", \"x\": 1}" "x" "not a known field"
+
+# --- issue 14: one-line messages also when an argument holds a newline -----------------------
+expect_one_line() {
+  local name="$1"; shift
+  "$rhabel" "$@" > "$tmp/stdout" 2> "$tmp/stderr"; local rc=$?
+  [ "$rc" -eq 2 ] || fail "$name: exit code $rc, expected 2"
+  [ -s "$tmp/stdout" ] && fail "$name: output on stdout"
+  [ "$(wc -l < "$tmp/stderr")" -eq 1 ] || fail "$name: stderr is not one line: $(cat "$tmp/stderr")"
+  grep -q '^rhabel: solve: ' "$tmp/stderr" || fail "$name: message does not name the command: $(cat "$tmp/stderr")"
+}
+expect_one_line newline_in_scene_path solve $'no-such\nscene.json'
+expect_one_line newline_in_grid solve "$tmp/scene.json" --grid $'4\n5'
+expect_one_line newline_in_csv_prefix solve "$tmp/good.json" --csv "$tmp/no-such-dir/a"$'\n'"b"
+expect_one_line carriage_return_and_escape solve $'x\r\x1b[2Jy.json'
+grep -q -F 'x\r\x1b[2Jy.json' "$tmp/stderr" || fail "control characters not shown escaped: $(cat "$tmp/stderr")"
+expect_one_line newline_in_option_name solve "$tmp/scene.json" $'--gr\nid' 4
+
+# --- issue 14: a failed write to stdout is exit code 2 with one line, and leaves no CSV file --
+# (it exited 1 with an empty stderr and left both CSV files on disk)
+expect_write_error() {
+  local name="$1"; shift
+  rm -f "$tmp"/w_*
+  sh -c "$1" "$rhabel" "$tmp" 2> "$tmp/stderr"; local rc=$?  # $0 = rhabel, $1 = tmp
+  [ "$rc" -eq 2 ] || fail "$name: exit code $rc, expected 2"
+  [ "$(wc -l < "$tmp/stderr")" -eq 1 ] || fail "$name: stderr is not one line: $(cat "$tmp/stderr")"
+  grep -q '^rhabel: solve: cannot write the result to stdout' "$tmp/stderr" || fail "$name: message: $(cat "$tmp/stderr")"
+  ls "$tmp"/w_* > /dev/null 2>&1 && fail "$name: files left behind: $(ls "$tmp"/w_*)"
+}
+if [ -w /dev/full ]; then
+  expect_write_error full_device '"$0" solve "$1/good.json" --csv "$1/w_run" > /dev/full'
+  expect_write_error full_device_grid '"$0" solve "$1/good.json" --grid 1000 --compact --csv "$1/w_run" > /dev/full'
+  expect_write_error full_device_no_csv '"$0" solve "$1/good.json" > /dev/full'
+fi
+expect_write_error closed_stdout '"$0" solve "$1/good.json" --csv "$1/w_run" >&-'
+# An existing CSV file is kept as it was when the run fails, and replaced when it succeeds.
+printf 'old\n' > "$tmp/keep_pressure.csv"
+if [ -w /dev/full ]; then
+  "$rhabel" solve "$tmp/good.json" --csv "$tmp/keep" > /dev/full 2> /dev/null
+  [ "$(cat "$tmp/keep_pressure.csv")" = old ] || fail "a failed run changed an existing CSV file"
+  [ -e "$tmp/keep_displacement.csv" ] && fail "a failed run created keep_displacement.csv"
+fi
+"$rhabel" solve "$tmp/good.json" --csv "$tmp/keep" > /dev/null 2> "$tmp/stderr" || fail "csv run: $(cat "$tmp/stderr")"
+head -n 1 "$tmp/keep_pressure.csv" | grep -q '^indentor,x,pressure$' || fail "the CSV file was not replaced"
+[ "$(ls "$tmp" | grep -c 'keep_.*\.csv\.')" -eq 0 ] || fail "temporary files left: $(ls "$tmp")"
+
+# --- the exit codes are documented in --help ---------------------------------------------------
+"$rhabel" solve --help > "$tmp/help" || fail "solve --help: exit code $?"
+for line in "^Exit codes:" "^  0  ok" "^  1  internal error" "^  2  bad input, a scene that cannot be solved, or an output that could not be written"; do
+  grep -q "$line" "$tmp/help" || fail "solve --help does not document the exit codes ($line)"
+done
+
 # unreadable files
 "$rhabel" solve "$tmp/does-not-exist.json" > "$tmp/stdout" 2> "$tmp/stderr"; rc=$?
 [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && [ "$(wc -l < "$tmp/stderr")" -eq 1 ] && grep -q "does-not-exist.json" "$tmp/stderr" \
@@ -90,7 +182,6 @@ expect_bad newline_in_error $'{"material":\n{\n"alpha": 0.3,\n"E1": x\n}}' "not 
 "$rhabel" solve "$tmp/scene.json" --grid 1 > "$tmp/stdout" 2> "$tmp/stderr"; rc=$?
 [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && grep -q -- "--grid" "$tmp/stderr" || fail "--grid 1: rc $rc, $(cat "$tmp/stderr")"
 # unwritable CSV prefix: exit 2, nothing on stdout, no stray file
-printf '%s' "{$M, \"speed\": 1, \"indentors\": [$P]}" > "$tmp/good.json"
 "$rhabel" solve "$tmp/good.json" --csv "$tmp/no-such-dir/x" > "$tmp/stdout" 2> "$tmp/stderr"; rc=$?
 [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && grep -q -- "--csv" "$tmp/stderr" || fail "unwritable --csv: rc $rc, $(cat "$tmp/stderr")"
 

@@ -41,6 +41,7 @@
 namespace {
 
 using rhabel::quadrature::gauss_jacobi;
+using rhabel::quadrature::gauss_jacobi_max_exponent;
 using rhabel::quadrature::gauss_jacobi_method;
 using rhabel::quadrature::gauss_jacobi_options;
 using rhabel::quadrature::quadrature_rule;
@@ -467,6 +468,59 @@ TEST_CASE("gauss_jacobi: bad input throws std::domain_error naming the parameter
   CHECK_THROWS_AS(gauss_jacobi<boost::multiprecision::cpp_bin_float_50>(
                       3, 0, 0, gauss_jacobi_options{gauss_jacobi_method::asymptotic}),
                   std::invalid_argument);
+}
+
+TEST_CASE("gauss_jacobi: regression issue 14, exponents beyond 30 are refused (weights 0, NaN, inf, no convergence)") {
+  // Each of these returned a wrong rule without an error or failed as an internal error; the
+  // contract is measured up to 30 (gauss_jacobi_max_exponent), so they must throw domain_error
+  // naming the parameter, its value and the range, on every path and for every Real.
+  auto message_of = [](auto&& call) -> std::string {
+    try {
+      call();
+    } catch (const std::domain_error& error) {
+      return error.what();
+    }
+    return "no exception";
+  };
+  CHECK(gauss_jacobi_max_exponent == 30.0);
+  const std::string range = "is outside the valid range (-1, 30]";
+  CHECK(message_of([] { gauss_jacobi<double>(2, 1000.0, 1000.0); }) == "gauss_jacobi: p = 1000 " + range);
+  CHECK(message_of([] { gauss_jacobi<double>(1, 1e6, 0.0); }) == "gauss_jacobi: p = 1000000 " + range);
+  CHECK(message_of([] { gauss_jacobi<double>(2, -0.999999999999, 1e3); }) == "gauss_jacobi: q = 1000 " + range);
+  CHECK(message_of([] { gauss_jacobi<double>(10, 1e300, 0.0); }).find("p = 1.0000000000000001e+300 " + range) !=
+        std::string::npos);
+  CHECK(message_of([] { gauss_jacobi<double>(10000, 300.0, -0.9); }) == "gauss_jacobi: p = 300 " + range);
+  CHECK(message_of([] { gauss_jacobi<double>(5, 0.0, std::nextafter(30.0, 31.0)); }).find("q = 30.000000000000004") !=
+        std::string::npos);
+  CHECK(message_of([] { gauss_jacobi<double>(5, HUGE_VAL, 0.0); }) == "gauss_jacobi: p = inf " + range);
+  CHECK(message_of([] { gauss_jacobi<double>(50, 31.0, 0.0, gauss_jacobi_options{gauss_jacobi_method::asymptotic}); })
+            .find("p = 31") != std::string::npos);
+  CHECK(message_of([] { gauss_jacobi<double>(50, 0.0, 31.0, -2.0, 5.0); }).find("q = 31") != std::string::npos);
+  CHECK(message_of([] { gauss_jacobi<float>(3, 40.0f, 0.0f); }).find("p = 40") != std::string::npos);
+  CHECK(message_of([] {
+          gauss_jacobi<boost::multiprecision::cpp_bin_float_50>(3, 0, 31);
+        }).find("q = 31") != std::string::npos);
+  // The limit itself is inside: n = 1, 2 closed forms above, the table at (30, *) and (*, 30).
+  CHECK(gauss_jacobi<double>(3, 30.0, 30.0).size() == 3);
+}
+
+TEST_CASE("gauss_jacobi: regression issue 14, subnormal exponents are in range (the rule of exponent 0)") {
+  // 1e-320 and -1e-320 are inside (-1, 30]; (1 +- x)^(1e-320) differs from 1 by far less than eps,
+  // so the rule is that of exponent 0 to the contract (the paths may take the generic-exponent
+  // branches: the two rules are compared with the contract's tolerance).
+  for (std::size_t n : {1, 3, 40, 41, 1000}) {
+    const auto zero = gauss_jacobi<double>(n, 0.0, 0.25);
+    for (double tiny : {1e-320, -1e-320, std::numeric_limits<double>::denorm_min()}) {
+      const auto rule = gauss_jacobi<double>(n, tiny, 0.25);
+      REQUIRE(rule.size() == n);
+      for (std::size_t i = 0; i < n; ++i) {
+        CAPTURE(n);
+        CAPTURE(i);
+        CHECK(std::fabs(rule.weight[i] / zero.weight[i] - 1) <= contract_tolerance);
+        CHECK(std::fabs(rule.hi_minus_x[i] / zero.hi_minus_x[i] - 1) <= contract_tolerance);
+      }
+    }
+  }
 }
 
 TEST_CASE("gauss_jacobi: the two paths agree across the n = 40 / 41 switch (recurrence_max_n = 40)") {
