@@ -72,7 +72,7 @@ def _show(value):
             text = "nan" if math.isnan(x) else ("+inf" if x > 0 else "-inf") if math.isinf(x) else repr(x)
     else:
         try:
-            text = json.dumps(value)
+            text = json.dumps(value, separators=(",", ":"), ensure_ascii=False)  # as nlohmann's dump()
         except (TypeError, ValueError):
             text = repr(value)
     return text if len(text) <= 40 else text[:37] + "..."
