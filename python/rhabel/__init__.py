@@ -22,7 +22,7 @@ import json as _json
 from collections import namedtuple as _namedtuple
 
 from . import _rhabel
-from ._record import Record, wrap as _wrap
+from ._record import Record
 from ._scene import validate as _validate
 from . import abel, riemann
 
@@ -126,11 +126,8 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True):
     spec = _validate(scene)
     grid = _grid(grid)
     result = _rhabel._solve(spec, grid, bool(displacement), float(tolerance), bool(residual))
-    # Shape and name come from the scene (first, as in the command line's document).
-    result["indentors"] = [{k: d[k] for k in ("shape", "name") if k in d} | item
-                           for item, d in zip(result["indentors"], spec["indentors"])]
     result["scene"] = spec
-    return _wrap(result)
+    return result
 
 
 def _grid(grid):

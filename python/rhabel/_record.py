@@ -34,15 +34,6 @@ class Record(dict):
         return json.dumps(_plain(self), **kwargs)
 
 
-def wrap(value):
-    """Nested dicts -> Records (in place for lists; arrays and scalars as they are)."""
-    if isinstance(value, dict):
-        return Record((k, wrap(v)) for k, v in value.items())
-    if isinstance(value, list):
-        return [wrap(v) for v in value]
-    return value
-
-
 def _plain(value):
     if isinstance(value, dict):
         return {k: _plain(v) for k, v in value.items()}

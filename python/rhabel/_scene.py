@@ -18,6 +18,8 @@ from collections.abc import Mapping
 
 import numpy as np
 
+from ._record import Record
+
 _INF = math.inf
 
 
@@ -79,6 +81,8 @@ def _show(value):
 
 
 def _is_number(value):
+    if type(value) in (float, int):  # the common case, without the slower ABC check
+        return True
     return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
 
 
@@ -102,6 +106,8 @@ def _require(obj, path, key, what):
 
 
 def _number(value, path, valid, what):
+    if type(value) is float and value in valid:  # fast path: a finite float in range (inf is in no range)
+        return value
     if not _is_number(value):
         _fail(f"{path} must be a number in {valid.text} ({what}), got {_type_of(value)} {_show(value)}")
     try:
@@ -118,7 +124,11 @@ def _number(value, path, valid, what):
 
 
 def _required_number(obj, path, key, valid, what):
-    value = _require(obj, path, key, f"a number in {valid.text} is required ({what})")
+    if key not in obj:
+        _fail(f"{_child(path, key)} is missing: a number in {valid.text} is required ({what})")
+    value = obj[key]
+    if type(value) is float and value in valid:  # fast path, as in _number
+        return value
     return _number(value, _child(path, key), valid, what)
 
 
@@ -140,12 +150,12 @@ def _material(value):
     path = "material"
     _require_object(value, path)
     _only_keys(value, path, ("alpha", "E1", "nu", "coulomb", "name"))
-    m = {
+    m = Record({
         "alpha": _required_number(value, path, "alpha", _ALPHA, "power-law exponent of E(t) = E1 t^-alpha"),
         "E1": _required_number(value, path, "E1", _POSITIVE, "modulus coefficient of E(t) = E1 t^-alpha"),
         "nu": _required_number(value, path, "nu", _POISSON, "Poisson ratio"),
         "coulomb": _required_number(value, path, "coulomb", _NON_NEGATIVE, "Coulomb friction coefficient"),
-    }
+    })
     name = _optional_string(value, path, "name")
     if name:
         m["name"] = name
@@ -171,25 +181,25 @@ def _indentor(value, path):
               '(valid: "parabolic", "wedge", "flat")')
     geometry = SHAPES[shape]
     _only_keys(value, path, ("shape", "load", "apex", "name") + geometry, f' for shape "{shape}"')
-    d = {"shape": shape}
+    d = Record(shape=shape)
     for key in geometry:
         d[key] = _required_number(value, path, key, _POSITIVE, _WHAT[key])
     d["load"] = _required_number(value, path, "load", _POSITIVE, "normal force per unit length")
     d["apex"] = _number(value["apex"], _child(path, "apex"), _ANY_FINITE, "apex position") if "apex" in value else 0.0
     name = _optional_string(value, path, "name")
     if name:  # the command line's echo: shape, name, geometry, load, apex
-        d = {"shape": shape, "name": name, **{k: v for k, v in d.items() if k != "shape"}}
+        d = Record({"shape": shape, "name": name, **{k: v for k, v in d.items() if k != "shape"}})
     return d
 
 
 def validate(scene):
-    """The validated scene: a new dict with every number a float in range, ``apex`` filled in,
+    """The validated scene: a new Record (dict) with every number a float in range, ``apex`` filled in,
     the optional strings kept when non-empty (the command line's echo of the scene). Raises
     ValueError with one line naming the field."""
     if not isinstance(scene, Mapping):
         _fail(f"scene: the top level must be a JSON object {{...}} (a dict), got {_type_of(scene)}")
     _only_keys(scene, "", ("description", "material", "speed", "indentors"))
-    out = {}
+    out = Record()
     description = _optional_string(scene, "", "description")
     if description:
         out["description"] = description

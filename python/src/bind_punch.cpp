@@ -2,8 +2,9 @@
 //
 // The scene arrives already validated by python/rhabel/_scene.py (the schema of
 // examples/README.md: every required field present, no unknown field, numbers in range) and is
-// mapped to rhabel::punch::scene here; the result goes back as nested dicts whose keys are those
-// of the command line's JSON result (cli/scene_solve.cpp). The conversion of a result is written
+// mapped to rhabel::punch::scene here; the result goes back as nested Records (dicts with
+// attribute access, python/rhabel/_record.py) whose keys are those of the command line's JSON
+// result (cli/scene_solve.cpp). The conversion of a result is written
 // once, in the two to_python overloads below: a new field of punch's indentor_result or
 // scene_result is added there and nowhere else.
 #include "bindings.hpp"
@@ -49,10 +50,20 @@ punch::scene to_scene(const py::dict& spec) {
 
 const char* side_name(punch::edge_side side) { return side == punch::edge_side::leading ? "leading" : "trailing"; }
 
-/// One indentor's result, keys as in the JSON result (examples/README.md). The shape and name
-/// come from the scene and are added by python/rhabel/__init__.py.
-py::dict to_python(punch::indentor_result&& r) {
-  py::dict out;
+/// An empty rhabel._record.Record (a dict subclass with attribute access): the result is built
+/// from Records directly, no second pass in Python.
+py::dict record() {
+  static const py::object* type = nullptr;  // the GIL serialises the first call
+  if (type == nullptr) type = new py::object(py::module_::import("rhabel._record").attr("Record"));
+  return (*type)();
+}
+
+/// One indentor's result, keys as in the JSON result (examples/README.md); shape and name are
+/// the scene's (`spec`: the validated indentor dict).
+py::dict to_python(punch::indentor_result&& r, const py::dict& spec) {
+  py::dict out = record();
+  out["shape"] = spec["shape"];
+  if (spec.contains("name")) out["name"] = spec["name"];
   out["contact"] = py::make_tuple(r.a, r.b);
   out["contact_length"] = r.contact_length;
   if (r.epsilon) out["epsilon"] = *r.epsilon;
@@ -66,7 +77,7 @@ py::dict to_python(punch::indentor_result&& r) {
   out["peak_pressure_at"] = r.peak_pressure_at;
   py::list edges;
   for (const auto& e : r.edges) {
-    py::dict edge;
+    py::dict edge = record();
     edge["side"] = side_name(e.side);
     edge["at"] = e.position;
     edge["singular"] = e.singular;
@@ -80,13 +91,13 @@ py::dict to_python(punch::indentor_result&& r) {
   out["degree"] = r.degree;
   out["status"] = r.status;
   if (!r.grid_x.empty()) {
-    py::dict pressure;
+    py::dict pressure = record();
     pressure["x"] = to_numpy(std::move(r.grid_x));
     pressure["p"] = to_numpy(std::move(r.pressure));
     out["pressure"] = std::move(pressure);
   }
   if (!r.displacement_x.empty()) {
-    py::dict displacement;
+    py::dict displacement = record();
     displacement["x"] = to_numpy(std::move(r.displacement_x));
     displacement["w"] = to_numpy(std::move(r.displacement));
     out["displacement"] = std::move(displacement);
@@ -95,16 +106,19 @@ py::dict to_python(punch::indentor_result&& r) {
 }
 
 /// The whole result, keys as in the JSON result (without "scene", added in Python).
-py::dict to_python(punch::scene_result&& r, double effective_modulus) {
-  py::dict out;
+py::dict to_python(punch::scene_result&& r, const py::dict& spec, double effective_modulus) {
+  py::dict out = record();
   out["beta"] = r.beta;
   out["kappa"] = r.kappa;
   out["regime"] = r.regime;
   out["effective_modulus"] = effective_modulus;
   py::list indentors;
-  for (auto& ir : r.indentors) indentors.append(to_python(std::move(ir)));
+  const auto specs = spec["indentors"].cast<py::list>();
+  for (std::size_t i = 0; i < r.indentors.size(); ++i) {
+    indentors.append(to_python(std::move(r.indentors[i]), specs[i].cast<py::dict>()));
+  }
   out["indentors"] = std::move(indentors);
-  py::dict diagnostics;
+  py::dict diagnostics = record();
   diagnostics["residual"] = r.diagnostics.residual;
   diagnostics["seconds"] = r.diagnostics.seconds;
   diagnostics["status"] = r.diagnostics.status;
@@ -124,7 +138,7 @@ py::dict solve(const py::dict& spec, std::size_t grid, bool displacement, double
     py::gil_scoped_release nogil;  // threads may solve other scenes meanwhile
     result = punch::solve(s, options);
   }
-  return to_python(std::move(result), s.material.effective_modulus(s.speed));
+  return to_python(std::move(result), spec, s.material.effective_modulus(s.speed));
 }
 
 }  // namespace
@@ -132,7 +146,7 @@ py::dict solve(const py::dict& spec, std::size_t grid, bool displacement, double
 void bind_punch(py::module_& m) {
   m.def("_solve", &solve, py::arg("scene"), py::arg("grid"), py::arg("displacement"), py::arg("tolerance"),
         py::arg("residual"),
-        "Solves a VALIDATED scene dict (rhabel.solve validates first). Returns nested dicts.");
+        "Solves a VALIDATED scene dict (rhabel.solve validates first). Returns nested Records.");
 }
 
 }  // namespace rhabel::python
