@@ -3,9 +3,9 @@
 rhabel.solve from Python, against the same loop in C++ (bench/solve_loop.cpp,
 build/bin/bench_solve_loop, run by this script when it is built).
 
-    PYTHONPATH=build/python /usr/bin/python3 python/bench_solve_loop.py [--repeat 5] [--bench PATH]
+    PYTHONPATH=build/python /usr/bin/python3 python/bench_solve_loop.py [--repeat 7] [--bench PATH]
 
-Prints the minimum over the repetitions of the loop's wall time, with the residual on (the default)
+Prints the minimum over interleaved repetitions of the loop's wall time, with the residual on (the default)
 and off, the part spent inside punch::solve (sum of diagnostics.seconds) and, with the C++ figures,
 the ratio Python / C++. The scenes: alpha = 0.3, E1 = 1e6, nu = 0.3, k = 0.5, U = 0.01,
 R = 0.02, load 50 + 0.1 i N/m, i = 0 .. 999 (the same as bench/solve_loop.cpp).
@@ -32,52 +32,55 @@ def scenes():
             for i in range(COUNT)]
 
 
-def python_loop(todo, residual, repeat):
-    best, inside = float("inf"), 0.0
-    for _ in range(repeat):
-        start = time.perf_counter()
-        results = [rhabel.solve(s, residual=residual) for s in todo]
-        elapsed = time.perf_counter() - start
-        if elapsed < best:
-            best, inside = elapsed, sum(r.diagnostics.seconds for r in results)
-    return best, inside
+def python_loop(todo, residual):
+    """Seconds of one loop, and the part spent inside punch::solve (sum of diagnostics.seconds)."""
+    start = time.perf_counter()
+    results = [rhabel.solve(s, residual=residual) for s in todo]
+    elapsed = time.perf_counter() - start
+    return elapsed, sum(r.diagnostics.seconds for r in results)
 
 
-def cpp_loop(path, repeat):
-    """Seconds per loop of 1000 scenes from bench_solve_loop (minimum of the repetitions), keyed by
-    the residual flag; None when the binary is missing."""
+def cpp_loop(path):
+    """Seconds of one loop of bench_solve_loop, keyed by the residual flag; None without the binary."""
     if not path.is_file():
         return None
-    out = subprocess.run([str(path), f"--benchmark_repetitions={repeat}", "--benchmark_format=json"],
+    out = subprocess.run([str(path), "--benchmark_repetitions=1", "--benchmark_format=json"],
                          check=True, capture_output=True, text=True).stdout
     best = {}
     for b in json.loads(out)["benchmarks"]:
         if b.get("run_type") != "iteration":
             continue
         residual = b["name"].split("residual:")[1].split("/")[0] == "1"
-        seconds = b["real_time"] * {"ms": 1e-3, "us": 1e-6, "ns": 1e-9, "s": 1.0}[b["time_unit"]]
-        best[residual] = min(best.get(residual, float("inf")), seconds)
+        best[residual] = b["real_time"] * {"ms": 1e-3, "us": 1e-6, "ns": 1e-9, "s": 1.0}[b["time_unit"]]
     return best
 
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("--repeat", type=int, default=5)
+    parser.add_argument("--repeat", type=int, default=7)
     default_bench = pathlib.Path(__file__).resolve().parents[1] / "build" / "bin" / "bench_solve_loop"
     parser.add_argument("--bench", type=pathlib.Path, default=default_bench)
     args = parser.parse_args()
 
     todo = scenes()
-    rhabel.solve(todo[0])  # warm up (first-touch of the module's code and tables)
-    cpp = cpp_loop(args.bench, args.repeat)
-    print(f"{COUNT} single-parabola solves, minimum of {args.repeat} runs (rhabel {rhabel.__version__})")
+    rhabel.solve(todo[0])  # warm up (first touch of the module's code and tables)
+    # Interleaved runs, minimum of each: the machine's load changes between runs.
+    py = {True: (float("inf"), 0.0), False: (float("inf"), 0.0)}
+    cpp = {True: float("inf"), False: float("inf")} if args.bench.is_file() else None
+    for _ in range(args.repeat):
+        if cpp is not None:
+            for residual, seconds in cpp_loop(args.bench).items():
+                cpp[residual] = min(cpp[residual], seconds)
+        for residual in (True, False):
+            py[residual] = min(py[residual], python_loop(todo, residual))
+    print(f"{COUNT} single-parabola solves, minimum of {args.repeat} interleaved runs (rhabel {rhabel.__version__})")
     print(f"{'residual':>8} {'Python [s]':>11} {'inside solve [s]':>17} {'C++ [s]':>9} {'Python/C++':>11} "
           f"{'overhead/solve [us]':>20}")
     for residual in (True, False):
-        py, inside = python_loop(todo, residual, args.repeat)
+        seconds, inside = py[residual]
         c = cpp[residual] if cpp else float("nan")
-        print(f"{str(residual):>8} {py:11.4f} {inside:17.4f} {c:9.4f} {py / c:11.3f} "
-              f"{(py - c) / COUNT * 1e6 if cpp else (py - inside) / COUNT * 1e6:20.1f}")
+        overhead = (seconds - (c if cpp else inside)) / COUNT * 1e6
+        print(f"{str(residual):>8} {seconds:11.4f} {inside:17.4f} {c:9.4f} {seconds / c:11.3f} {overhead:20.1f}")
     if cpp is None:
         print(f"(no C++ figures: build {args.bench.name} with cmake --build build --target bench_solve_loop)")
 
