@@ -6,7 +6,9 @@ The Python face of the C++ library (python/README.md). Everything numerical runs
 
 Contents
     solve(scene, ...)           contact of rigid indentors (rhabel::punch::solve)
+    validate_scene(scene)       the validation of solve() alone
     load_scene(path)            read a scene JSON file (duplicate keys rejected, as the CLI)
+    Record                      the result type: a dict whose keys are also attributes
     gauss_jacobi(n, p, q, ...)  Gauss-Jacobi rule (rhabel::quadrature::gauss_jacobi)
     jacobi_p(n, p, q, x)        Jacobi polynomials, vectorised over x
     rhabel.abel                 spectral solver of the generalized Abel equation

@@ -31,7 +31,7 @@ def solve_abel_rh(alpha, beta, a, b, data=None, leading="bounded", trailing="bou
         (F = smooth + sum size [s > position]). A wedge with slopes S1, S2 and apex t0 is
         data = [S1 / Gamma(1 - alpha)], steps = [(t0, -(S1 + S2) / Gamma(1 - alpha))].
     order
-        Gauss nodes per panel (0: the default, 25 in double).
+        Gauss nodes per panel (0: the default, 26 in double; at least 4).
     load
         nu = +1: int g = load fixes the free constant (else 0).
     tolerance
