@@ -2,10 +2,11 @@
 one after the other. No wall-clock assertion: the GIL release is observed by the logic of the
 interpreter (with an infinite switch interval a thread that holds the GIL is never preempted)."""
 
+import math
 import sys
 import threading
 
-import pytest
+import numpy as np
 
 import rhabel
 from conftest import SOURCE_DIR, parabola_scene
@@ -72,3 +73,29 @@ def test_solve_lets_other_threads_run():
         sys.setswitchinterval(previous)
     assert len(out) == 2 and comparable(out[0]) == comparable(out[1])
     assert ran_during_solve, "the main thread could not run while rhabel.solve was computing: GIL held"
+
+
+def test_solvers_with_python_callables_in_two_threads():
+    """The Abel solvers call Python back from C++ without the GIL held in between: two threads,
+    each with its own callable, give the sequential results."""
+    def run(c):
+        f = lambda s: math.exp(c * s)  # noqa: E731
+        sol = rhabel.abel.solve(0.3, 0.1, -1.0, 1.0, "bounded", "unbounded", f)
+        rh = rhabel.riemann.solve_abel_rh(0.3, 0.1, -1.0, 1.0, f, "bounded", "unbounded")
+        y = np.linspace(-0.9, 0.9, 7)
+        return sol.density(y).tolist(), sol.residual, rh.total(), rh.density(y)[0].tolist()
+
+    constants = [0.5, -1.0, 2.0]
+    expected = [run(c) for c in constants]
+    got = {}
+
+    def work(name):
+        got[name] = [run(c) for c in constants for _ in range(2)]
+
+    threads = [threading.Thread(target=work, args=(name,)) for name in ("first", "second")]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for name in ("first", "second"):
+        assert got[name] == [e for e in expected for _ in range(2)], name
