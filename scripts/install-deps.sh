@@ -13,6 +13,8 @@ packages=(
   libcli11-dev              # command-line parsing
   libbenchmark-dev          # Google Benchmark for bench/
   python3 python3-matplotlib  # the main job's plot
+  pybind11-dev python3-dev    # the Python package rhabel (python/)
+  python3-numpy python3-pytest  # its arrays and its tests (tests/python/)
 )
 
 missing=()

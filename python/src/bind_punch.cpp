@@ -1,0 +1,152 @@
+// python/src/bind_punch.cpp: rhabel.solve's compiled part, _rhabel._solve(scene, ...).
+//
+// The scene arrives already validated by python/rhabel/_scene.py (the schema of
+// examples/README.md: every required field present, no unknown field, numbers in range) and is
+// mapped to rhabel::punch::scene here; the result goes back as nested Records (dicts with
+// attribute access, python/rhabel/_record.py) whose keys are those of the command line's JSON
+// result (cli/scene_solve.cpp). The conversion of a result is written
+// once, in the two to_python overloads below: a new field of punch's indentor_result or
+// scene_result is added there and nowhere else.
+#include "bindings.hpp"
+
+#include <rhabel/punch/contact.hpp>
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+namespace rhabel::python {
+namespace {
+
+double number(const py::handle& object, const char* key) { return object[key].cast<double>(); }
+
+punch::scene to_scene(const py::dict& spec) {
+  punch::scene s;
+  const py::dict material = spec["material"];
+  s.material.alpha = number(material, "alpha");
+  s.material.E1 = number(material, "E1");
+  s.material.poisson = number(material, "nu");
+  s.material.coulomb = number(material, "coulomb");
+  s.speed = number(spec, "speed");
+  for (const py::handle item : spec["indentors"].cast<py::list>()) {
+    const py::dict d = py::reinterpret_borrow<py::dict>(item);
+    punch::indentor ind;
+    ind.load = number(d, "load");
+    ind.apex = number(d, "apex");
+    const auto shape = d["shape"].cast<std::string>();
+    if (shape == "parabolic") {
+      ind.shape = punch::parabolic{number(d, "radius")};
+    } else if (shape == "wedge") {
+      ind.shape = punch::wedge{number(d, "slope_leading"), number(d, "slope_trailing")};
+    } else if (shape == "flat") {
+      ind.shape = punch::flat{number(d, "width")};
+    } else {
+      throw py::value_error("rhabel.solve: unknown shape '" + shape + "' (the scene was not validated)");
+    }
+    s.indentors.push_back(std::move(ind));
+  }
+  return s;
+}
+
+const char* side_name(punch::edge_side side) { return side == punch::edge_side::leading ? "leading" : "trailing"; }
+
+/// An empty rhabel._record.Record (a dict subclass with attribute access): the result is built
+/// from Records directly, no second pass in Python.
+py::dict record() {
+  static const py::object* type = nullptr;  // the GIL serialises the first call
+  if (type == nullptr) type = new py::object(py::module_::import("rhabel._record").attr("Record"));
+  return (*type)();
+}
+
+/// One indentor's result, keys as in the JSON result (examples/README.md); shape and name are
+/// the scene's (`spec`: the validated indentor dict).
+py::dict to_python(punch::indentor_result&& r, const py::dict& spec) {
+  py::dict out = record();
+  out["shape"] = spec["shape"];
+  if (spec.contains("name")) out["name"] = spec["name"];
+  out["contact"] = py::make_tuple(r.a, r.b);
+  out["contact_length"] = r.contact_length;
+  if (r.epsilon) out["epsilon"] = *r.epsilon;
+  out["load"] = r.load;
+  out["hysteretic_friction"] = r.hysteretic_friction;
+  out["total_friction"] = r.total_friction;
+  // As the command line: an unbounded pressure is None with peak_pressure_singular = True.
+  const bool singular = std::isinf(r.peak_pressure) && r.peak_pressure > 0;
+  out["peak_pressure"] = singular ? py::object(py::none()) : py::object(py::float_(r.peak_pressure));
+  out["peak_pressure_singular"] = singular;
+  out["peak_pressure_at"] = r.peak_pressure_at;
+  py::list edges;
+  for (const auto& e : r.edges) {
+    py::dict edge = record();
+    edge["side"] = side_name(e.side);
+    edge["at"] = e.position;
+    edge["singular"] = e.singular;
+    edge["exponent"] = e.exponent;
+    edge["intensity_factor"] = e.intensity_factor;
+    edges.append(std::move(edge));
+  }
+  out["edges"] = std::move(edges);
+  out["residual"] = r.residual;
+  out["error_estimate"] = r.error_estimate;
+  out["degree"] = r.degree;
+  out["status"] = r.status;
+  if (!r.grid_x.empty()) {
+    py::dict pressure = record();
+    pressure["x"] = to_numpy(std::move(r.grid_x));
+    pressure["p"] = to_numpy(std::move(r.pressure));
+    out["pressure"] = std::move(pressure);
+  }
+  if (!r.displacement_x.empty()) {
+    py::dict displacement = record();
+    displacement["x"] = to_numpy(std::move(r.displacement_x));
+    displacement["w"] = to_numpy(std::move(r.displacement));
+    out["displacement"] = std::move(displacement);
+  }
+  return out;
+}
+
+/// The whole result, keys as in the JSON result (without "scene", added in Python).
+py::dict to_python(punch::scene_result&& r, const py::dict& spec, double effective_modulus) {
+  py::dict out = record();
+  out["beta"] = r.beta;
+  out["kappa"] = r.kappa;
+  out["regime"] = r.regime;
+  out["effective_modulus"] = effective_modulus;
+  py::list indentors;
+  const auto specs = spec["indentors"].cast<py::list>();
+  for (std::size_t i = 0; i < r.indentors.size(); ++i) {
+    indentors.append(to_python(std::move(r.indentors[i]), specs[i].cast<py::dict>()));
+  }
+  out["indentors"] = std::move(indentors);
+  py::dict diagnostics = record();
+  diagnostics["residual"] = r.diagnostics.residual;
+  diagnostics["seconds"] = r.diagnostics.seconds;
+  diagnostics["status"] = r.diagnostics.status;
+  out["diagnostics"] = std::move(diagnostics);
+  return out;
+}
+
+py::dict solve(const py::dict& spec, std::size_t grid, bool displacement, double tolerance, bool residual) {
+  const punch::scene s = to_scene(spec);
+  punch::solve_options options;
+  options.grid_points = grid;
+  options.displacement = displacement;
+  options.tolerance = tolerance;
+  options.residual = residual;
+  punch::scene_result result;
+  {
+    py::gil_scoped_release nogil;  // threads may solve other scenes meanwhile
+    result = punch::solve(s, options);
+  }
+  return to_python(std::move(result), spec, s.material.effective_modulus(s.speed));
+}
+
+}  // namespace
+
+void bind_punch(py::module_& m) {
+  m.def("_solve", &solve, py::arg("scene"), py::arg("grid"), py::arg("displacement"), py::arg("tolerance"),
+        py::arg("residual"),
+        "Solves a VALIDATED scene dict (rhabel.solve validates first). Returns nested Records.");
+}
+
+}  // namespace rhabel::python
