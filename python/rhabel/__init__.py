@@ -100,11 +100,15 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True):
           ``peak_pressure_singular`` is True), ``peak_pressure_at``, ``edges`` (two Records:
           ``side``, ``at``, ``singular``, ``exponent``, ``intensity_factor``: p ~ K d^exponent),
           ``residual`` (relative residual of the Abel equation, an estimate), ``error_estimate``
-          (an estimate, not a bound), ``degree``, ``status`` ("ok" or what was approximated);
+          (an estimate, not a bound), ``degree``, ``status`` ("ok", "not_converged", "tension",
+          "load_mismatch" or "contacts_merge": "ok" only when the residual, the sign of the
+          pressure, the load and the error estimate pass the acceptance 1e-9),
+          ``status_message`` (the numbers behind a non-ok status, or a note);
           with grid > 0 ``pressure`` {``x``, ``p``} and ``displacement`` {``x``, ``w``} as NumPy
           arrays (w relative to its value at the leading edge, upward positive).
         - ``diagnostics``: ``residual`` (max over indentors), ``seconds`` (wall time of the
-          solve), ``status``.
+          solve), ``iterations`` (Newton iterations of the coupled solve), ``status`` (the
+          worst of the indentors' and the coupled solve's), ``status_message``.
         - ``scene``: the validated scene, defaults filled in.
 
         ``result.to_plain()`` / ``result.to_json()`` give the command line's document.

@@ -89,7 +89,8 @@ py::dict to_python(punch::indentor_result&& r, const py::dict& spec) {
   out["residual"] = r.residual;
   out["error_estimate"] = r.error_estimate;
   out["degree"] = r.degree;
-  out["status"] = r.status;
+  out["status"] = punch::to_string(r.code);
+  out["status_message"] = r.status;
   if (!r.grid_x.empty()) {
     py::dict pressure = record();
     pressure["x"] = to_numpy(std::move(r.grid_x));
@@ -121,7 +122,9 @@ py::dict to_python(punch::scene_result&& r, const py::dict& spec, double effecti
   py::dict diagnostics = record();
   diagnostics["residual"] = r.diagnostics.residual;
   diagnostics["seconds"] = r.diagnostics.seconds;
-  diagnostics["status"] = r.diagnostics.status;
+  diagnostics["status"] = punch::to_string(r.diagnostics.code);
+  diagnostics["status_message"] = r.diagnostics.status;
+  diagnostics["iterations"] = r.diagnostics.iterations;
   out["diagnostics"] = std::move(diagnostics);
   return out;
 }
