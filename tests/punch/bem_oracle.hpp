@@ -66,8 +66,11 @@
 //     [0.3, 6]) the value is the finest level and the bar 4 max(|d1|, |d2|); never below
 //     rounding_floor times the quantity's scale. The bar is an ESTIMATE, not a bound. Evidence
 //     (levels, orders, minimum density and gap on the finest level) is returned with the values.
+// A wedge below the boundary whose grid contact ends in the apex panel is first solved with a free
+// trailing edge; if that fails (negative density), its trailing edge is pinned at the apex corner.
 // Limits: one contact interval per indentor (a split contact throws); a contact must stay inside its
-// window (throws otherwise); flat punches need alpha + beta/2 < 1/2.
+// window (throws otherwise); flat punches need alpha + beta/2 < 1/2; a contact lying wholly on a
+// wedge's trailing face (leading edge at the apex corner) is not modelled.
 //
 // MEASURED ACCURACY AND COST (Release, one core of a shared 2-core machine; parabola R = 1.5,
 // load 0.7, closed forms of math.md section 5; errors of the extrapolated values / error bars):
@@ -731,6 +734,93 @@ struct result {
   bool converged = false;             ///< every stage converged
 };
 
+/// Fallback threshold of `solve`: a density below -this x the contact's mean density means the
+/// free-edge model is wrong (valid solutions measure min g / mean g >= 0.007 on every level).
+inline constexpr double pinned_density_floor = 1e-3;
+
+namespace detail {
+
+struct sequence {
+  std::vector<std::vector<contact_values>> vals;  ///< per level, per indentor
+  fitted_result finest;
+  std::vector<int> panels;
+  bool converged = true;
+  double min_density = 0, min_gap = 0;
+};
+
+/// Fitted levels start_panels * 2^k from the meshes M, with the evidence of the finest level:
+/// min g / mean g, and min gap / max |f - delta| at 201 points a window outside the contacts.
+/// With `stop_on_failure`, returns at the first level that does not converge or has a density below
+/// -pinned_density_floor x mean (then converged = false and fewer levels).
+inline sequence fitted_sequence(const scene& sc, std::vector<contact_mesh> M, int levels, bool stop_on_failure) {
+  sequence q;
+  Eigen::MatrixXd jac;
+  std::vector<std::vector<double>> history;  // free edges per level
+  for (int level = 0; level < levels; ++level) {
+    if (level > 0) {
+      for (auto& c : M) { c.n_left *= 2; c.n_right *= 2; }
+      jac *= 2;  // the conditions respond to edge shifts in units of the panel width
+      // Starting edges: extrapolate the O(h) edge shift of the last two levels.
+      auto x = free_edges(M);
+      if (history.size() >= 2)
+        for (std::size_t k = 0; k < x.size(); ++k) *x[k] = history.back()[k] + (history.back()[k] - history[history.size() - 2][k]) / 2;
+    }
+    auto fr = solve_fitted(sc, M, &jac);
+    q.converged = q.converged && fr.converged;
+    if (stop_on_failure) {
+      bool bad_sign = false;
+      for (std::size_t j = 0; j < M.size(); ++j) {
+        if (!fr.mesh[j].in_contact) continue;
+        double P = 0, gmin = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < fr.density.size(); ++i)
+          if (static_cast<std::size_t>(fr.density.owner[i]) == j) {
+            P += fr.density.g[i] * (fr.density.t1[i] - fr.density.t0[i]);
+            gmin = std::min(gmin, fr.density.g[i]);
+          }
+        bad_sign = bad_sign || gmin < -pinned_density_floor * P / (fr.mesh[j].b - fr.mesh[j].a);
+      }
+      if (!fr.converged || bad_sign) {
+        q.converged = false;
+        q.min_density = -std::numeric_limits<double>::infinity();
+        return q;
+      }
+    }
+    M = fr.mesh;
+    std::vector<double> h;
+    for (double* p : free_edges(M)) h.push_back(*p);
+    history.push_back(h);
+    q.vals.push_back(values(sc, fr));
+    int most = 0;
+    for (const auto& c : M) most = std::max(most, c.n_left + c.n_right);
+    q.panels.push_back(most);
+    if (level + 1 == levels) q.finest = std::move(fr);
+  }
+  const kernel K(sc.alpha, sc.beta);
+  const auto& d = q.finest.density;
+  q.min_density = std::numeric_limits<double>::infinity();
+  double scale = 0;
+  for (std::size_t i = 0; i < d.size(); ++i) {
+    const auto j = static_cast<std::size_t>(d.owner[i]);
+    const auto& c = M[j];
+    const double mean = q.vals.back()[j].load / (c.b - c.a);
+    q.min_density = std::min(q.min_density, d.g[i] / mean);
+    scale = std::max(scale, std::abs(height(sc.indentors[j], (d.t0[i] + d.t1[i]) / 2) - d.delta[j]));
+  }
+  q.min_gap = std::numeric_limits<double>::infinity();
+  for (std::size_t j = 0; j < M.size(); ++j) {
+    const auto& I = sc.indentors[j];
+    if (std::holds_alternative<flat>(I.shape) || !M[j].in_contact) continue;
+    for (int k = 0; k <= 200; ++k) {
+      const double s = I.lo + (I.hi - I.lo) * k / 200;
+      if (s >= M[j].a && s <= M[j].b) continue;
+      q.min_gap = std::min(q.min_gap, gap(sc, K, d, static_cast<int>(j), s) / scale);
+    }
+  }
+  return q;
+}
+
+}  // namespace detail
+
 /// The whole oracle: grid stage, fitted levels start_panels * 2^k, Richardson on the last three.
 inline result solve(const scene& sc, const options& opt = {}) {
   detail::validate(sc, "solve");
@@ -778,37 +868,49 @@ inline result solve(const scene& sc, const options& opt = {}) {
       c.n_left = opt.start_panels;
     }
   }
-  Eigen::MatrixXd jac;
-  std::vector<std::vector<double>> history;  // free edges per level
-  std::vector<std::vector<contact_values>> vals;
-  for (int level = 0; level < opt.levels; ++level) {
-    if (level > 0) {
-      for (auto& c : M) { c.n_left *= 2; c.n_right *= 2; }
-      jac *= 2;  // the conditions respond to edge shifts in units of the panel width
-      // Starting edges: extrapolate the O(h) edge shift of the last two levels.
-      auto x = detail::free_edges(M);
-      if (history.size() >= 2)
-        for (std::size_t k = 0; k < x.size(); ++k) *x[k] = history.back()[k] + (history.back()[k] - history[history.size() - 2][k]) / 2;
-    }
-    auto fr = solve_fitted(sc, M, &jac);
-    res.converged = res.converged && fr.converged;
-    M = fr.mesh;
-    std::vector<double> h;
-    for (double* p : detail::free_edges(M)) h.push_back(*p);
-    history.push_back(h);
-    vals.push_back(values(sc, fr));
-    int most = 0;
-    for (const auto& c : M) most = std::max(most, c.n_left + c.n_right);
-    res.panels.push_back(most);
-    if (level + 1 == opt.levels) res.finest = fr;
+  // A wedge below the boundary whose grid contact ends in the apex panel may end AT the apex (a
+  // corner: the density is then unbounded there, as for the pinned wedge above the boundary) rather
+  // than just past it. The free trailing edge is tried first; if that sequence fails (no convergence
+  // or a negative density: measured -18 x the mean for a wedge followed by a parabola at
+  // alpha = 0.25, beta = 0.3), the edge is pinned at the apex and the sequence run again.
+  auto pinned = M;
+  bool candidates = false;
+  for (std::size_t j = 0; j < J; ++j) {
+    auto& c = pinned[j];
+    if (!c.split || res.grid.b[j] > sc.indentors[j].apex + 1.01 * res.grid.h[j]) continue;
+    c.split = false;
+    c.b = sc.indentors[j].apex;
+    c.pin_b = true;
+    c.n_left = opt.start_panels;
+    c.n_right = 0;
+    candidates = true;
   }
+  auto seq = detail::fitted_sequence(sc, M, opt.levels, candidates);
+  if (!seq.converged && candidates) {
+    auto alt = detail::fitted_sequence(sc, pinned, opt.levels, false);
+    if (alt.converged && alt.min_density >= -pinned_density_floor) seq = std::move(alt);
+    else seq = detail::fitted_sequence(sc, M, opt.levels, false);  // report the free model's evidence
+  }
+  res.converged = res.converged && seq.converged;
+  res.finest = seq.finest;
+  res.panels = seq.panels;
+  res.min_density = seq.min_density;
+  res.min_gap = seq.min_gap;
+  const auto& vals = seq.vals;
+  M = seq.finest.mesh;
   res.contacts.resize(J);
   const std::size_t L = vals.size();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t j = 0; j < J; ++j) {
     auto& ce = res.contacts[j];
     ce.in_contact = M[j].in_contact;
     for (const auto& v : vals) ce.levels.push_back(v[j]);
-    if (!ce.in_contact) continue;
+    if (!ce.in_contact) {
+      const estimate none{nan, nan, 0, nan};
+      ce.a = ce.b = ce.length = ce.friction = ce.approach = none;
+      ce.load = estimate{0, 0, 0, 0};
+      continue;
+    }
     auto rich = [&](double contact_values::*q, double scale) {
       return richardson(vals[L - 3][j].*q, vals[L - 2][j].*q, vals[L - 1][j].*q, scale);
     };
@@ -829,28 +931,6 @@ inline result solve(const scene& sc, const options& opt = {}) {
     ce.load = rich(&contact_values::load, fin.load);
     ce.friction = rich(&contact_values::friction, slope);
     ce.approach = rich(&contact_values::approach, depth);
-  }
-  // Evidence on the finest level: density sign, and gap outside the contacts (200 points a window).
-  const kernel K(sc.alpha, sc.beta);
-  const auto& d = res.finest.density;
-  res.min_density = std::numeric_limits<double>::infinity();
-  double scale = 0;
-  for (std::size_t i = 0; i < d.size(); ++i) {
-    const auto& c = res.finest.mesh[static_cast<std::size_t>(d.owner[i])];
-    const double mean = vals.back()[static_cast<std::size_t>(d.owner[i])].load / (c.b - c.a);
-    res.min_density = std::min(res.min_density, d.g[i] / mean);
-    scale = std::max(scale, std::abs(height(sc.indentors[static_cast<std::size_t>(d.owner[i])], (d.t0[i] + d.t1[i]) / 2) -
-                                     d.delta[static_cast<std::size_t>(d.owner[i])]));
-  }
-  res.min_gap = std::numeric_limits<double>::infinity();
-  for (std::size_t j = 0; j < J; ++j) {
-    const auto& I = sc.indentors[j];
-    if (std::holds_alternative<flat>(I.shape) || !M[j].in_contact) continue;
-    for (int k = 0; k <= 200; ++k) {
-      const double s = I.lo + (I.hi - I.lo) * k / 200;
-      if (s >= M[j].a && s <= M[j].b) continue;
-      res.min_gap = std::min(res.min_gap, gap(sc, K, d, static_cast<int>(j), s) / scale);
-    }
   }
   return res;
 }

@@ -245,6 +245,24 @@ TEST_CASE("wedge below the boundary: the apex fraction satisfies I_eps((1+beta)/
   }
 }
 
+TEST_CASE("wedge followed by a parabola at alpha = 0.25, beta = 0.3: the wedge's contact ends at its apex corner") {
+  // Regression: the free trailing edge (just past the apex, as for the isolated wedge) drove the
+  // density to -18 x its mean; solve() then pins the edge at the apex. All of the wedge's contact is
+  // on its leading face, so C_f = S1 exactly; complementarity holds on the finest level.
+  const double S = 0.3;
+  const bem::scene sc{0.25, 0.3, {bem::indentor{bem::wedge{S, S}, 0, 0.5, -15, 3}, bem::indentor{bem::parabola{1.0}, 6, 0.5, 3, 11}}};
+  bem::options o;
+  o.levels = 5;
+  const auto r = bem::solve(sc, o);
+  REQUIRE(r.converged);
+  CHECK(r.contacts[0].b.value == 0.0);
+  CHECK(std::abs(r.contacts[0].friction.value - S) <= r.contacts[0].friction.error);
+  CHECK(r.min_density > 0);
+  CHECK(r.min_gap > -gap_tol);
+  CHECK(r.contacts[0].length.error < bar_budget * r.contacts[0].length.value);
+  CHECK(r.contacts[1].length.error < bar_budget * r.contacts[1].length.value);
+}
+
 TEST_CASE("two identical far-apart parabolas tend to two single contacts, shifts decaying like D^(alpha-1)") {
   // The other contact's surface slope at distance D is ~P D^(alpha-1): it shifts each contact by
   // O(D^(alpha-1)) and changes its length at second order. Finest-level values are compared (same
