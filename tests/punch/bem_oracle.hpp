@@ -68,7 +68,8 @@
 //     (levels, orders, minimum density and gap on the finest level) is returned with the values.
 // A wedge below the boundary whose grid contact ends in the apex panel is first solved with a free
 // trailing edge; if that fails (negative density), its trailing edge is pinned at the apex corner.
-// Limits: one contact interval per indentor (a split contact throws); a contact must stay inside its
+// Limits: alpha + beta <= 1 (kappa >= -1; beyond it the collocation oscillates, so it throws);
+// one contact interval per indentor (a split contact throws); a contact must stay inside its
 // window (throws otherwise); flat punches need alpha + beta/2 < 1/2; a contact lying wholly on a
 // wedge's trailing face (leading edge at the apex corner) is not modelled.
 //
@@ -81,8 +82,10 @@
 //     0.25  0.3  |  4.9e-6  1.4e-4 | -6.3e-6  4.2e-5 |  5.6e-7  1.0e-4 |  3.9e-10 2.7e-7          | 0.4 s
 //     0.7   0    |  7.2e-7  5.6e-5 | -1.8e-6  1.5e-4 | -1.1e-6  9.5e-5 |  5.9e-10 3.7e-7          | 0.9 s
 //     0.7   0.3  | -4.3e-7  3.1e-4 | -1.6e-6  3.5e-4 | -1.7e-6  3.9e-5 |  4.8e-10 4.6e-7          | 0.8 s
-// (lengths relative to L). The edges converge at first order, C_f and the approach at second; the
-// bars overstate the error 10-100x. The finest level alone is off by ~1e-4 L (length) and ~1e-6
+// (lengths relative to L). Also inside the bars, all below 5e-4 L (0.3-4.5 s): (alpha, beta) =
+// (0.001, 0), (0.05, 0.3), (0.45, 0.1), (0.5, 0), (0.9, 0), (0.95, 0), (0.3, 0.9), (0, 0.9),
+// (0.1, 0.9), (0.6, 0.4), (0.8, 0.2). The edges converge at first order, C_f and the approach at
+// second; the bars overstate the error 10-100x. The finest level alone is off by ~1e-4 L (length) and ~1e-6
 // (C_f R/L). Elastic flat punch: approach P log(w/4) to 4e-8 (bar 1.5e-3 P), interior density to
 // 7e-4. Wedge below the boundary: the apex fraction satisfies the orthogonality condition to ~1e-6;
 // when the trailing edge sits within ~1e-4 L of the apex (S2 >> S1) it converges at order ~0.5 only
@@ -221,6 +224,11 @@ namespace detail {
 inline void validate(const scene& sc, const char* fn) {
   if (!(sc.alpha >= 0 && sc.alpha < 1)) bad(fn, "alpha = " + std::to_string(sc.alpha) + " outside [0, 1)");
   if (!(sc.beta >= 0 && sc.beta < 1)) bad(fn, "beta = " + std::to_string(sc.beta) + " outside [0, 1)");
+  // kappa < -1: the discretisation oscillates from panel to panel (measured at alpha = 0.9,
+  // beta = 0.5: panel values of alternating sign near the leading edge, and a one-panel line load
+  // as the grid's contact); validated range alpha + beta <= 1, i.e. kappa >= -1.
+  if (sc.alpha + sc.beta > 1 + 1e-12)
+    bad(fn, "alpha + beta = " + std::to_string(sc.alpha + sc.beta) + " > 1 (kappa < -1) is outside the validated range alpha + beta <= 1");
   if (sc.indentors.empty()) bad(fn, "no indentors");
   if (sc.one_body && !(sc.total_load > 0)) bad(fn, "total_load = " + std::to_string(sc.total_load) + " must be > 0");
   for (std::size_t j = 0; j < sc.indentors.size(); ++j) {
@@ -841,6 +849,9 @@ inline result solve(const scene& sc, const options& opt = {}) {
     if (res.grid.runs[j] > 1)
       detail::bad("solve", "contact of indentor " + std::to_string(j) + " splits into " + std::to_string(res.grid.runs[j]) +
                                " intervals (one interval per indentor is supported)");
+    if (res.grid.b[j] - res.grid.a[j] < 3.5 * res.grid.h[j])
+      detail::bad("solve", "contact of indentor " + std::to_string(j) + " on the grid is under 4 panels (a line load?): "
+                           "refine options::grid_panels or narrow the window");
     if (res.grid.touches_window[j])
       detail::bad("solve", "contact of indentor " + std::to_string(j) + " reaches the end of its window: widen the window");
     // Starting edges: the middle of the edge panels.

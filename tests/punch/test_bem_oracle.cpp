@@ -347,6 +347,7 @@ TEST_CASE("bad input throws std::domain_error naming the function and the parame
   CHECK(message_of(bem::scene{1.0, 0, {par}}).find("solve: alpha") != std::string::npos);
   CHECK(message_of(bem::scene{0.2, -0.1, {par}}).find("beta") != std::string::npos);
   CHECK(message_of(bem::scene{0.2, 0, {}}).find("no indentors") != std::string::npos);
+  CHECK(message_of(bem::scene{0.9, 0.5, {par}}).find("validated range") != std::string::npos);
   CHECK(message_of(bem::scene{0.2, 0, {par, par}}).find("overlap") != std::string::npos);
   CHECK(message_of(bem::scene{0.6, 0, {bem::indentor{bem::flat{1}, 0, 1, -5, 5}}}).find("flat punch needs") != std::string::npos);
   CHECK(message_of(bem::scene{0.2, 0, {bem::indentor{bem::parabola{1.0}, 0, 1, -0.5, 0.5}}}).find("window") != std::string::npos);
