@@ -58,7 +58,8 @@
 //     extrapolation removes. Pinned edges: flat punch corners; a wedge's trailing edge at the apex when
 //     alpha + beta/2 >= 1/2 (contact ends at the apex there, math.md section 5). Because the mesh moves
 //     with the edges, every output is a smooth function of N (no grid-alignment jitter).
-//  3. `solve`: grid stage (200 panels a window) for the topology and the starting edges, then the
+//  3. `solve`: grid stage (200 panels a window, refined 4x up to 3200 until every contact spans 16
+//     panels) for the topology and the starting edges, then the
 //     fitted stage on 25, 50, ..., 800 panels per contact and Richardson extrapolation with the
 //     OBSERVED order p = log2(d1/d2) of the last three levels (d1, d2 successive differences). The
 //     error bar is |extrapolated - finest| + |d2| (the whole correction plus the last difference: an
@@ -214,6 +215,13 @@ inline double gap(const scene& sc, const kernel& K, const discrete_density& d, i
 /// oscillation moves to the trailing edge instead).
 inline constexpr double collocation_theta = 0.75;
 inline double collocation_point(double t0, double t1) { return t0 + collocation_theta * (t1 - t0); }
+
+/// The panel value of g at x (the first panel containing x), or 0 outside every panel.
+inline double density_at(const discrete_density& d, double x) {
+  for (std::size_t i = 0; i < d.size(); ++i)
+    if (x >= d.t0[i] && x <= d.t1[i]) return d.g[i];
+  return 0.0;
+}
 
 namespace detail {
 
@@ -742,6 +750,9 @@ struct result {
   bool converged = false;             ///< every stage converged
 };
 
+/// Largest grid `solve` refines to when a contact spans under 16 grid panels.
+inline constexpr int max_grid_panels = 3200;
+
 /// Fallback threshold of `solve`: a density below -this x the contact's mean density means the
 /// free-edge model is wrong (valid solutions measure min g / mean g >= 0.007 on every level).
 inline constexpr double pinned_density_floor = 1e-3;
@@ -835,9 +846,17 @@ inline result solve(const scene& sc, const options& opt = {}) {
   if (opt.levels < 3) detail::bad("solve", "levels = " + std::to_string(opt.levels) + " must be >= 3");
   if (opt.start_panels < 8) detail::bad("solve", "start_panels = " + std::to_string(opt.start_panels) + " must be >= 8");
   result res;
-  res.grid = solve_grid(sc, opt.grid_panels);
-  res.converged = res.grid.converged;
   const std::size_t J = sc.indentors.size();
+  // Grid stage; a window much wider than its contact leaves few panels on it: refine 4x (each grid
+  // starts from the previous one's contact, so this is cheap) until every contact spans >= 16 panels.
+  for (int panels = opt.grid_panels;; panels *= 4) {
+    res.grid = solve_grid(sc, panels);
+    bool coarse = false;
+    for (std::size_t j = 0; j < J; ++j)
+      coarse = coarse || (!std::isnan(res.grid.a[j]) && res.grid.b[j] - res.grid.a[j] < 15.5 * res.grid.h[j]);
+    if (!coarse || panels * 4 > max_grid_panels) break;
+  }
+  res.converged = res.grid.converged;
   std::vector<contact_mesh> M(J);
   for (std::size_t j = 0; j < J; ++j) {
     const auto& I = sc.indentors[j];

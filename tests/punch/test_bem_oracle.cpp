@@ -342,6 +342,22 @@ TEST_CASE("fixed-grid active set at kappa = -1 (alpha + beta = 1) finds the cont
   }
 }
 
+TEST_CASE("the answer does not depend on the window or the grid stage: only on the fitted root") {
+  // A 170x wider window (the grid refines itself to 3200 panels) starts Newton elsewhere; the fitted
+  // levels converge to the same roots (steps below 1e-9 panel widths).
+  const bem::scene narrow{0.25, 0.3, {bem::indentor{bem::parabola{1.5}, 0, 0.7, -12, 6}}};
+  const bem::scene wide{0.25, 0.3, {bem::indentor{bem::parabola{1.5}, 0, 0.7, -300, 200}}};
+  const auto r1 = bem::solve(narrow), r2 = bem::solve(wide);
+  REQUIRE(r2.converged);
+  CHECK(r2.grid.h[0] < 500.0 / bem::options{}.grid_panels);  // refined beyond the first grid
+  const auto& c1 = r1.contacts[0];
+  const auto& c2 = r2.contacts[0];
+  CHECK(std::abs(c1.a.value - c2.a.value) < 1e-8 * c1.length.value);
+  CHECK(std::abs(c1.b.value - c2.b.value) < 1e-8 * c1.length.value);
+  CHECK(std::abs(c1.friction.value - c2.friction.value) < 1e-8);
+  CHECK(bem::density_at(r2.finest.density, -1.0) == doctest::Approx(bem::density_at(r1.finest.density, -1.0)).epsilon(1e-6));
+}
+
 TEST_CASE("bad input throws std::domain_error naming the function and the parameter") {
   const bem::indentor par{bem::parabola{1.0}, 0, 1, -5, 5};
   CHECK(message_of(bem::scene{1.0, 0, {par}}).find("solve: alpha") != std::string::npos);
