@@ -59,9 +59,8 @@
 //     alpha + beta/2 >= 1/2 (contact ends at the apex there, math.md section 5). Because the mesh moves
 //     with the edges, every output is a smooth function of N (no grid-alignment jitter).
 //  3. `solve`: grid stage (200 panels a window, refined 4x up to 3200 until every contact spans 16
-//     panels) for the topology and the starting edges, then the
-//     fitted stage on 25, 50, ..., 800 panels per contact and Richardson extrapolation with the
-//     OBSERVED order p = log2(d1/d2) of the last three levels (d1, d2 successive differences). The
+//     panels) for the topology and the starting edges, then the fitted stage on 25, 50, ..., 800
+//     panels per contact and Richardson extrapolation with the OBSERVED order p = log2(d1/d2) of the last three levels (d1, d2 successive differences). The
 //     error bar is |extrapolated - finest| + |d2| (the whole correction plus the last difference: an
 //     extrapolation right to leading order is well inside it); with no observed order (p outside
 //     [0.3, 6]) the value is the finest level and the bar 4 max(|d1|, |d2|); never below
@@ -86,13 +85,13 @@
 // (lengths relative to L). Also inside the bars, all below 5e-4 L (0.3-4.5 s): (alpha, beta) =
 // (0.001, 0), (0.05, 0.3), (0.45, 0.1), (0.5, 0), (0.9, 0), (0.95, 0), (0.3, 0.9), (0, 0.9),
 // (0.1, 0.9), (0.6, 0.4), (0.8, 0.2). The edges converge at first order, C_f and the approach at
-// second; the bars overstate the error 10-100x. The finest level alone is off by ~1e-4 L (length) and ~1e-6
-// (C_f R/L). Elastic flat punch: approach P log(w/4) to 4e-8 (bar 1.5e-3 P), interior density to
+// second; the bars overstate the error 10-100x. The finest level alone is off by ~1e-4 L (length)
+// and ~1e-6 (C_f R/L). Elastic flat punch: approach P log(w/4) to 4e-8 (bar 1.5e-3 P), interior density to
 // 7e-4. Wedge below the boundary: the apex fraction satisfies the orthogonality condition to ~1e-6;
 // when the trailing edge sits within ~1e-4 L of the apex (S2 >> S1) it converges at order ~0.5 only
 // (bar ~5e-5 L, 4 s). Cost: one dense solve at 2000 unknowns 0.9 s (LU 0.87 s, assembly 0.06 s),
 // at 800 0.19 s; the grid stage at 2000 panels a window 0.06 s; a two-contact scene at 400 panels
-// per contact ~3 s. The self-test runs in ~8 s.
+// per contact ~3 s. The self-test runs in ~10 s (~95 s under ASan + UBSan at -O1).
 //
 #pragma once
 
