@@ -611,9 +611,10 @@ contact_density build_wedge_step(double a, double b, double apex, int nu, const 
 // F is given by its two values (f' / Gamma(1 - alpha) of the faces): formed as S1 plus the step
 // -(S1 + S2), the trailing value -S2 of a slope ratio 1e-6 lost 1e-10 to cancellation (measured:
 // the load 2.9e-11 off at S2/S1 = 1e-6).
-contact_density build_wedge_near_edge(double eps, double one_minus_eps, const context& cx, double f_leading, double f_trailing) {
+contact_density build_wedge_near_edge(double eps, double one_minus_eps, const context& cx, double f_leading, double f_trailing,
+                                      int near) {
   const double a = -eps, b = one_minus_eps;  // apex at 0, L = 1
-  const bool near_trailing = one_minus_eps <= eps;
+  const bool near_trailing = near == 0 ? one_minus_eps <= eps : near > 0;
   const edge_exponents physical = cx.exponents(-1);
   const abel::edge leading = near_trailing ? abel::edge::bounded : abel::edge::unbounded;
   const abel::edge trailing = near_trailing ? abel::edge::unbounded : abel::edge::bounded;
@@ -1088,6 +1089,150 @@ double psi_distance(double d, double alpha, double one_minus_kappa_over_alpha, d
 }
 
 
+// Surface height (upward positive) from the slope field Gamma(1-alpha) A g (s) integrated in
+// closed form in s (psi): relative to its value at the leading edge a_i of contact i,
+//   x in contact i:        f_i(x) - f_i(a_i)                          (the indentor's profile),
+//   x in another contact j: f_j(x) - f_j(a_j) + Gamma (E_j - E_i),
+//   elsewhere:              Gamma (sum_o int g_o Psi(t, x) dt - E_i),
+// E_k = sum_o int g_o Psi(t, a_k) dt (the datum at a_k: the own contact's integral, log-singular at
+// t = a_k, by tanh-sinh in offsets from its singular ends; the others' by Gauss-Jacobi). Every
+// moment by Gauss-Jacobi for the regular part (smooth in t when x is off the interval) and abel's
+// composite rule for the apex part. E_k is computed once, on first use.
+class surface {
+ public:
+  surface(const std::vector<indentor_state>& st, const context& cx)
+      : st_(st), cx_(cx), omk_(cx.par.one_minus_kappa_over_alpha()), edge_(st.size()) {}
+
+  /// f_k(x) - f_k(a_k): the rigid profile of indentor k relative to its leading edge.
+  double profile(std::size_t k, double x) const {
+    const auto& s = st_[k];
+    const double a = s.g.jacobi.lo;
+    switch (s.k) {
+      case kind::parabola: {
+        const double R = std::get<parabolic>(s.source->shape).radius;
+        return -((x - s.apex) * (x - s.apex) - (a - s.apex) * (a - s.apex)) / (2 * R);
+      }
+      case kind::wedge: {
+        const auto& w = std::get<wedge>(s.source->shape);
+        auto f = [&](double y) { return y < s.apex ? w.slope_leading * (y - s.apex) : -w.slope_trailing * (y - s.apex); };
+        return f(x) - f(a);
+      }
+      case kind::flat: return 0.0;
+      case kind::general: {
+        // int_a^x f' by Gauss-Legendre (f' smooth on the contact).
+        const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(32, 0.0, 0.0);
+        const auto& rule = *rule_ptr;
+        double sum = 0;
+        for (std::size_t q = 0; q < rule.size(); ++q)
+          sum += rule.weight[q] * own_slope(s, a + (x - a) * (1 + rule.x[q]) / 2);
+        return sum * (x - a) / 2;
+      }
+    }
+    return 0.0;
+  }
+
+  /// Surface height at x relative to its value at a_i (see the class comment).
+  double height(std::size_t i, double x) const {
+    for (std::size_t j = 0; j < st_.size(); ++j) {
+      const auto& g = st_[j].g;
+      if (g.line_load || !(x >= g.jacobi.lo && x <= g.jacobi.hi)) continue;
+      if (j == i) return profile(i, x);
+      return profile(j, x) + cx_.gamma_factor * (datum(j) - datum(i));
+    }
+    double h = 0;
+    for (const auto& o : st_) h += moment(o.g, x);
+    return cx_.gamma_factor * (h - datum(i));
+  }
+
+ private:
+  double moment(const contact_density& d, double x) const {
+    if (d.line_load) return d.line_weight * psi(d.jacobi.lo, x, cx_.alpha, omk_, cx_.kappa);
+    const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(
+        std::max<std::size_t>(d.jacobi.coefficients.size() + 64, 96), d.jacobi.del, d.jacobi.gam);
+    const auto& rule = *rule_ptr;
+    double sum = 0;
+    for (std::size_t q = 0; q < rule.size(); ++q) {
+      const double t = rule.x_minus_lo[q] <= rule.hi_minus_x[q] ? d.jacobi.lo + d.length() * rule.x_minus_lo[q] / 2
+                                                                : d.jacobi.hi - d.length() * rule.hi_minus_x[q] / 2;
+      sum += rule.weight[q] * d.jacobi.series(rule.x[q]) * psi(t, x, cx_.alpha, omk_, cx_.kappa);
+    }
+    sum *= d.length() / 2;
+    // Apex enrichment: abel's composite Gauss-Jacobi, cut and graded at the apex (psi is smooth
+    // in t on the interval when x is outside it).
+    if (d.has_apex) sum += d.apex.integrate([&](double t) { return psi(t, x, cx_.alpha, omk_, cx_.kappa); });
+    return sum;
+  }
+
+  double datum(std::size_t k) const {
+    if (edge_[k]) return *edge_[k];
+    const auto& g = st_[k].g;
+    double value = 0;
+    for (std::size_t o = 0; o < st_.size(); ++o)
+      if (o != k) value += moment(st_[o].g, g.jacobi.lo);
+    if (!g.line_load) {  // psi(a, a) = 0 for a line load
+      // In offsets from the nearer end, so that the end singularities (t-a)^gam log(t-a) and
+      // (b-t)^del are evaluated from exact distances (tanh-sinh clusters its nodes there).
+      const double Lg = g.length();
+      // density from u = t - a, v = b - t and dx0 = x - x0 (reference axis), whichever are exact.
+      auto density_at = [&](double u, double v, double dx0) {
+        const double one_plus = 2 * u / Lg, one_minus = 2 * v / Lg;
+        const double xr = one_plus <= one_minus ? one_plus - 1 : 1 - one_minus;
+        double val = std::pow(one_minus, g.jacobi.del) * std::pow(one_plus, g.jacobi.gam) * g.jacobi.series(xr);
+        if (g.has_apex) val += g.apex.value_with_offset(one_plus, one_minus, dx0);
+        return val;
+      };
+      auto weight = [&](double u) { return psi_distance(-u, cx_.alpha, omk_, cx_.kappa); };
+      if (!g.has_apex) {
+        const double half = Lg / 2;
+        value += tanh_sinh_rule().integrate([&](double u) { return density_at(u, Lg - u, 0) * weight(u); }, 0.0, half, 1e-12) +
+                 tanh_sinh_rule().integrate([&](double v) { return density_at(Lg - v, v, 0) * weight(Lg - v); }, 0.0, half, 1e-12);
+      } else {
+        // Four pieces, each parametrised by the offset from its singular end (a, apex, apex, b).
+        const double ua = st_[k].apex - g.jacobi.lo, vb = g.jacobi.hi - st_[k].apex, x0 = g.apex.apex_reference();
+        auto piece = [&](auto&& f, double length) { return tanh_sinh_rule().integrate(f, 0.0, length, 1e-12); };
+        value += piece([&](double u) { return density_at(u, Lg - u, 2 * u / Lg - 1 - x0) * weight(u); }, ua / 2);
+        value += piece([&](double o) { return density_at(ua - o, vb + o, -2 * o / Lg) * weight(ua - o); }, ua / 2);
+        value += piece([&](double o) { return density_at(ua + o, vb - o, 2 * o / Lg) * weight(ua + o); }, vb / 2);
+        value += piece([&](double v) { return density_at(Lg - v, v, 1 - 2 * v / Lg - x0) * weight(Lg - v); }, vb / 2);
+      }
+    }
+    edge_[k] = value;
+    return value;
+  }
+
+  const std::vector<indentor_state>& st_;
+  const context& cx_;
+  double omk_;
+  mutable std::vector<std::optional<double>> edge_;
+};
+
+// Penetration check of a coupled contact i (an indentor that is not a flat punch, whose square
+// corners bound it): outside the contact the surface must stay at or above the rigid profile,
+// gap(x) = height(i, x) - profile(i, x) >= 0, at 2 x 7 points a - L 2^-m and b + L 2^-m
+// (m = 0 .. 6). Not closer to the edges: the moments' Gauss-Jacobi rule (~100 nodes) resolves the
+// own contact's log kernel at a distance d from its end to ~(1 + sqrt(4 d/L))^-200, 1e-6 at
+// d = L/1024 (measured: a spurious "penetration" of 1.5e-6 of the span there), 1e-20 at L/64. A
+// wrong edge next to a point closer than that shows as tension (non-zero intensity) instead.
+// Returns the worst gap relative to the profile's span over those points, and where (0 when none
+// is negative).
+std::pair<double, double> worst_gap(const surface& heights, const std::vector<indentor_state>& st, std::size_t i) {
+  const auto& g = st[i].g;
+  if (g.line_load || st[i].k == kind::flat) return {0.0, 0.0};
+  const double L = g.length();
+  double worst = 0, where = 0, span = 0;
+  std::vector<std::pair<double, double>> gaps;
+  for (int m = 0; m <= 6; ++m) {
+    for (const double x : {g.a() - L * std::ldexp(1.0, -m), g.b() + L * std::ldexp(1.0, -m)}) {
+      const double f = heights.profile(i, x);
+      span = std::max(span, std::abs(f));
+      gaps.push_back({x, heights.height(i, x) - f});
+    }
+  }
+  for (const auto& [x, gap] : gaps)
+    if (gap < worst) worst = gap, where = x;
+  return {span > 0 ? worst / span : worst, where};
+}
+
 // Check points of contact i for the residual of (8) and the sign of the pressure: 7 interior
 // points (1 - cos(pi k/8))/2 of [a, b], and points at 0.37 gap 3^k (k = 0, 1, ... while below L/4)
 // from an end that faces another contact at distance gap: the boundary layer of width ~ gap of
@@ -1117,7 +1262,7 @@ std::vector<double> check_points(const std::vector<indentor_state>& st, std::siz
 // estimate, the sign of the pressure (at 64 interior points and the check points, relative to the
 // mean pressure) and the load. Keeps the solver's note (st.status) in front of the findings.
 void judge(indentor_result& r, const indentor_state& st, const std::vector<double>& points, double pressure_scale,
-           double acceptance) {
+           double acceptance, std::pair<double, double> gap) {
   std::ostringstream why;
   why.precision(3);
   status_code code = status_code::ok;
@@ -1155,6 +1300,13 @@ void judge(indentor_result& r, const indentor_state& st, const std::vector<doubl
       fail(status_code::tension, os.str());
     }
   }
+  if (gap.first < -acceptance) {
+    std::ostringstream os;
+    os.precision(3);
+    os << "the surface penetrates the indentor at x = " << gap.second << " (by " << -gap.first
+       << " of the profile's span next to the contact): the contact set is not the physical one";
+    fail(status_code::penetration, os.str());
+  }
   if (!(std::abs(r.load - target) <= acceptance * target)) {
     std::ostringstream os;
     os.precision(10);
@@ -1186,6 +1338,7 @@ const char* to_string(status_code code) {
     case status_code::tension: return "tension";
     case status_code::load_mismatch: return "load_mismatch";
     case status_code::contacts_merge: return "contacts_merge";
+    case status_code::penetration: return "penetration";
   }
   return "unknown";
 }
@@ -1273,8 +1426,8 @@ scene_result solve(const scene& s, const solve_options& options) {
   out.regime = regime(s.material);
   out.indentors.resize(st.size());
   const double ps = cx.pressure_scale;
-  const double omk_over_alpha = cx.par.one_minus_kappa_over_alpha();
   double worst_residual = 0;
+  const surface heights(st, cx);
   for (std::size_t i = 0; i < st.size(); ++i) {
     const auto& g = st[i].g;
     indentor_result r;
@@ -1375,7 +1528,8 @@ scene_result solve(const scene& s, const solve_options& options) {
       r.residual = scale > 0 ? worst / scale : worst;
       if (!std::isnan(worst_residual)) worst_residual = std::max(worst_residual, r.residual);
     }
-    judge(r, st[i], points, cx.pressure_scale, options.acceptance);
+    judge(r, st[i], points, cx.pressure_scale, options.acceptance,
+          isolated ? std::pair<double, double>{0.0, 0.0} : worst_gap(heights, st, i));
     // Fields on request.
     if (options.grid_points > 0) {
       const std::size_t n = options.grid_points;
@@ -1428,94 +1582,10 @@ scene_result solve(const scene& s, const solve_options& options) {
       r.displacement_x.resize(n);
       r.displacement.resize(n);
       const double lo = g.jacobi.lo - L, hi = g.jacobi.hi + L;
-      auto profile = [&](double x) {  // f(x) - f(a) for x in this indentor's contact
-        switch (st[i].k) {
-          case kind::parabola: {
-            const double R = std::get<parabolic>(st[i].source->shape).radius;
-            return -((x - st[i].apex) * (x - st[i].apex) - (g.jacobi.lo - st[i].apex) * (g.jacobi.lo - st[i].apex)) / (2 * R);
-          }
-          case kind::wedge: {
-            const auto& w = std::get<wedge>(st[i].source->shape);
-            const double fa = w.slope_leading * (g.jacobi.lo - st[i].apex);
-            const double fx = x < st[i].apex ? w.slope_leading * (x - st[i].apex) : -w.slope_trailing * (x - st[i].apex);
-            return fx - fa;
-          }
-          case kind::flat: return 0.0;
-          case kind::general: {
-            // int_a^x f' by Gauss-Legendre (f' smooth on the contact).
-            const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(32, 0.0, 0.0);
-            const auto& rule = *rule_ptr;
-            double sum = 0;
-            for (std::size_t q = 0; q < rule.size(); ++q)
-              sum += rule.weight[q] * own_slope(st[i], g.jacobi.lo + (x - g.jacobi.lo) * (1 + rule.x[q]) / 2);
-            return sum * (x - g.jacobi.lo) / 2;
-          }
-        }
-        return 0.0;
-      };
-      // h(x) = Gamma(1-alpha) sum_o int g_o(t) Psi(t, x) dt - (the same at x = a): every moment by
-      // Gauss-Jacobi for the regular part (smooth in t when x is off the interval) and tanh-sinh for
-      // the apex part; the datum (log-singular at t = a) by tanh-sinh on the whole own interval.
-      auto height_moment = [&](const contact_density& d, double x) {
-        if (d.line_load) return d.line_weight * psi(d.jacobi.lo, x, cx.alpha, omk_over_alpha, cx.kappa);
-        const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(std::max<std::size_t>(d.jacobi.coefficients.size() + 64, 96), d.jacobi.del, d.jacobi.gam);
-        const auto& rule = *rule_ptr;
-        double sum = 0;
-        for (std::size_t q = 0; q < rule.size(); ++q) {
-          const double t = rule.x_minus_lo[q] <= rule.hi_minus_x[q] ? d.jacobi.lo + d.length() * rule.x_minus_lo[q] / 2
-                                                                    : d.jacobi.hi - d.length() * rule.hi_minus_x[q] / 2;
-          sum += rule.weight[q] * d.jacobi.series(rule.x[q]) * psi(t, x, cx.alpha, omk_over_alpha, cx.kappa);
-        }
-        sum *= d.length() / 2;
-        // Apex enrichment: abel's composite Gauss-Jacobi, cut and graded at the apex (psi is smooth
-        // in t on the interval when x is outside it).
-        if (d.has_apex) sum += d.apex.integrate([&](double t) { return psi(t, x, cx.alpha, omk_over_alpha, cx.kappa); });
-        return sum;
-      };
-      double datum = 0;
-      for (const auto& o : st) {
-        if (&o.g != &g) {
-          datum += height_moment(o.g, g.jacobi.lo);
-          continue;
-        }
-        if (g.line_load) continue;  // psi(a, a) = 0
-        // In offsets from the nearer end, so that the end singularities (t-a)^gam log(t-a) and
-        // (b-t)^del are evaluated from exact distances (tanh-sinh clusters its nodes there).
-        const double Lg = g.length();
-        // density from u = t - a, v = b - t and dx0 = x - x0 (reference axis), whichever are exact.
-        auto density_at = [&](double u, double v, double dx0) {
-          const double one_plus = 2 * u / Lg, one_minus = 2 * v / Lg;
-          const double xr = one_plus <= one_minus ? one_plus - 1 : 1 - one_minus;
-          double val = std::pow(one_minus, g.jacobi.del) * std::pow(one_plus, g.jacobi.gam) * g.jacobi.series(xr);
-          if (g.has_apex) val += g.apex.value_with_offset(one_plus, one_minus, dx0);
-          return val;
-        };
-        auto weight = [&](double u) { return psi_distance(-u, cx.alpha, omk_over_alpha, cx.kappa); };
-        if (!g.has_apex) {
-          const double half = Lg / 2;
-          datum += tanh_sinh_rule().integrate([&](double u) { return density_at(u, Lg - u, 0) * weight(u); }, 0.0, half, 1e-12) +
-                   tanh_sinh_rule().integrate([&](double v) { return density_at(Lg - v, v, 0) * weight(Lg - v); }, 0.0, half, 1e-12);
-        } else {
-          // Four pieces, each parametrised by the offset from its singular end (a, apex, apex, b).
-          const double ua = st[i].apex - g.jacobi.lo, vb = g.jacobi.hi - st[i].apex, x0 = g.apex.apex_reference();
-          auto piece = [&](auto&& f, double length) { return tanh_sinh_rule().integrate(f, 0.0, length, 1e-12); };
-          datum += piece([&](double u) { return density_at(u, Lg - u, 2 * u / Lg - 1 - x0) * weight(u); }, ua / 2);
-          datum += piece([&](double o) { return density_at(ua - o, vb + o, -2 * o / Lg) * weight(ua - o); }, ua / 2);
-          datum += piece([&](double o) { return density_at(ua + o, vb - o, 2 * o / Lg) * weight(ua + o); }, vb / 2);
-          datum += piece([&](double v) { return density_at(Lg - v, v, 1 - 2 * v / Lg - x0) * weight(Lg - v); }, vb / 2);
-        }
-      }
       for (std::size_t k = 0; k < n; ++k) {
         const double x = n == 1 ? (lo + hi) / 2 : lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(n - 1);
         r.displacement_x[k] = x;
-        if (!g.line_load && x >= g.jacobi.lo && x <= g.jacobi.hi) {
-          r.displacement[k] = profile(x);
-          continue;
-        }
-        double h = 0;
-        for (const auto& o : st) h += height_moment(o.g, x);
-        h -= datum;
-        r.displacement[k] = cx.gamma_factor * h;
+        r.displacement[k] = heights.height(i, x);
       }
     }
     out.indentors[order[i]] = std::move(r);

@@ -38,14 +38,14 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <functional>
 #include <limits>
 #include <memory>
 #include <numeric>
 #include <sstream>
+#include <utility>
+#include <variant>
 #include <stdexcept>
 #include <vector>
 
@@ -135,6 +135,22 @@ particular series_particular(double a, double b, const edge_exponents& e, const 
   }
 }
 
+/// The split form of a wedge on [a, b] (see problem::split), its series in the class nu = 0 singular
+/// at the near edge; the correction then lives in that class too.
+particular split_particular(const indentor_state& st, const context& cx, double a, double b, int near) {
+  const auto& w = std::get<wedge>(st.source->shape);
+  const double L = b - a;
+  if (!(st.apex > a && st.apex < b))
+    throw std::domain_error("the apex of " + indentor_name(st.scene_index, *st.source) +
+                            " left its contact during the coupled iteration");
+  particular out;
+  out.g = build_wedge_near_edge((st.apex - a) / L, (b - st.apex) / L, cx, w.slope_leading / cx.gamma_factor,
+                                -w.slope_trailing / cx.gamma_factor, near);
+  out.g.scale(std::pow(L, -cx.alpha));  // g_L(t) = L^-alpha g_1((t - apex)/L)
+  out.g.set_interval(a, b);
+  return out;
+}
+
 particular solve_particular(const indentor_state& st, const context& cx, role r, double a, double b, double load) {
   particular out;
   if (r == role::line_load) {
@@ -144,8 +160,12 @@ particular solve_particular(const indentor_state& st, const context& cx, role r,
     return out;
   }
   const edge_exponents e = cx.exponents(nu_of(r));
-  if (r == role::fixed_faces) {  // a flat face: F = 0, the correction carries the load
-    out.g.jacobi = {a, b, e.gam, e.del, {0.0}};
+  if (r == role::fixed_faces) {
+    // A flat face: F = 0, so the particular is the homogeneous solution w (A w = 0) carrying the
+    // whole load, c_0 = load / (h int w); the correction then carries no net load, and its data
+    // (the others' action, the neighbours' including this load's) is never identically zero.
+    const double h0 = quadrature::jacobi_norm_squared<double>(0, e.del, e.gam);
+    out.g.jacobi = {a, b, e.gam, e.del, {load / ((b - a) / 2 * h0)}};
     out.g.nu = 1;
     return out;
   }
@@ -220,12 +240,24 @@ struct problem {
   const std::vector<indentor_state>* st;
   const context* cx;
   std::vector<role> roles;
+  // Wedges below the boundary with the apex in an outer quarter of the isolated contact: the split
+  // form (build_wedge_near_edge) in the class nu = 0 singular at the near edge (+1 trailing, -1
+  // leading; 0: not split), whose condition is a vanishing intensity there instead of d_j = 0.
+  std::vector<int> split;
   double load_factor = 1;  // continuation: every load times this
   // > 0: the correction at exactly this many points per contact, without its residual (the
   // finite differences of the Jacobian: the base point's degree, so that both sides of a
   // difference share one discretisation)
   std::size_t fixed_degree = 0;
 };
+
+/// Edge classes of a contact's series (and of its correction).
+std::pair<abel::edge, abel::edge> series_edges(const problem& pb, std::size_t i) {
+  if (pb.split[i] > 0) return {abel::edge::bounded, abel::edge::unbounded};
+  if (pb.split[i] < 0) return {abel::edge::unbounded, abel::edge::bounded};
+  const int nu = nu_of(pb.roles[i]);
+  return {leading_edge(nu), trailing_edge(nu)};
+}
 
 fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, const std::vector<double>& b) {
   const auto& st = *pb.st;
@@ -252,7 +284,8 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
   out.g.resize(n);
   out.defect.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
-    auto p = solve_particular(st[i], cx, pb.roles[i], a[i], b[i], pb.load_factor * st[i].target_load);
+    auto p = pb.split[i] != 0 ? split_particular(st[i], cx, a[i], b[i], pb.split[i])
+                              : solve_particular(st[i], cx, pb.roles[i], a[i], b[i], pb.load_factor * st[i].target_load);
     out.g[i] = std::move(p.g);
     out.defect[i] = p.defect;
   }
@@ -268,8 +301,8 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
   double worst_ratio = 0;  // max over targets of (scale of D) / (scale of the data)
   bool any_coupling = false;
   for (std::size_t j : targets) {
-    const int nu = nu_of(pb.roles[j]);
-    intervals.push_back({a[j], b[j], leading_edge(nu), trailing_edge(nu)});
+    const auto [leading, trailing] = series_edges(pb, j);
+    intervals.push_back({a[j], b[j], leading, trailing});
     auto f = std::make_shared<std::vector<cross_field>>();
     for (std::size_t i = 0; i < n; ++i)
       if (i != j) f->emplace_back(out.g[i], cx.par, a[j], b[j]);
@@ -280,9 +313,8 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
       for (const auto& field : *f) v -= field(s);
       return v;
     });
-    // Load left to the correction: the whole load for a flat face (its particular is 0).
-    o.loads.push_back(pb.roles[j] == role::fixed_faces ? std::optional<double>(pb.load_factor * st[j].target_load)
-                                                       : std::nullopt);
+    // A flat face's correction carries no net load (its particular carries all of it).
+    o.loads.push_back(pb.roles[j] == role::fixed_faces ? std::optional<double>(0.0) : std::nullopt);
     // Scales for the correction's residual tolerance.
     double d_scale = 0;
     for (int k = 0; k <= 8; ++k) d_scale = std::max(d_scale, std::abs(data.back()(a[j] + (b[j] - a[j]) * (0.5 + k) / 9.0)));
@@ -312,7 +344,7 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
     if (coefficients.size() < c.size()) coefficients.resize(c.size(), 0.0);
     for (std::size_t m = 0; m < c.size(); ++m) coefficients[m] += c[m];
     out.g[j].tail = std::max(out.g[j].tail, sol.status == abel::solve_status::converged ? 0.0 : sol.residual);
-    if (nu_of(pb.roles[j]) == -1) out.defect[j] += sol.solvability_defects[k];
+    if (sol.exponents[k].nu == -1) out.defect[j] += sol.solvability_defects[k];
   }
   return out;
 }
@@ -352,7 +384,15 @@ evaluation evaluate(const problem& pb, const unknowns& u, const std::vector<doub
   for (std::size_t k = 0; k < u.state.size(); ++k) {
     const std::size_t i = u.state[k];
     const double load = ev.sol.g[i].integral() / (pb.load_factor * st[i].target_load) - 1;
-    if (pb.roles[i] == role::smooth_both && !u.trailing[k]) {
+    if (pb.roles[i] == role::smooth_both && !u.trailing[k] && pb.split[i] != 0) {
+      // Split form: the intensity at the near edge vanishes (K L^exponent relative to the mean g).
+      const auto& g = ev.sol.g[i];
+      const double L = b[i] - a[i];
+      const double K = pb.split[i] > 0 ? g.jacobi.intensity_trailing() + g.apex.intensity_trailing()
+                                       : g.jacobi.intensity_leading() + g.apex.intensity_leading();
+      const double exponent = pb.split[i] > 0 ? g.jacobi.del : g.jacobi.gam;
+      ev.r[static_cast<Eigen::Index>(k)] = K * std::pow(L, exponent) / (pb.load_factor * st[i].target_load / L);
+    } else if (pb.roles[i] == role::smooth_both && !u.trailing[k]) {
       const double scale = std::max(data_scale(st[i], cx, a[i], b[i]), std::numeric_limits<double>::min());
       ev.r[static_cast<Eigen::Index>(k)] = std::pow((b[i] - a[i]) / 2, cx.alpha) * ev.sol.defect[i] / scale;
     } else {
@@ -466,7 +506,7 @@ Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x,
       Eigen::VectorXd dr;
       try {
         dr = difference(1);
-      } catch (const merge_error&) {  // the forward step closes a gap: backward difference
+      } catch (const std::exception&) {  // the forward step closes a gap (or leaves a domain): backward
         dr = difference(-1);
       }
       for (Eigen::Index row = 0; row < m; ++row) {
@@ -482,7 +522,21 @@ Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x,
   return J;
 }
 
+newton_result newton_iteration(const problem& pb, const edges& start);
+
+/// newton_iteration, with any failure of a contact's own solve (std::exception) as a failed result.
 newton_result newton(const problem& pb, const edges& start) {
+  try {
+    return newton_iteration(pb, start);
+  } catch (const std::exception& e) {
+    newton_result out;
+    out.x = start;
+    out.failure = e.what();
+    return out;
+  }
+}
+
+newton_result newton_iteration(const problem& pb, const edges& start) {
   const unknowns u = list_unknowns(pb);
   const double tol = pb.cx->options.tolerance;
   newton_result out;
@@ -495,6 +549,9 @@ newton_result newton(const problem& pb, const edges& start) {
   } catch (const merge_error& m) {
     out.failure = m.what();
     out.merged = std::make_pair(m.first, m.second);
+    return out;
+  } catch (const std::domain_error& e) {  // a contact's own solve failed at the start
+    out.failure = e.what();
     return out;
   }
   if (u.state.empty()) {
@@ -538,6 +595,8 @@ newton_result newton(const problem& pb, const edges& start) {
       } catch (const merge_error& m) {
         out.merged = std::make_pair(m.first, m.second);
         out.failure = m.what();
+      } catch (const std::domain_error& e) {  // e.g. a wedge's apex left its contact: a shorter step
+        out.failure = e.what();
       }
       if (accepted) break;
       t /= 2;
@@ -563,9 +622,6 @@ newton_result newton(const problem& pb, const edges& start) {
       const std::size_t i = u.state[k];
       step = std::max(step, std::abs(s[static_cast<Eigen::Index>(k)]) / (y.b[i] - y.a[i]));
     }
-    if (std::getenv("RHABEL_DEBUG_NEWTON"))
-      std::fprintf(stderr, "it %zu t %.3g |r| %.3e -> %.3e step %.3e deg %zu\n", it, t, ev.r.lpNorm<Eigen::Infinity>(),
-                   next.r.lpNorm<Eigen::Infinity>(), step, next.sol.degree);
     out.x = y;
     ev = std::move(next);
     if (step <= 10 * tol) {
@@ -595,8 +651,9 @@ edges scaled_guess(const problem& pb, const edges& isolated, double t) {
 }
 
 /// Smallest gap between neighbours relative to the smaller of the two lengths (inf for one contact,
-/// negative when two overlap).
-double gap_ratio(const problem& pb, const edges& x) {
+/// negative when two overlap); with movable_only, only pairs of which one contact has free edges
+/// (two flat punches keep their gap at any load).
+double gap_ratio(const problem& pb, const edges& x, bool movable_only = false) {
   const std::size_t n = pb.roles.size();
   std::vector<std::size_t> order(n);
   std::iota(order.begin(), order.end(), 0);
@@ -604,6 +661,8 @@ double gap_ratio(const problem& pb, const edges& x) {
   double worst = std::numeric_limits<double>::infinity();
   for (std::size_t k = 0; k + 1 < n; ++k) {
     const std::size_t i = order[k], j = order[k + 1];
+    auto movable = [&](std::size_t c) { return pb.roles[c] == role::smooth_both || pb.roles[c] == role::apex_ended; };
+    if (movable_only && !movable(i) && !movable(j)) continue;
     const double Li = x.b[i] - x.a[i], Lj = x.b[j] - x.a[j];
     const double L = std::max(std::min(Li > 0 ? Li : Lj, Lj > 0 ? Lj : Li), std::numeric_limits<double>::min());
     worst = std::min(worst, (x.a[j] - x.b[i]) / L);
@@ -611,18 +670,12 @@ double gap_ratio(const problem& pb, const edges& x) {
   return worst;
 }
 
-}  // namespace
-
-coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx) {
-  problem pb{&st, &cx, {}, 1.0};
-  edges isolated;
-  for (auto& s : st) {
-    pb.roles.push_back(role_of(s, cx));
-    solve_isolated(s, cx, true);  // the isolated contact: the start (its closed-form paths)
-    isolated.a.push_back(s.g.a());
-    isolated.b.push_back(pb.roles.back() == role::line_load ? s.g.a() : s.g.b());
-  }
-  coupled_outcome out;
+/// Newton directly from the isolated contacts when they are well apart, else (or when that fails)
+/// by continuation in the load; pb.load_factor ends at the last load factor solved.
+newton_result attempt(problem& pb, const edges& isolated) {
+  const auto& st = *pb.st;
+  const auto& cx = *pb.cx;
+  pb.load_factor = 1;
   newton_result result;
   bool done = false;
   // Directly from the isolated contacts when they are well apart.
@@ -630,50 +683,93 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
     result = newton(pb, isolated);
     done = result.converged;
   }
-  if (!done) {
-    // Continuation in the load from a t at which the scaled isolated contacts are well apart.
-    double t = 1;
-    for (int k = 0; k < 60 && !(gap_ratio(pb, scaled_guess(pb, isolated, t)) > 1); ++k) t /= 4;
-    pb.load_factor = t;
-    result = newton(pb, scaled_guess(pb, isolated, t));
-    double step = 4;  // factor by which t grows
-    std::size_t total = result.iterations;
-    while (result.converged && t < 1) {
-      const double t_next = std::min(1.0, t * step);
-      problem next = pb;
-      next.load_factor = t_next;
-      // Predictor: the current contacts scaled about their apexes as isolated ones would be.
-      edges guess = result.x;
-      for (std::size_t i = 0; i < st.size(); ++i) {
-        if (pb.roles[i] != role::smooth_both && pb.roles[i] != role::apex_ended) continue;
-        const double f = std::pow(t_next / t, 1 / load_exponent(st[i], cx));
-        guess.a[i] = st[i].apex + (guess.a[i] - st[i].apex) * f;
-        if (pb.roles[i] == role::smooth_both) guess.b[i] = st[i].apex + (guess.b[i] - st[i].apex) * f;
+  if (done) return result;
+  // Continuation in the load from a t at which the scaled isolated contacts are well apart.
+  // (Only gaps that the load changes count; t >= 4^-10: a contact ~1e-3 of its full size.)
+  double t = 1;
+  for (int k = 0; k < 10 && !(gap_ratio(pb, scaled_guess(pb, isolated, t), true) > 1); ++k) t /= 4;
+  pb.load_factor = t;
+  result = newton(pb, scaled_guess(pb, isolated, t));
+  double step = 4;  // factor by which t grows
+  std::size_t total = result.iterations;
+  while (result.converged && t < 1) {
+    const double t_next = std::min(1.0, t * step);
+    problem next = pb;
+    next.load_factor = t_next;
+    // Predictor: the current contacts scaled about their apexes as isolated ones would be.
+    edges guess = result.x;
+    for (std::size_t i = 0; i < st.size(); ++i) {
+      if (pb.roles[i] != role::smooth_both && pb.roles[i] != role::apex_ended) continue;
+      const double f = std::pow(t_next / t, 1 / load_exponent(st[i], cx));
+      guess.a[i] = st[i].apex + (guess.a[i] - st[i].apex) * f;
+      if (pb.roles[i] == role::smooth_both) guess.b[i] = st[i].apex + (guess.b[i] - st[i].apex) * f;
+    }
+    if (gap_ratio(next, guess) <= 0) guess = result.x;  // the predictor would overlap: corrector only
+    auto trial = newton(next, guess);
+    total += trial.iterations;
+    if (trial.converged) {
+      result = std::move(trial);
+      t = t_next;
+      pb = next;
+      step = std::min(4.0, step * 1.5);
+      // Contacts already within 1e-3 of a length: every further step is a costly solve (the
+      // correction's degree grows like sqrt(L/gap)); go to the full load at once, where Newton
+      // either converges or finds the gap closing (contacts_merge).
+      if (gap_ratio(pb, result.x) < 1e-3) step = 1 / t;
+    } else if (trial.merged) {  // the contacts meet between t and t_next: that is the answer
+      result = std::move(trial);
+      break;
+    } else if (step > 1.0001) {
+      step = std::sqrt(step);  // a smaller increment
+      if (step < 1.01) {
+        result = std::move(trial);
+        break;
       }
-      if (gap_ratio(next, guess) <= 0) guess = result.x;  // the predictor would overlap: corrector only
-      auto trial = newton(next, guess);
-      total += trial.iterations;
-      if (trial.converged) {
-        result = std::move(trial);
-        t = t_next;
-        pb = next;
-        step = std::min(4.0, step * 1.5);
-      } else if (trial.merged) {  // the contacts meet between t and t_next: that is the answer
-        result = std::move(trial);
-        break;
-      } else if (step > 1.0001) {
-        step = std::sqrt(step);  // a smaller increment
-        if (step < 1.01) {
-          result = std::move(trial);
-          break;
-        }
-      } else {
-        result = std::move(trial);
-        break;
+    } else {
+      result = std::move(trial);
+      break;
+    }
+  }
+  result.iterations = total;
+  if (result.converged && pb.load_factor < 1) result.converged = false;
+  return result;
+}
+
+}  // namespace
+
+coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx) {
+  problem pb{&st, &cx, {}, {}, 1.0};
+  edges isolated;
+  for (auto& s : st) {
+    pb.roles.push_back(role_of(s, cx));
+    solve_isolated(s, cx, true);  // the isolated contact: the start (its closed-form paths)
+    isolated.a.push_back(s.g.a());
+    isolated.b.push_back(pb.roles.back() == role::line_load ? s.g.a() : s.g.b());
+    int split = 0;
+    if (s.k == kind::wedge && pb.roles.back() == role::smooth_both && s.epsilon) {
+      const double e = *s.epsilon, one_minus_e = (s.g.b() - s.apex) / s.g.length();
+      if (one_minus_e * 1e14 < 1) {
+        // The isolated contact ends at the apex to double precision (solve_wedge): so does this one.
+        pb.roles.back() = role::apex_ended;
+      } else if (cx.options.wedge_apex_split && std::min(e, one_minus_e) < 0.25) {
+        split = one_minus_e <= e ? 1 : -1;
       }
     }
-    result.iterations = total;
-    if (result.converged && pb.load_factor < 1) result.converged = false;
+    pb.split.push_back(split);
+  }
+  coupled_outcome out;
+  newton_result result = attempt(pb, isolated);
+  if (!result.converged && !result.merged && std::any_of(pb.split.begin(), pb.split.end(), [](int v) { return v != 0; })) {
+    // A split wedge whose apex left its contact (its contact moved onto one face) or that did not
+    // converge: again with the plain forms, which take any position of the apex.
+    problem plain = pb;
+    plain.split.assign(plain.split.size(), 0);
+    auto second = attempt(plain, isolated);
+    second.iterations += result.iterations;
+    if (second.converged || second.residual < result.residual) {
+      result = std::move(second);
+      pb = plain;
+    }
   }
   out.iterations = result.iterations;
   out.union_degree = result.sol.degree;

@@ -103,6 +103,13 @@ double step_tail(const abel::enriched_solution<double>& sol, const context& cx);
 /// receives solve_step's solvability defect (nu = -1: A g = F - (L/2)^alpha defect).
 contact_density build_wedge_step(double a, double b, double apex, int nu, const context& cx, const forcing& F,
                                  double* defect = nullptr);
+/// Wedge below the boundary on [-eps, 1 - eps] (apex at 0, L = 1) in the split form: the long
+/// side's constant in closed form plus the short side's step (abel::apex_placement::centred), both
+/// in the class nu = 0 singular at the near edge (near > 0: trailing, < 0: leading, 0: the nearer
+/// of the two); g.physical = the bounded class. Their singular parts cancel iff eps solves the
+/// orthogonality condition (the isolated wedge); otherwise g is the nu = 0 solution of the data.
+contact_density build_wedge_near_edge(double eps, double one_minus_eps, const context& cx, double f_leading,
+                                      double f_trailing, int near = 0);
 /// A g (s) for s outside the support of g (abel_operator::apply plus the apex part).
 double apply_outside(const contact_density& g, double s, const abel::abel_parameters<double>& par);
 /// The isolated contact of one indentor (no other present): fills st.g, st.epsilon, st.status.

@@ -303,14 +303,6 @@ TEST_CASE("bad input names the field, its value and the requirement") {
   CHECK_THROWS_AS(solve(s), std::invalid_argument);
 }
 
-TEST_CASE("overlapping contacts are reported naming both indentors") {
-  scene s{material{0.3, 1.0, 0.3, 0.0}, 1.0, {indentor{parabolic{1.0}, 1.0, 0.0}, indentor{parabolic{1.0}, 1.0, 0.5}}};
-  const std::string msg = message_of(s);
-  CHECK(msg.find("indentors[0]") != std::string::npos);
-  CHECK(msg.find("indentors[1]") != std::string::npos);
-  CHECK(msg.find("overlap") != std::string::npos);
-}
-
 namespace {
 // Paper section 4: for a fixed load, the hysteretic friction of trial intervals [a, a + L], with g
 // the unique solution of (8) bounded at a and unbounded at b (index nu = 0), is stationary at the

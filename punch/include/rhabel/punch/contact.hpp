@@ -226,9 +226,11 @@ enum class status_code {
   tension,         ///< the pressure is negative somewhere (beyond the acceptance)
   load_mismatch,   ///< the load of the solution differs from the requested one
   contacts_merge,  ///< two contacts meet (their gap closed during the coupled solve)
+  penetration,     ///< several indentors: the surface crosses an indentor's profile next to its
+                   ///< contact (checked at 14 points L/64 .. L from its edges)
 };
 
-/// "ok", "not_converged", "tension", "load_mismatch", "contacts_merge".
+/// "ok", "not_converged", "tension", "load_mismatch", "contacts_merge", "penetration".
 const char* to_string(status_code code);
 
 enum class edge_side { leading, trailing };
