@@ -260,8 +260,8 @@ struct indentor_result {
   std::vector<double> grid_x;       ///< pressure abscissae, inside [a, b] (empty unless asked)
   std::vector<double> pressure;     ///< p(grid_x) [Pa]
   std::vector<double> displacement_x;  ///< displacement abscissae, [a - L, b + L] (empty unless asked)
-  std::vector<double> displacement;    ///< surface height relative to its value at the leading
-                                       ///< edge a (upward positive): equals f(x) - f(a) in contact [m]
+  std::vector<double> displacement;    ///< downward surface displacement relative to its value at
+                                       ///< the leading edge a: equals f(x) - f(a) in contact [m]
   double residual = 0;              ///< max |LHS - RHS of (8)| / max |F| at check points
                                     ///< (NaN if solve_options::residual is false)
   double error_estimate = 0;        ///< estimated relative error of the density (an estimate)
