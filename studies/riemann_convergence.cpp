@@ -2,7 +2,7 @@
 // (rhabel/riemann/abel_solver.hpp), and the step-data reference it provides to the spectral
 // solvers (rhabel::abel::solve_piecewise, rhabel::abel::solve_step).
 //
-//  1. Wedge with an interior apex (notes section 5: nu = -1, alpha + beta/2 < 1/2, step data
+//  1. Wedge with an interior apex (docs/theory.md section 5: nu = -1, alpha + beta/2 < 1/2, step data
 //     F = S1/Gamma(1-alpha) - (S1+S2)/Gamma(1-alpha) [s > 0], S2 from the orthogonality
 //     condition): int_a^0 g by the RH route at orders n = 8..64, against its own value at
 //     n = 96; then the spectral solver's int_a^0 g at degrees 16..1024 against that reference,
@@ -39,7 +39,7 @@ void row(const char* study, double alpha, double beta, const char* method, std::
               seconds);
 }
 
-// Parabolic punch f' = -x/R on [a, b] (notes section 5, nu = -1): g = K (t-a)^gam (b-t)^del.
+// Parabolic punch f' = -x/R on [a, b] (docs/theory.md section 5, nu = -1): g = K (t-a)^gam (b-t)^del.
 struct parabola {
   double alpha, beta, R = 1.3, L = 2.0;
   double pi = boost::math::constants::pi<double>();

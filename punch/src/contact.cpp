@@ -1,6 +1,6 @@
 // The punch layer: contact intervals, pressures and friction of indentors on a power-law
 // viscoelastic half-space. Mathematics: ../include/rhabel/punch/contact.hpp and
-// ../../../shared/notes/math.md. Everything here is double precision.
+// ../../../docs/theory.md. Everything here is double precision.
 #include "rhabel/punch/contact.hpp"
 #include "rhabel/punch/detail/contact_density.hpp"
 #include "internal.hpp"
@@ -49,7 +49,7 @@ double material_kappa(const material& m) {
   return -std::sin(pi * off) / std::cos(material_beta(m) * pi / 2);
 }
 
-// Bounded ("smooth edge") and unbounded ("corner") edge exponents of math.md section 3.
+// Bounded ("smooth edge") and unbounded ("corner") edge exponents of docs/theory.md section 3.
 double gam_smooth(double alpha, double beta) { return (1 - 2 * alpha - beta) / 2; }
 double del_smooth(double beta) { return (1 + beta) / 2; }
 
@@ -63,7 +63,7 @@ double del_smooth(double beta) { return (1 + beta) / 2; }
 // ---------------------------------------------------------------------------------------------
 // Jacobi polynomials for exponents that may be <= -1 (the image family of the nu = -1 class above
 // the boundary has p = gam - 1 < -1): abel::detail::plain_jacobi_values, the plain three-term
-// recurrence, valid as long as no denominator vanishes, which math.md section 4's families
+// recurrence, valid as long as no denominator vanishes, which docs/theory.md section 4's families
 // guarantee for alpha not an integer >= 1.
 using abel::detail::plain_jacobi_values;
 
@@ -595,7 +595,7 @@ contact_density build_wedge_step(double a, double b, double apex, int nu, const 
 // Isolated wedge below the boundary with the apex in an outer quarter of [a, b] (min(eps, 1 - eps)
 // < 1/4), F constant on each side of the apex. Write F = F_long + (F - F_long), F_long its value
 // on the long side (the side of the far edge), and solve both in the class nu = 0 singular at the
-// NEAR edge (math.md sections 3-4; both exist below the boundary):
+// NEAR edge (docs/theory.md sections 3-4; both exist below the boundary):
 //   * g_long: A g_long = F_long, the closed form c_0 w (abel::solve_image_series, one coefficient);
 //   * g_short: A g_short = F - F_long, data VANISHING on the long side, by abel::solve_step with
 //     apex_placement::centred: the Moebius map puts the apex at the centre, and its factor
@@ -664,7 +664,7 @@ void solve_smooth_edges(indentor_state& st, const context& cx, const forcing& F,
 void solve_parabola(indentor_state& st, const context& cx, const forcing& F) {
   const double R = std::get<parabolic>(st.source->shape).radius;
   const double alpha = cx.alpha, beta = cx.beta;
-  // First guess from the closed form of math.md section 5 (exact for a single indentor).
+  // First guess from the closed form of docs/theory.md section 5 (exact for a single indentor).
   // load = int g = cos(beta pi/2) L^(2-alpha) B(gam+1, del+1)/(pi R Gamma(2-alpha)).
   const double gam = gam_smooth(alpha, beta), del = del_smooth(beta);
   const double K = std::cos(beta * pi / 2) * boost::math::beta(gam + 1, del + 1) / (pi * R * boost::math::tgamma(2 - alpha));
@@ -705,7 +705,7 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
   const auto& w = std::get<wedge>(st.source->shape);
   const double alpha = cx.alpha, beta = cx.beta;
   if (cx.offset >= -boundary_width) {
-    // Contact ends at the apex (math.md section 5): nu = 0, b = apex, one unknown L.
+    // Contact ends at the apex (docs/theory.md section 5): nu = 0, b = apex, one unknown L.
     const edge_exponents e = cx.exponents(0);
     auto load_of = [&](double L) {
       st.g = build(st.apex - L, st.apex, cx, e, F, true);
@@ -722,7 +722,7 @@ void solve_wedge(indentor_state& st, const context& cx, const forcing& F, bool i
   // Below the boundary: nu = -1, smooth at both edges, contact wraps around the apex.
   const edge_exponents e = cx.exponents(-1);
   const double S1 = w.slope_leading, S2 = w.slope_trailing;
-  // eps = (apex - a)/L from I_eps(del, gam) = S2/(S1 + S2) (math.md section 5); 1 - eps from the
+  // eps = (apex - a)/L from I_eps(del, gam) = S2/(S1 + S2) (docs/theory.md section 5); 1 - eps from the
   // complementary equation so that both are accurate at extreme slope ratios.
   const double eps = boost::math::ibeta_inv(e.del, e.gam, S2 / (S1 + S2));
   const double one_minus_eps = boost::math::ibeta_inv(e.gam, e.del, S1 / (S1 + S2));
@@ -947,7 +947,7 @@ boost::math::quadrature::tanh_sinh<double>& tanh_sinh_rule() {
 // riemann/abel_solver.hpp; A~
 // interpolated once; most of it the far part next to the apex), so 1000 samples come from a
 // piecewise Chebyshev interpolant of g_1 built from one densities call at its ~100-200 nodes.
-// Structure of g_1 (the class nu = -1 with F constant next to either edge, math.md sections 3-5):
+// Structure of g_1 (the class nu = -1 with F constant next to either edge, docs/theory.md sections 3-5):
 // (t - lo)^gam times an analytic function next to lo, (hi - t)^del times one next to hi, and
 // |t|^-alpha A(t) + B(t) (log|t| A + B at alpha = 0) with A, B analytic on either side of the apex.
 // Panels: [lo, lo/2] carrying (t - lo)^gam, [hi/2, hi] carrying (hi - t)^del, and [lo/2, 0],
@@ -1490,7 +1490,7 @@ scene_result solve(const scene& s, const solve_options& options) {
         r.peak_pressure_at = g.jacobi.hi;
       } else if (st[i].k == kind::wedge) {
         // Below the boundary the wedge density has a weak singularity at the apex
-        // (|s|^-alpha, logarithmic at alpha = 0: math.md section 5).
+        // (|s|^-alpha, logarithmic at alpha = 0: docs/theory.md section 5).
         r.peak_pressure = std::numeric_limits<double>::infinity();
         r.peak_pressure_at = st[i].apex;
       } else {

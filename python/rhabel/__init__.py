@@ -105,7 +105,7 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True):
           pressure, the load and the error estimate pass the acceptance 1e-9),
           ``status_message`` (the numbers behind a non-ok status, or a note);
           with grid > 0 ``pressure`` {``x``, ``p``} and ``displacement`` {``x``, ``w``} as NumPy
-          arrays (w relative to its value at the leading edge, upward positive).
+          arrays (w: downward displacement relative to the leading edge, = f(x) - f(a) in contact).
         - ``diagnostics``: ``residual`` (max over indentors), ``seconds`` (wall time of the
           solve), ``iterations`` (Newton iterations of the coupled solve), ``status`` (the
           worst of the indentors' and the coupled solve's), ``status_message``.

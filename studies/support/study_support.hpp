@@ -221,7 +221,7 @@ struct wedge_moments {
 /// The reference of study_scene_timing and study_wedge_near_edge for eps and L, every operation
 /// in Big (pass cpp_bin_float_50; see the top of this header for BOOST_MATH_DISABLE_FLOAT128):
 ///   eps from I_eps(del, gam) = S2/(S1 + S2), 1 - eps from I_(1-eps)(gam, del) = S1/(S1 + S2)
-///   (each accurate where it is tiny), gam = (1 - 2 alpha - beta)/2, del = (1 + beta)/2 (math.md
+///   (each accurate where it is tiny), gam = (1 - 2 alpha - beta)/2, del = (1 + beta)/2 (docs/theory.md
 ///   section 5);
 ///   L from the load moment int g = (cos(beta pi/2)/(pi Gamma(1-alpha))) L^(1-alpha)
 ///   [S1 B_eps(P, Q) - S2 (B(P, Q) - B_eps(P, Q))], P = (1 + beta)/2, Q = (3 - beta)/2 - alpha (the

@@ -34,7 +34,7 @@ TEST_CASE("kappa and (1 - kappa)/alpha: definition, alpha -> 0 limit pi tan(beta
   for (double beta : betas) {
     abel_parameters<double> p0(0.0, beta);
     CHECK(p0.kappa() == doctest::Approx(1.0).epsilon(4 * eps));
-    // Carleman limit (notes section 1); 8 eps: tan and the sine products.
+    // Carleman limit (docs/theory.md section 1); 8 eps: tan and the sine products.
     CHECK(p0.one_minus_kappa_over_alpha() == doctest::Approx(pi * std::tan(beta * pi / 2)).epsilon(8 * eps));
     for (double alpha : {0.1, 0.4, 0.7}) {
       abel_parameters<double> p(alpha, beta);
@@ -51,7 +51,7 @@ TEST_CASE("kappa and (1 - kappa)/alpha: definition, alpha -> 0 limit pi tan(beta
   CHECK(q.beta() == doctest::Approx(-0.5).epsilon(8 * eps));
 }
 
-TEST_CASE("endpoint exponents and index of the four classes (notes section 3)") {
+TEST_CASE("endpoint exponents and index of the four classes (docs/theory.md section 3)") {
   const double alpha = 0.2, beta = 0.3;
   abel_parameters<double> par(alpha, beta);
   const auto bb = par.exponents(edge::bounded, edge::bounded);

@@ -1,4 +1,4 @@
-// Tests of rhabel/abel/abel_solver.hpp: the closed forms of notes section 5 reproduced by the
+// Tests of rhabel/abel/abel_solver.hpp: the closed forms of docs/theory.md section 5 reproduced by the
 // generic solver, independent residuals on smooth data over the hard parameter grid and over
 // interval lengths 1e-9 .. 1e6, and the evidence fields (defect, homogeneous solution, load).
 #include <doctest/doctest.h>
@@ -15,7 +15,7 @@
 using namespace rhabel::abel;
 using namespace abel_test;
 
-// Parabolic punch (notes section 5): f' = -s/R, nu = -1, b = L (1 - 2 alpha - beta)/(2 (1 - alpha)),
+// Parabolic punch (docs/theory.md section 5): f' = -s/R, nu = -1, b = L (1 - 2 alpha - beta)/(2 (1 - alpha)),
 // g = cos(beta pi/2) (t-a)^gam (b-t)^del / (pi R Gamma(2 - alpha)), C_f = (alpha+beta)(2-alpha) L/((1-alpha)(3-alpha) R).
 TEST_CASE("parabolic punch closed form (nu = -1) reproduced by the generic solver, all hard alphas and betas") {
   for (double alpha : hard_alphas) {
@@ -103,7 +103,7 @@ TEST_CASE("flat punch: homogeneous solution (nu = +1), unit load, A w = 0 by the
 }
 
 // Wedge with alpha + beta/2 < 1/2 (nu = -1): the solvability (orthogonality) condition becomes
-// I_eps((1+beta)/2, (1-2alpha-beta)/2) = S2/(S1+S2), eps = -a/L (notes section 5).
+// I_eps((1+beta)/2, (1-2alpha-beta)/2) = S2/(S1+S2), eps = -a/L (docs/theory.md section 5).
 TEST_CASE("wedge nu = -1: the incomplete-beta condition makes the solvability defect vanish") {
   for (double alpha : {0.0, 1e-3, 0.2, 0.4}) {
     for (double beta : {0.0, 0.3}) {

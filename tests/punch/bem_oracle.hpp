@@ -53,10 +53,10 @@
 //     are found by Newton (finite-difference Jacobian, Broyden updates) on one condition per edge:
 //     the two panels at the edge have the ratio of the panel means of the edge power law,
 //         g_edge / g_next = 1/(2^(e+1) - 1),  e = (1 - 2 alpha - beta)/2 leading, (1 + beta)/2 trailing
-//     (math.md section 3; a wrong edge adds the other, more singular class, which dominates the edge
+//     (docs/theory.md section 3; a wrong edge adds the other, more singular class, which dominates the edge
 //     panel). The condition is exact only in the limit, so the edge is off by O(h): that is what the
 //     extrapolation removes. Pinned edges: flat punch corners; a wedge's trailing edge at the apex when
-//     alpha + beta/2 >= 1/2 (contact ends at the apex there, math.md section 5). Because the mesh moves
+//     alpha + beta/2 >= 1/2 (contact ends at the apex there, docs/theory.md section 5). Because the mesh moves
 //     with the edges, every output is a smooth function of N (no grid-alignment jitter).
 //  3. `solve`: grid stage (200 panels a window, refined 4x up to 3200 until every contact spans 16
 //     panels) for the topology and the starting edges, then the fitted stage on 25, 50, ..., 800
@@ -74,7 +74,7 @@
 // wedge's trailing face (leading edge at the apex corner) is not modelled.
 //
 // MEASURED ACCURACY AND COST (Release, one core of a shared 2-core machine; parabola R = 1.5,
-// load 0.7, closed forms of math.md section 5; errors of the extrapolated values / error bars):
+// load 0.7, closed forms of docs/theory.md section 5; errors of the extrapolated values / error bars):
 //     alpha beta |  L err   L bar  |  a err   a bar  |  b err   b bar  | C_f err  C_f bar (x R/L) | time
 //     0     0    |  6.1e-6  2.3e-4 | -2.7e-6  4.5e-5 |  1.7e-6  2.7e-4 | -1.0e-8  3.2e-6          | 0.3 s
 //     0     0.3  |  7.1e-6  1.8e-4 |  7.0e-6  1.9e-5 |  1.5e-6  1.7e-4 | -8.6e-9  1.7e-6          | 0.3 s

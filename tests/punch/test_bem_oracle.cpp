@@ -1,6 +1,6 @@
 // Self-test of the boundary-element oracle (bem_oracle.hpp) against closed forms that are
 // independent of rhabel: the kernel's panel integrals against tanh-sinh quadrature, the parabolic
-// punch of math.md section 5 (Hertz at alpha = beta = 0), the elastic flat punch, the wedge (closed
+// punch of docs/theory.md section 5 (Hertz at alpha = beta = 0), the elastic flat punch, the wedge (closed
 // form above the boundary, the orthogonality condition below it), far-apart pairs against single
 // contacts, and the one-body mode against the independent one. No rhabel header is included: the
 // oracle must stay an oracle.
@@ -118,7 +118,7 @@ TEST_CASE("kernel: uniform as alpha -> 0, where it is the elastic log kernel plu
   }
 }
 
-TEST_CASE("parabola: contact length, edges, C_f and density against math.md section 5, within the oracle's own error bars") {
+TEST_CASE("parabola: contact length, edges, C_f and density against docs/theory.md section 5, within the oracle's own error bars") {
   // alpha = beta = 0 is Hertz (P = pi a^2 E*/(4R) <=> int g = a^2/(2R), L = 2a); alpha = 0.7,
   // beta = 0.3 is kappa = -1 with a singular leading edge; alpha = 0.7 puts the contact ahead of the apex.
   const double R = 1.5, P = 0.7, apex = 0.1;

@@ -1,4 +1,4 @@
-// Tests of rhabel::punch against closed forms (math.md section 5, paper 24-40), the elastic limits
+// Tests of rhabel::punch against closed forms (docs/theory.md section 5, paper 24-40), the elastic limits
 // (Johnson, Contact Mechanics, ch. 5 and 7), scaling laws, and independent quadratures of the
 // defining equation (8) and of the orthogonality condition (boost::math tanh-sinh: no code shared
 // with the spectral path under test).
@@ -44,7 +44,7 @@ std::string message_of(const scene& s) {
 }
 }  // namespace
 
-TEST_CASE("parabolic punch reproduces the closed form of math.md section 5 on both sides of the boundary") {
+TEST_CASE("parabolic punch reproduces the closed form of docs/theory.md section 5 on both sides of the boundary") {
   for (double alpha : {0.0, 0.2, 0.45, 0.5, 0.7}) {  // 0.5 with k = 0 is the boundary kappa = 0
     for (double k : {0.0, 0.5, 2.0}) {
       CAPTURE(alpha);
@@ -121,7 +121,7 @@ TEST_CASE("wedge above and on the boundary: contact ends at the apex, C_f = S1, 
 }
 
 TEST_CASE("wedge below the boundary: orthogonality condition by an independent quadrature") {
-  // int_a^b F(s) (s-a)^((beta-1)/2) (b-s)^(-(1+beta+2 alpha)/2) ds = 0 (math.md section 4).
+  // int_a^b F(s) (s-a)^((beta-1)/2) (b-s)^(-(1+beta+2 alpha)/2) ds = 0 (docs/theory.md section 4).
   boost::math::quadrature::tanh_sinh<double> ts;
   for (double alpha : {0.0, 0.1, 0.3}) {
     for (double ratio : {1e-6, 0.3, 1.0, 1e6}) {
@@ -203,7 +203,7 @@ TEST_CASE("flat punch: full contact with singular edges below the boundary, line
     CHECK(std::abs(r.pressure[i] / (P / (pi * std::sqrt(1 - x * x))) - 1) < spectral_tol);
   }
   CHECK(r.edges[0].exponent == doctest::Approx(-0.5));
-  // Viscoelastic, with friction: p = C (t-a)^-(1+2alpha+beta)/2 (b-t)^((beta-1)/2) (math.md 5).
+  // Viscoelastic, with friction: p = C (t-a)^-(1+2alpha+beta)/2 (b-t)^((beta-1)/2) (docs/theory.md section 5).
   const material m{0.3, 1.0, 0.3, 0.5};
   const auto v = solve_single(m, 1.0, indentor{flat{w}, P, 0.0}, {9});
   const double beta = m.beta(), gam = -(1 + 0.6 + beta) / 2, del = (beta - 1) / 2;

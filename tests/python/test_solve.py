@@ -14,7 +14,7 @@ from conftest import EPS, SOLVE_TOLERANCE, SOURCE_DIR, parabola_scene
 
 
 def parabola_closed_form(alpha, E1, nu, k, speed, radius, load, apex):
-    """Contact [a, b] and C_f of a parabola (../shared/notes/math.md; the brief of issue 15):
+    """Contact [a, b] and C_f of a parabola (docs/theory.md sections 2 and 5):
     int g = cos(beta pi/2) L^(2-alpha) B(gam+1, del+1) / (pi R Gamma(2-alpha)), load = (pi/2) E_U int g,
     E_U = E1 Gamma(1-alpha) U^alpha / (1-nu^2), gam = (1-2alpha-beta)/2, del = (1+beta)/2,
     tan(beta pi/2) = k (1-2nu) / (2(1-nu)), C_f = (alpha+beta)(2-alpha) L / ((1-alpha)(3-alpha) R),

@@ -2,7 +2,7 @@
 // Oracles: the committed 40-digit table tests/data/abel_reference.hpp (Boost tanh-sinh in
 // cpp_bin_float_50, left integrals computed directly, tools/reference/cauchy_abel_reference.cpp),
 // Beta-function closed forms, Euler's hypergeometric integral for x < -1 (boost pFq), and
-// the spectral relation of math.md section 4 for all three index classes.
+// the spectral relation of docs/theory.md section 4 for all three index classes.
 #include <doctest/doctest.h>
 
 #include <rhabel/quadrature.hpp>
@@ -101,7 +101,7 @@ TEST_CASE("x < -1: Euler's integral 2^(p+q+1) (-1-x)^(mu-1) B(q+1,p+1) 2F1(1-mu,
         }
 }
 
-TEST_CASE("spectral relation (math.md sec. 4) for the three index classes") {
+TEST_CASE("spectral relation (docs/theory.md section 4) for the three index classes") {
   // int_x^1 (t-x)^(a-1) w P_n^(del,gam) - kappa int_-1^x (x-t)^(a-1) w P_n^(del,gam)
   //   = -2^(-nu) pi (1-a)_n / (n! sin(pi del)) P_(n-nu)^(gam+nu, del+nu)(x),  w = (1-t)^del (1+t)^gam.
   const double alpha = 0.3, beta = 0.2;

@@ -1,6 +1,6 @@
 // Tests of rhabel/riemann/abel_solver.hpp: the generalized Abel equation (paper eq. 8) by the
 // Riemann-Hilbert route. Oracles:
-//  * the closed forms of notes section 5 (parabolic punch nu = -1 on both sides of
+//  * the closed forms of docs/theory.md section 5 (parabolic punch nu = -1 on both sides of
 //    alpha + beta/2 = 1/2, wedge nu = 0, flat punch nu = +1) and the wedge orthogonality
 //    condition I_eps((1+beta)/2, (1-2alpha-beta)/2) = S2/(S1+S2) (Boost's ibeta);
 //  * an independent residual of eq. (8) in integrated form, computed from G(y) = int_a^y g
@@ -40,7 +40,7 @@ const double pi = boost::math::constants::pi<double>();
 
 double kappa_of(double alpha, double beta) { return std::cos((alpha + beta / 2) * pi) / std::cos(beta * pi / 2); }
 
-// Parabolic punch f' = -x/R, closed form of notes section 5 (any alpha, beta; class nu = -1).
+// Parabolic punch f' = -x/R, closed form of docs/theory.md section 5 (any alpha, beta; class nu = -1).
 struct parabola {
   double alpha, beta, R = 1.3, L = 2.0;
   double b() const { return L * (1 - 2 * alpha - beta) / (2 * (1 - alpha)); }

@@ -10,7 +10,7 @@
 // is the Carleman operator  PV int_a^b g(t)/(t - s) dt + pi tan(beta pi/2) g(s), reached
 // uniformly: (1 - kappa)/alpha = 2 sin((alpha+beta) pi/2) sin(alpha pi/2) / (alpha cos(beta pi/2)).
 //
-// Edge behaviour and index classes (../shared/notes/math.md section 3). The density is
+// Edge behaviour and index classes (docs/theory.md section 3). The density is
 //     g(t) = (1 - x)^del (1 + x)^gam S(x),   x = (2 t - a - b)/(b - a) in [-1, 1],
 // with gam at the leading edge a (x = -1) and del at the trailing edge b (x = +1):
 //     gam = (1 - 2 alpha - beta)/2  (edge::bounded)   or  -(1 + 2 alpha + beta)/2  (edge::unbounded),
@@ -19,7 +19,7 @@
 // 2 alpha + beta > 1 the bounded leading exponent is negative. The unbounded leading class needs
 // gam > -1, i.e. 2 alpha + beta < 1; asking for it otherwise throws std::domain_error.
 //
-// Spectral relation (notes section 4, re-verified by the tests through an independent quadrature):
+// Spectral relation (docs/theory.md section 4, re-verified by the tests through an independent quadrature):
 //     A[w P_n^(del,gam)](y) = (L/2)^alpha lambda_n P_{n-nu}^(gam+nu, del+nu)(y),   P_{-1} := 0,
 //     lambda_n = -2^(-nu) pi (1 - alpha)_n / (n! sin(pi del)),
 // w = (1-x)^del (1+x)^gam in the reference variable (so g is written WITHOUT the factor
@@ -54,7 +54,7 @@
 // ~eps, and A w depends on gam with sensitivity ~ kappa/(gam + 1)^2: the independent quadrature
 // and the spectral route then differ by ~ eps kappa/delta^2 (1e-7 at delta = 1e-9).
 //
-// References: the paper ../shared/seeds/001 (eq. 8, 27, 28, 41); Szego ch. 4; DLMF 18.9 (Rodrigues
+// References: the source paper (eq. 8, 27, 28, 41; docs/theory.md); Szego ch. 4; DLMF 18.9 (Rodrigues
 // derivative form 18.9.16 used for partial integrals); Samko, Kilbas, Marichev, "Fractional
 // integrals and derivatives" section 30 (the operator with kernel (c1 + c2 sign)|t-s|^(alpha-1)).
 #pragma once

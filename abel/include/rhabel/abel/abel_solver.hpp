@@ -27,7 +27,7 @@
 //
 // Evidence returned (abel_solution):
 //  * nu = -1: solvability_defect = d_0, the image-P_0 coefficient of F~ (a weighted mean of F~;
-//    zero iff F satisfies the orthogonality condition of notes section 4). The solution solves
+//    zero iff F satisfies the orthogonality condition of docs/theory.md section 4). The solution solves
 //    A g = F - (L/2)^alpha d_0 exactly (to rounding + truncation).
 //  * nu = +1: homogeneous = w (c_0 chosen so that its integral is 1); the returned density has
 //    c_0 = 0 unless options.load is set (then int g = load).

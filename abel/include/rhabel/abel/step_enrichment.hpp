@@ -143,7 +143,7 @@
 // there sees no singularity of the data's continuation (the inversion integrates the data over the
 // short side only), so the map may put the apex at the centre: s = x0, sigma0 = 0, Taylor degree
 // 12. Piecewise constant data (the wedge) reduce to this case by subtracting the long side's
-// constant, whose solution is a closed form in the class nu = 0 singular at the near edge (math.md
+// constant, whose solution is a closed form in the class nu = 0 singular at the near edge (docs/theory.md
 // section 4, n = 0); nu = -1 is excluded (its defect, a constant, would not vanish on the long
 // side). Measured (alpha = 0.3, beta = 0 and 0.2; rows of tests/abel/test_step_enrichment.cpp):
 // 66 points, Chebyshev tail <= 2e-15, at 1 - eps = 1e-3 .. 1e-12, 0.22 ms per solve without the
@@ -1189,7 +1189,7 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   auto map_factor = [&](const Real& one_plus_s_sigma) { return 1 / g.covariance_factor(one_plus_s_sigma); };  // F~ / F
   // nu = -1 solves A g = F - defect with a CONSTANT defect (F projected on the range: the image-P_0
   // coefficient <F, w'>/<1, w'>, w' = (1 - x)^(gam-1) (1 + x)^(del-1), the weight of the image
-  // family P^(gam+nu, del+nu) (math.md section 4: the orthogonality condition); A[phi] has none). Mapped, a
+  // family P^(gam+nu, del+nu) (docs/theory.md section 4: the orthogonality condition); A[phi] has none). Mapped, a
   // constant is not constant in sigma, so the physical defect is removed from F before the map:
   // by Gauss-Jacobi on [-1, x0] and [x0, 1] (F smooth on each), graded toward the far end.
   // F at the point with reference distances 1 + x, 1 - x (x axis), checked finite.

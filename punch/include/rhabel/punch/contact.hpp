@@ -8,7 +8,7 @@
 //   pressure p, the hysteretic friction coefficient C_f, edge singularities and, on request, the
 //   pressure and the surface displacement on a grid.
 //
-// THEORY (verified in ../shared/notes/math.md, sections 1, 2, 4, 5)
+// THEORY (docs/theory.md, sections 1, 2, 4, 5)
 //   tan(beta pi/2) = k (1 - 2 nu) / (2 (1 - nu)),   kappa = cos((alpha + beta/2) pi) / cos(beta pi/2).
 //   With F(s) = f'(s)/Gamma(1 - alpha) (f: the indentor profile) the density g solves eq. (8)
 //       F(s) = int_s^b g(t)(t - s)^(alpha-1) dt - kappa int_a^s g(t)(s - t)^(alpha-1) dt,  a < s < b,
@@ -17,7 +17,7 @@
 //       load per unit length  lambda = int p,   C_f = (1/lambda) int f'(s) p(s) ds   (paper 23),
 //       total friction coefficient = C_f + k.
 //   g is expanded in Jacobi polynomials times the exact edge weights (t-a)^gam (b-t)^del, which
-//   diagonalises (8) (math.md section 4). The operator, its spectral relation, the density type and
+//   diagonalises (8) (docs/theory.md section 4). The operator, its spectral relation, the density type and
 //   the independent quadrature of (8) are rhabel::abel's (abel_parameters, abel_operator,
 //   jacobi_density, solve_image_series, apply / apply_by_quadrature, and solve_step with its singular
 //   enrichment for the wedge's apex); this layer adds the shapes, the projection of the forcing (steps
@@ -26,7 +26,7 @@
 //       gam = (1 - 2 alpha - beta)/2 (smooth leading edge) or -(1 + 2 alpha + beta)/2 (corner),
 //       del = (1 + beta)/2 (smooth trailing edge)          or (beta - 1)/2 (corner).
 //   A smooth edge carries zero intensity factor; its position is fixed by the orthogonality
-//   condition of math.md section 4 together with the load.
+//   condition of docs/theory.md section 4 together with the load.
 //
 // REGIMES (scene_result::regime) with respect to alpha + beta/2 = 1/2:
 //   "below"    alpha + beta/2 < 1/2 (kappa > 0): wedge contact wraps around the apex (a < 0 < b),
@@ -126,7 +126,7 @@
 // UNITS: any consistent set; the comments use SI: lengths in m, E1 in Pa s^alpha, speed in m/s,
 //   load per unit length in N/m, pressure in Pa. Slopes and friction coefficients are dimensionless.
 //
-// REFERENCES: the source paper (../shared/seeds/001, eqs. 8, 23-41); K. L. Johnson, Contact
+// REFERENCES: the source paper (eqs. 8, 23-41; docs/theory.md); K. L. Johnson, Contact
 //   Mechanics (1985), ch. 5 and 7 for the elastic limits.
 #pragma once
 
@@ -262,8 +262,8 @@ struct indentor_result {
   std::vector<double> grid_x;       ///< pressure abscissae, inside [a, b] (empty unless asked)
   std::vector<double> pressure;     ///< p(grid_x) [Pa]
   std::vector<double> displacement_x;  ///< displacement abscissae, [a - L, b + L] (empty unless asked)
-  std::vector<double> displacement;    ///< surface height relative to its value at the leading
-                                       ///< edge a (upward positive): equals f(x) - f(a) in contact [m]
+  std::vector<double> displacement;    ///< downward surface displacement relative to its value at
+                                       ///< the leading edge a: equals f(x) - f(a) in contact [m]
   double residual = 0;              ///< max |LHS - RHS of (8)| / max |F| at check points
                                     ///< (NaN if solve_options::residual is false)
   double error_estimate = 0;        ///< estimated relative error of the density (an estimate)

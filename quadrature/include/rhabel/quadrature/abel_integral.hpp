@@ -9,7 +9,7 @@
 //   abel_integral_left (h, p, q, mu, x) = int_{-1}^x (x - t)^(mu - 1) rho(t) dt ,  x > -1
 //                                          (x >= 1 allowed; x = 1 needs p + mu > 0)
 //
-// These are the two halves of the generalized Abel operator (math.md sec. 1, paper eq. 8,
+// These are the two halves of the generalized Abel operator (docs/theory.md section 1, paper eq. 8,
 // mu = alpha) mapped to [-1, 1]; x outside [-1, 1] gives the surface slope outside the contact.
 // The *_series variants take h = sum_k c[k] P_k^(p,q).
 //
@@ -33,7 +33,7 @@
 // mu in {0.01, 0.5, 0.999}, x = -1.5, -1 -+ 2^-40, 0, 0.7, 1 - 2^-40 and mirrored): worst
 // 34.7 eps relative to |value| + int w; closed forms (1-x)^(mu+p) B(mu, p+1) to 128 eps
 // RELATIVE at 1e-12 from the ends; Real = cpp_bin_float_50 to 1e-38. The spectral relation
-// of math.md section 4 (all three index classes, n <= 6) holds to 64 eps.
+// of docs/theory.md section 4 (all three index classes, n <= 6) holds to 64 eps.
 //
 // Bad input (p, q <= -1, mu outside (0, 1], x NaN or on the wrong side, divergent end cases)
 // throws std::domain_error naming function, parameter, value and valid range.

@@ -1,6 +1,6 @@
 // rhabel/riemann/abel_solver.hpp
 //
-// The Riemann-Hilbert route to the generalized Abel equation (paper eq. 8; notes section 1):
+// The Riemann-Hilbert route to the generalized Abel equation (paper eq. 8; docs/theory.md section 1):
 //
 //     F(s) = int_s^b g(t) (t - s)^(alpha-1) dt - kappa int_a^s g(t) (s - t)^(alpha-1) dt ,  a < s < b,
 //     kappa = cos((alpha + beta/2) pi) / cos(beta pi/2),
@@ -34,7 +34,7 @@
 //     int_a^y g = int_a^y A~(x) (y-x)^(-alpha) dx                                   (derivative-free)
 //     g(y)      = A~(y) (y-a)^(-alpha) + alpha int_a^y (A~(y) - A~(x)) (y-x)^(-alpha-1) dx
 //     int_a^b g = (1/(2 pi i)) int rho = -(c/pi) (-1)^j int_a^b w* F ,  j = 1 if n = (beta-1)/2, else 0.
-// (For beta = 0 and the class bounded at both ends this is notes section 6.)
+// (For beta = 0 and the class bounded at both ends this is docs/theory.md section 6.)
 //
 // Index classes (g ~ (t-a)^gam, (b-t)^del; nu = -(gam + del + alpha) = the index):
 //   leading (a)  trailing (b)  nu   m = gam + alpha   n = del        how
@@ -45,7 +45,7 @@
 //   unbounded    unbounded     +1   -(1+beta)/2       (beta-1)/2     first row + C g_h, needs
 //                                                                     alpha+beta/2 < 1/2
 // * nu = -1. The bounded solution exists iff the first-row solution is bounded at b, i.e. iff
-//   the (finite-part) orthogonality integral of the paper (20) / notes section 4 vanishes. We
+//   the (finite-part) orthogonality integral of the paper (20) / docs/theory.md section 4 vanishes. We
 //   return the first-row solution and the defect, normalised to be analytic in the parameters
 //   (the finite part has a pole at alpha + beta/2 = 1/2):
 //       defect = (1/Gamma(1/2 - alpha - beta/2)) FP int_a^b (s-a)^((beta-1)/2) (b-s)^(-(1+beta)/2-alpha) F(s) ds
@@ -53,7 +53,7 @@
 //   P = -(1+beta)/2 - alpha, Q = (beta-1)/2, L = b - a (at alpha+beta/2 = 1/2 it is F(b) L^Q:
 //   there the equation is one-sided and the bounded solution needs F(b) = 0).
 // * nu = +1. The homogeneous solution is g_h = (t-a)^(-(1+2alpha+beta)/2) (b-t)^((beta-1)/2)
-//   (notes section 4; C X(z) in the Riemann problem); int g_h = L^(-alpha) B((1-2alpha-beta)/2, (1+beta)/2).
+//   (docs/theory.md section 4; C X(z) in the Riemann problem); int g_h = L^(-alpha) B((1-2alpha-beta)/2, (1+beta)/2).
 //   options.load fixes C by int g = load; without it C = 0.
 //
 // Numerics. The PV is jacobi_cauchy_integral (product integration, cauchy_integral.hpp); the
