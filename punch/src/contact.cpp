@@ -1089,8 +1089,10 @@ double psi_distance(double d, double alpha, double one_minus_kappa_over_alpha, d
 }
 
 
-// Surface height (upward positive) from the slope field Gamma(1-alpha) A g (s) integrated in
-// closed form in s (psi): relative to its value at the leading edge a_i of contact i,
+// Surface displacement w (downward positive: w = f(x) - f(a) + w(a) in contact, f the profile,
+// so that outside a contact w >= f - f(a) + w(a) means the surface clears the indentor) from the
+// slope field Gamma(1-alpha) A g (s) integrated in closed form in s (psi), relative to its value at
+// the leading edge a_i of contact i:
 //   x in contact i:        f_i(x) - f_i(a_i)                          (the indentor's profile),
 //   x in another contact j: f_j(x) - f_j(a_j) + Gamma (E_j - E_i),
 //   elsewhere:              Gamma (sum_o int g_o Psi(t, x) dt - E_i),
@@ -1131,7 +1133,7 @@ class surface {
     return 0.0;
   }
 
-  /// Surface height at x relative to its value at a_i (see the class comment).
+  /// Surface displacement at x relative to its value at a_i (see the class comment).
   double height(std::size_t i, double x) const {
     for (std::size_t j = 0; j < st_.size(); ++j) {
       const auto& g = st_[j].g;

@@ -117,12 +117,18 @@ def test_invalid_argument_becomes_value_error_with_the_message():
         rhabel.solve(GOOD, tolerance=2.0)
 
 
-def test_domain_error_becomes_value_error_with_the_message():
-    # Overlapping contacts (std::domain_error naming both indentors).
+def test_contacts_that_meet_are_a_status_not_an_exception():
+    # Two identical indentors 1e-4 apart: their contacts meet at any load. The result comes back
+    # with the named status and both indentors in its message (formerly a ValueError).
     scene = parabola_scene()
     scene["indentors"].append(dict(scene["indentors"][0], apex=1e-4))
-    with pytest.raises(ValueError, match=r"rhabel::punch::solve: the contacts of indentors\[0\].*indentors\[1\].*overlap"):
-        rhabel.solve(scene)
+    result = rhabel.solve(scene)
+    assert result.diagnostics.status == "contacts_merge"
+    assert "indentors[0]" in result.diagnostics.status_message
+    assert "indentors[1]" in result.diagnostics.status_message
+
+
+def test_domain_error_becomes_value_error_with_the_message():
     # Quadrature: p <= -1 (throw_bad_parameter: std::domain_error).
     with pytest.raises(ValueError, match=r"^gauss_jacobi: p = -1 is outside the valid range \(-1, inf\)$"):
         rhabel.gauss_jacobi(4, -1.0, 0.0)

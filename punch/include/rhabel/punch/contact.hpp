@@ -78,28 +78,51 @@
 //     solve_options::wedge_apex_split off the isolated wedge takes C_f and the pressure samples
 //     from the Riemann-Hilbert route (order 16 on the unit interval, samples from a piecewise
 //     Chebyshev interpolant; the status says so) and the plain Jacobi series the rest.
-//     A coupled wedge (other indentors present) finds eps by the orthogonality root and takes C_f
-//     and the pressure from its enriched density, the apex near an edge moved by solve_step's
-//     balanced Moebius map (65 points down to ~1e-2 L from the edge, 195-585 down to 1e-4 L);
-//     within 1e-4 L the Richardson-extrapolated series for C_f (no Riemann-Hilbert route for
-//     coupled contacts).
+//     A coupled wedge (other indentors present): see "Several indentors".
 //   * Flat punch below the boundary: nu = +1, spectral, 1e-15; above/on the boundary a line load.
-//   * Several indentors: block Gauss-Seidel on system 41 (each interval re-solved with the others'
-//     action on its right side, computed with the graded cross-term nodes and kernel of
-//     abel::solve_union, abel::detail::make_cross_nodes / cross_kernel) until the edges move by less
-//     than 10 tolerance L; residual of (8) on the union checked independently. Far apart the coupling
-//     decays like distance^(alpha - 1); nearly touching contacts make the cross terms nearly singular
-//     (slow, or an error naming the indentor); overlapping contacts throw naming both indentors.
-//   * residual (computed unless solve_options::residual is false; NaN then): max over 7 interior
-//     points of |A g - F| / max|F| with the two one-sided integrals
+//   * Several indentors (paper system 41; punch/src/coupled_solve.cpp, docs/theory.md section 7):
+//     for given edges ONE linear solve on the union of the contact intervals: a particular solution
+//     of every contact alone with its own data (the single-contact builders above: spectral, the
+//     wedge's apex enrichment or, apex within L/4 of an edge, its split form; a flat face carries
+//     its load as the homogeneous solution), plus the coupling correction with the smooth data
+//     -sum_{i != j} A p_i by abel::solve_union (collocation in the contacts' Jacobi bases, cross
+//     blocks by graded quadrature, degree raised until its independent residual is within the
+//     tolerance relative to the original data). The edges: Newton's method on ALL edge conditions
+//     at once (d_j = 0, or a vanishing near-edge intensity for a split wedge, and int g_j = P_j),
+//     forward-difference Jacobian at the base point's degree (banded by Curtis-Powell-Reid colouring
+//     above 5 contacts) then Broyden updates, steps limited to keep every contact at least half and
+//     every gap at least a fifth of its size. Started from the isolated contacts, or, when those
+//     overlap or lie within L/4, by continuation in the load (all loads times t, contacts shrinking
+//     about their apexes, t raised to 1). The contacts' order along x is found, not assumed (above
+//     alpha = 1/2 a blunt indentor's contact can lie ahead of a sharper one's). A gap below
+//     1e-4 of the smaller contact that a step keeps closing ends the iteration: contacts_merge
+//     when the step closes it, not_converged otherwise. Measured: the alpha = 1/2 semi-closed
+//     two-parabola solution (trailing contact independent; tests/punch/test_coupled.cpp) to 1e-9 L
+//     at gaps 1, 0.1, 0.01 L; the boundary-element oracle of tests/punch/bem_oracle.hpp (its own
+//     error ~1e-5 L) within twice its error bar for two parabolas at alpha 0, 0.25, 0.7, beta 0,
+//     0.3 and for parabola-wedge-parabola and flat-flat-parabola rows (test_coupled_bem.cpp);
+//     mirror symmetry of identical elastic frictionless indentors to 1e-9; the coupling decaying
+//     like distance^(alpha - 1). Cost: see "Cost" below.
+//   * residual (computed unless solve_options::residual is false; NaN then): max over check points
+//     of |A g - F| relative to the data's scale (max |F| there, and mean(g) (L/2)^alpha, the size of
+//     the density's own action, which is all a flat face has), with the two one-sided integrals
 //     computed by abel_operator::apply_by_quadrature (Gauss-Jacobi with the kernel singularity as
 //     weight, independent of the spectral relation; uniform down to alpha = 0), the apex enrichment
 //     by abel's direct quadrature of A[phi] (the one solve_step used to build the data: for that part
-//     only the smooth remainder is checked), the other indentors by abel_operator::apply / abel::apply.
+//     only the smooth remainder is checked), the other indentors by abel_operator::apply / abel::apply
+//     (graded quadrature, not the coupled solve's cross nodes). Check points: 7 interior points and,
+//     facing a neighbour at distance gap, points 0.37 gap 3^k from that end (the boundary layer).
 //     Measured: <= 7e-13 for single indentors at alpha in {0, 1e-8, 5e-4} (tests/punch/
-//     test_contact.cpp); 8.6e-14 for examples/default_scene.json (coupled wedge + parabola, the wedge's
-//     apex at eps 0.88, mapped; it was 7e-6 with the former apex split, 2e-10 with solve_step capped
-//     at 129 points, 3e-11 before the map).
+//     test_contact.cpp); ~3e-14 for examples/default_scene.json (coupled wedge + parabola).
+//   * STATUS (status_code; the command line exits 3 on anything but ok): a contact is ok only when
+//     its residual and error estimate are within solve_options::acceptance (1e-9), its density is
+//     >= -acceptance x its mean at 64 interior points and the check points (else tension), its
+//     load matches (else load_mismatch) and, with several indentors, the surface clears its profile
+//     at 14 points L/64 .. L from its edges (else penetration: the slope equations are solved but
+//     the contact set is not the physical one); the scene's code is the coupled solve's or the
+//     first non-ok contact's. Flat punches close behind one another at alpha > 0 typically come back
+//     `tension`: the full-contact class of a flat face gives the trailing corner of the leading
+//     punch a negative intensity (partial contact of a flat face is not modelled).
 //   * Displacement: outside the contact from the slope integral (paper 27, 28) integrated in closed
 //     form in s, then Gauss-Jacobi in t (series part), abel's composite quadrature of the apex enrichment;
 //     the datum (log-singular at t = a) by tanh-sinh in offsets from a, the apex and b; inside the own
@@ -120,8 +143,7 @@
 //     Where the time goes (alpha = 0.3, S2/S1 = 0.1): abel::solve_step's quadrature of A[phi]
 //     ~0.3 ms (65 points), the 1000 samples ~0.11 ms (their series summed four points at a time,
 //     quadrature::jacobi_series::evaluate: was 0.17 ms one point at a time), the independent
-//     residual 0.1-0.3 ms. Coupled scenes with wedges 0.05-0.3 s
-//     (examples/default_scene.json: ~0.05-0.08 s).
+//     residual 0.1-0.3 ms. Several indentors: COUPLED_COST
 //
 // UNITS: any consistent set; the comments use SI: lengths in m, E1 in Pa s^alpha, speed in m/s,
 //   load per unit length in N/m, pressure in Pa. Slopes and friction coefficients are dimensionless.
@@ -287,8 +309,10 @@ struct scene_result {
 };
 
 /// Solves the scene. Validates every field first and throws std::invalid_argument naming it, e.g.
-/// "rhabel::punch::solve: indentors[1].radius = -2 must be > 0". Throws std::domain_error when the
-/// contacts of two indentors would overlap (naming both) or when no contact interval exists.
+/// "rhabel::punch::solve: indentors[1].radius = -2 must be > 0". Throws std::domain_error when a
+/// single indentor has no contact interval. Several indentors are always returned with their
+/// evidence: contacts that meet, an iteration that does not converge, tension or penetration are a
+/// status_code other than ok with the numbers in the status messages (see STATUS at the top).
 scene_result solve(const scene& s, const solve_options& options = {});
 
 /// Single-indentor building block (no other indentor present); the apex of `ind` is honoured.
