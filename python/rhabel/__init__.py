@@ -191,7 +191,7 @@ def gauss_jacobi(n, p, q, lo=-1.0, hi=1.0):
     Accuracy (measured against 60-digit tables, rhabel/quadrature/gauss_jacobi.hpp): for
     p, q in (-1, 5] and n <= 10^6 every weight and min(1 - x, 1 + x) to <= 45 eps relative
     (worst measured 8.9 and 3.2 eps). O(n): n = 10^4 in ~0.6 ms, 10^6 in ~60-90 ms.
-    Raises ValueError for n = 0, p or q <= -1, lo >= hi. Releases the GIL.
+    Raises ValueError for n = 0, p or q outside (-1, 30], lo >= hi. Releases the GIL.
 
     Example: ``x, _, _, w = rhabel.gauss_jacobi(10, 0.25, -0.5)``; ``w @ x**3``.
     """
