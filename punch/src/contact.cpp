@@ -292,7 +292,9 @@ class cross_action {
 
 context make_context(const material& m, double speed, const solve_options& options) {
   context cx;
-  cx.alpha = m.alpha;
+  // alpha below 1e-300 (down to the subnormal 5e-324, where the small-alpha forms divide by alpha)
+  // is alpha = 0: the solution depends on alpha like alpha log(L), far below rounding there.
+  cx.alpha = m.alpha < alpha_zero ? 0.0 : m.alpha;
   cx.beta = material_beta(m);
   cx.kappa = material_kappa(m);
   cx.offset = regime_offset(m);
@@ -1235,6 +1237,17 @@ std::pair<double, double> worst_gap(const surface& heights, const std::vector<in
   return {span > 0 ? worst / span : worst, where};
 }
 
+// Moves a result computed relative to `origin` (solve's first apex) back to absolute abscissae.
+void shift(indentor_result& r, double origin) {
+  if (origin == 0) return;
+  r.a += origin;
+  r.b += origin;
+  r.peak_pressure_at += origin;
+  for (auto& e : r.edges) e.position += origin;
+  for (double& x : r.grid_x) x += origin;
+  for (double& x : r.displacement_x) x += origin;
+}
+
 // Check points of contact i for the residual of (8) and the sign of the pressure: 7 interior
 // points (1 - cos(pi k/8))/2 of [a, b], and points at 0.37 gap 3^k (k = 0, 1, ... while below L/4)
 // from an end that faces another contact at distance gap: the boundary layer of width ~ gap of
@@ -1403,12 +1416,15 @@ scene_result solve(const scene& s, const solve_options& options) {
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t i, std::size_t j) { return s.indentors[i].apex < s.indentors[j].apex; });
   std::vector<indentor_state> st(s.indentors.size());
+  const double origin = s.indentors[order[0]].apex;
   for (std::size_t i = 0; i < st.size(); ++i) {
     const auto& ind = s.indentors[order[i]];
     st[i].source = &ind;
     st[i].scene_index = order[i];
     st[i].k = static_cast<kind>(ind.shape.index());
-    st[i].apex = ind.apex;
+    // Coordinates relative to the first apex (shifted back in the report): a contact far from
+    // the origin keeps its digits (a wedge of L = 5e-13 at apex 1e6 was an internal error).
+    st[i].apex = ind.apex - origin;
     st[i].target_load = ind.load / cx.pressure_scale;
   }
   const bool isolated = st.size() == 1;
@@ -1590,6 +1606,7 @@ scene_result solve(const scene& s, const solve_options& options) {
         r.displacement[k] = heights.height(i, x);
       }
     }
+    shift(r, origin);
     out.indentors[order[i]] = std::move(r);
   }
   out.diagnostics.residual = worst_residual;

@@ -24,6 +24,7 @@ namespace rhabel::punch::detail {
 
 constexpr double pi = boost::math::constants::pi<double>();
 constexpr double boundary_width = 1e-12;  // |alpha + beta/2 - 1/2| below this is "boundary"
+constexpr double alpha_zero = 1e-300;     // material.alpha below this is solved as alpha = 0
 // Wedge below the boundary, apex at distance min(eps, 1 - eps) L from an edge. The isolated wedge
 // with the apex in an outer quarter (min(eps, 1 - eps) < 1/4) is solved in the split form of
 // build_wedge_near_edge (the long side's constant in closed form plus the short side's step with
