@@ -249,7 +249,7 @@ material_spec parse_material(const json& value, const std::string& base_dir) {
     m.curve = std::move(c);
     return m;
   }
-  only_keys(value, path, {"alpha", "E1", "nu", "coulomb", "name", "master_curve"});
+  only_keys(value, path, {"alpha", "E1", "nu", "coulomb", "name"});  // or the master-curve form above
   material_spec m;
   m.alpha = required_number(value, path, "alpha", alpha_range, "power-law exponent of E(t) = E1 t^-alpha");
   m.E1 = required_number(value, path, "E1", positive, "modulus coefficient of E(t) = E1 t^-alpha");
