@@ -6,6 +6,8 @@
 #include "scene_json.hpp"
 #include "scene_solve.hpp"
 
+#include <rhabel/materials.hpp>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -169,6 +171,14 @@ sweep_spec read_sweep(const std::string& path) {
   try {
     const auto spec = parse_scene(sweep.base.dump(), "(base scene)");
     sweep.indentors = spec.indentors.size();
+    // A bad master curve is bad input of the whole sweep (exit 2), not a failed row each time.
+    if (spec.material.curve) {
+      try {
+        (void)materials::read_master_curve(spec.material.curve->resolved_path);
+      } catch (const std::invalid_argument& e) {
+        fail(std::string("scene: material.master_curve: ") + e.what());
+      }
+    }
   } catch (const input_error& e) {
     std::string what = e.what();
     if (what.starts_with("solve: ")) what = what.substr(7);

@@ -185,6 +185,8 @@ bad_sweep not_scalar "is not a scalar field" "{\"scene\": $scene, \"axes\": [{\"
 bad_sweep zip_lengths "combine \"zip\" needs axes of one length" "{\"scene\": $scene, \"combine\": \"zip\", \"axes\": [{\"path\": \"speed\", \"values\": [1, 2]}, {\"path\": \"material.nu\", \"values\": [0.1]}]}"
 bad_sweep log_zero "from and to must be > 0" "{\"scene\": $scene, \"axes\": [{\"path\": \"speed\", \"log_range\": {\"from\": 0, \"to\": 1, \"count\": 3}}]}"
 bad_sweep bad_scene "sweep: scene: material.nu = 0.7" "{\"scene\": {\"material\": {\"alpha\": 0.3, \"E1\": 1e6, \"nu\": 0.7, \"coulomb\": 0}, \"speed\": 1, \"indentors\": [{\"shape\": \"flat\", \"width\": 0.01, \"load\": 1}]}, \"axes\": [{\"path\": \"speed\", \"values\": [1]}]}"
+printf 'omega,E_storage,E_loss\n1,1,0\n2,2,0\n2,3,0\n' > "$tmp/broken_curve.csv"
+bad_sweep bad_curve "row 4, column 1 (omega)" "{\"scene\": {\"material\": {\"master_curve\": \"broken_curve.csv\", \"nu\": 0.5, \"coulomb\": 0}, \"speed\": 1, \"indentors\": [{\"shape\": \"flat\", \"width\": 0.01, \"load\": 1}]}, \"axes\": [{\"path\": \"speed\", \"values\": [1]}]}"
 bad_sweep unknown "sweeps is not a known field" "{\"scene\": $scene, \"sweeps\": 1, \"axes\": [{\"path\": \"speed\", \"values\": [1]}]}"
 
 # --- the shipped example runs ---------------------------------------------------------------------
