@@ -3,7 +3,9 @@
 // A scene with "material": {"master_curve": ...} is solved by the self-consistent fit of
 // rhabel::materials (rhabel/materials/master_curve.hpp): the curve (shifted by WLF to the scene's
 // temperature if given) is fitted by a local power law at omega0, the scene is solved with it, and
-// omega0 = U / L is iterated to a fixed point, L being the mean contact length of the indentors.
+// omega0 = U / L is iterated to a fixed point, L being the mean contact length of the indentors
+// (with several indentors: first with each indentor solved alone, which is fast, then on the whole
+// scene from there: the coupled solve can take seconds at a trial material far from the answer).
 // The final solve, with the converged (alpha, E1), is the written result; it gains
 //   "material_fit": {"master_curve", "temperature", "log10_aT", "alpha", "E1", "omega0",
 //                    "alpha_slope", "alpha_tan_delta", "modulus", "window": [lo, hi],

@@ -283,7 +283,8 @@ fixed_point_fit fit_fixed_point(const master_curve& curve, double speed,
   double last_length = 0;
   local_fit last_fit;
   auto g = [&](double x) {
-    last_fit = fit_at(curve, std::exp(x), options);
+    // exp(ln omega) may round just outside the range at its ends: clamp to the measured values.
+    last_fit = fit_at(curve, std::clamp(std::exp(x), curve.omega.front(), curve.omega.back()), options);
     last_length = contact_length(last_fit);
     ++out.iterations;
     if (!(last_length > 0) || !std::isfinite(last_length)) {
@@ -309,10 +310,12 @@ fixed_point_fit fit_fixed_point(const master_curve& curve, double speed,
       const double secant = x1 - h1 * (x1 - x0) / (h1 - h0);
       if (std::isfinite(secant)) x2 = clamp(secant);
     }
-    // The fixed point lies beyond the range when the map keeps pushing out at a bound.
+    // The fixed point lies beyond the range when the map pushes out at a bound: x - g(x) is
+    // increasing (g has slope about alpha/(1 - alpha) < 1 in magnitude, top of the header), so no
+    // root lies inside once it has the wrong sign at the bound.
     stuck_low = x1 == xmin && g1 < xmin;
     stuck_high = x1 == xmax && g1 > xmax;
-    if ((stuck_low && x2 == xmin) || (stuck_high && x2 == xmax)) {
+    if (stuck_low || stuck_high) {
       throw std::domain_error("fit_fixed_point: the contact frequency U/L = " + short_num(std::exp(g1)) +
                               " rad/s lies outside the master curve's range [" + short_num(curve.omega.front()) +
                               ", " + short_num(curve.omega.back()) + "] rad/s");
