@@ -205,3 +205,21 @@ TEST_CASE("fixed point omega0 = U / L(alpha, E1) against a closed-form contact l
   // A fixed point beyond the measured range is an error, not an extrapolation.
   CHECK_THROWS_AS(fit_fixed_point(curve, 1e9, length), std::domain_error);
 }
+
+TEST_CASE("regression: fixed point at the lowest measured frequency (exp(ln omega) rounded below the range)") {
+  // A sweep at 40 degC refused omega0 = 2.86574e-05 rad/s as "outside [2.86574e-05, ...]": the
+  // iteration works in ln omega and exp(ln omega_min) can round below omega_min.
+  double low = 0;
+  for (int k = 0; k < 1000 && low == 0; ++k) {
+    const double v = 2.8657403727762718e-5 * (1 + k * 1e-3);
+    if (std::exp(std::log(v)) < v) low = v;
+  }
+  REQUIRE(low > 0);
+  std::string text = "omega,E_abs,tan_delta\n" + row(low, 1e6, 0.5) + row(low * 10, 2e6, 0.5) + row(low * 100, 4e6, 0.5);
+  const auto curve = parse_master_curve(text, "low end");
+  const double speed = 1e-6;
+  const auto r = fit_fixed_point(curve, speed, [&](const local_fit&) { return speed / low; }, {}, speed / low);
+  CHECK(r.converged);
+  CHECK(r.fit.omega0 == low);
+  CHECK(r.fit.status == "window_clipped");
+}
