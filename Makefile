@@ -5,10 +5,13 @@
 MAKEFLAGS += --no-print-directory
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: demo test deps build sanitize test-sanitize studies bench clean
+.PHONY: demo test deps deps-mpi build build-mpi sanitize test-sanitize studies bench friction-map clean
 
 deps:
 	@bash scripts/install-deps.sh
+
+deps-mpi:
+	@bash scripts/install-deps.sh --mpi
 
 build: deps
 	@cmake --preset release >/dev/null
@@ -17,8 +20,20 @@ build: deps
 demo: build
 	@bash scripts/demo.sh
 
-test: build
+# make test also builds `rhabel sweep` with MPI (RHABEL_WITH_MPI) and runs it under mpirun
+# (cli.mpi_sweep); the program still runs without mpirun.
+build-mpi: deps-mpi
+	@cmake --preset release -DRHABEL_WITH_MPI=ON >/dev/null
+	@cmake --build --preset release -j $(JOBS)
+
+test: build-mpi
 	@ctest --preset release -j $(JOBS)
+
+# Friction against sliding speed for the shipped master curve: out/friction_speed.{csv,png}.
+friction-map: build
+	@mkdir -p out
+	@build/bin/rhabel sweep examples/friction_speed_sweep.json --out out/friction_speed.csv --quiet
+	@/usr/bin/python3 scripts/plot_sweep.py out/friction_speed.csv out/friction_speed.png
 
 # Address + undefined-behaviour sanitizers over the whole suite (CI runs this too).
 test-sanitize: deps

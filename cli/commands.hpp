@@ -6,7 +6,9 @@
 //   2  bad input (one line on stderr naming the parameter), a scene the solver cannot solve,
 //      or an output that could not be written (stdout or a CSV file; no partial CSV is left)
 //   3  `solve`: the result was written completely, but its status is not "ok" (the result's
-//      "status" names why: not_converged, tension, load_mismatch, contacts_merge)
+//      "status" names why: not_converged, tension, load_mismatch, contacts_merge), or its
+//      master-curve fit is not ok; `fit-material`: the fit's status is not ok; `sweep`: every
+//      row was written, but some row's status is not ok
 // Every message is one line on stderr, `rhabel: <command>: <message>`; control characters in
 // echoed values are escaped (one_line).
 #pragma once
@@ -43,7 +45,8 @@ inline constexpr const char* exit_code_help =
     "  1  internal error (please report it)\n"
     "  2  bad input, a scene that cannot be solved, or an output that could not be written\n"
     "     (stdout or a CSV file); one line on stderr, no partial CSV file is left\n"
-    "  3  solve: the result was written completely, but its status is not ok (see its \"status\")";
+    "  3  solve: the result was written completely, but its status is not ok (see its \"status\");\n"
+    "     fit-material: the fit is not ok; sweep: all rows written, some row is not ok";
 
 /// `text` on one line: control characters (bytes 0x00-0x1f and 0x7f) become \n, \r, \t or \xHH,
 /// so that an echoed value (an argument, a file name, a JSON excerpt) cannot break the message.
@@ -75,5 +78,7 @@ using command_action = std::function<int()>;
 
 void add_rule_command(CLI::App& app, command_action& action);
 void add_solve_command(CLI::App& app, command_action& action);
+void add_fit_material_command(CLI::App& app, command_action& action);
+void add_sweep_command(CLI::App& app, command_action& action);
 
 }  // namespace rhabel::cli

@@ -12,7 +12,7 @@ namespace {
 std::string command_label(int argc, char** argv) {
   if (argc < 2) return {};
   const std::string_view first = argv[1];
-  if (first == "solve") return "solve";
+  if (first == "solve" || first == "sweep" || first == "fit-material") return std::string(first);
   if (first == "rule") return argc > 2 && std::string_view(argv[2]) == "gauss-jacobi" ? "rule gauss-jacobi" : "rule";
   return {};
 }
@@ -43,13 +43,15 @@ int main(int argc, char** argv) {
   command_action action;
   add_rule_command(app, action);
   add_solve_command(app, action);
+  add_fit_material_command(app, action);
+  add_sweep_command(app, action);
   const std::string label = command_label(argc, argv);
   // CLI11 would report an unknown first word as "a subcommand is required": name it instead.
   if (argc > 1 && argv[1][0] != '-') {
     try {
       app.get_subcommand(argv[1]);
     } catch (const CLI::OptionNotFound&) {
-      return report(std::string("unknown command '") + argv[1] + "' (valid: rule, solve; see rhabel --help)",
+      return report(std::string("unknown command '") + argv[1] + "' (valid: rule, solve, fit-material, sweep; see rhabel --help)",
                     exit_bad_input);
     }
   }

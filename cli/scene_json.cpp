@@ -214,10 +214,42 @@ void require_object(const json& value, const std::string& path) {
   if (!value.is_object()) fail(path + " must be a JSON object {...}, got " + type_of(value) + " " + show(value));
 }
 
-material_spec parse_material(const json& value) {
+material_spec parse_material(const json& value, const std::string& base_dir) {
   const std::string path = "material";
   require_object(value, path);
-  only_keys(value, path, {"alpha", "E1", "nu", "coulomb", "name"});
+  if (value.contains("master_curve")) {
+    only_keys(value, path, {"master_curve", "temperature", "wlf", "nu", "coulomb", "name"},
+              " of a master-curve material (alpha and E1 are fitted from the curve)");
+    material_spec m;
+    master_curve_spec c;
+    const auto& file = value.at("master_curve");
+    if (!file.is_string() || file.get<std::string>().empty()) {
+      fail("material.master_curve must be a non-empty string (a CSV file name), got " + type_of(file) + " " + show(file));
+    }
+    c.path = file.get<std::string>();
+    c.resolved_path = base_dir.empty() || c.path.front() == '/' ? c.path : base_dir + "/" + c.path;
+    const bool has_t = value.contains("temperature"), has_wlf = value.contains("wlf");
+    if (has_t != has_wlf) {
+      fail(std::string("material.") + (has_t ? "wlf" : "temperature") + " is missing: \"temperature\" and \"wlf\" " +
+           "go together (the WLF shift of the master curve to that temperature)");
+    }
+    if (has_t) {
+      c.shifted = true;
+      c.temperature = number(value.at("temperature"), "material.temperature", any_finite, "temperature, same unit as wlf.T_ref");
+      const auto& wlf = value.at("wlf");
+      require_object(wlf, "material.wlf");
+      only_keys(wlf, "material.wlf", {"C1", "C2", "T_ref"});
+      c.C1 = required_number(wlf, "material.wlf", "C1", positive, "WLF constant C1");
+      c.C2 = required_number(wlf, "material.wlf", "C2", positive, "WLF constant C2, a temperature difference");
+      c.T_ref = required_number(wlf, "material.wlf", "T_ref", any_finite, "reference temperature of the master curve");
+    }
+    m.nu = required_number(value, path, "nu", poisson_range, "Poisson ratio");
+    m.coulomb = required_number(value, path, "coulomb", non_negative, "Coulomb friction coefficient");
+    m.name = optional_string(value, path, "name");
+    m.curve = std::move(c);
+    return m;
+  }
+  only_keys(value, path, {"alpha", "E1", "nu", "coulomb", "name"});  // or the master-curve form above
   material_spec m;
   m.alpha = required_number(value, path, "alpha", alpha_range, "power-law exponent of E(t) = E1 t^-alpha");
   m.E1 = required_number(value, path, "E1", positive, "modulus coefficient of E(t) = E1 t^-alpha");
@@ -263,7 +295,7 @@ indentor_spec parse_indentor(const json& value, const std::string& path) {
 
 }  // namespace
 
-scene_spec parse_scene(std::string_view text, const std::string& source) {
+scene_spec parse_scene(std::string_view text, const std::string& source, const std::string& base_dir) {
   check_bytes(text, source);
   json root;
   duplicate_key_guard guard;
@@ -291,7 +323,7 @@ scene_spec parse_scene(std::string_view text, const std::string& source) {
 
   scene_spec scene;
   scene.description = optional_string(root, "", "description");
-  scene.material = parse_material(require(root, "", "material", "an object {alpha, E1, nu, coulomb} is required"));
+  scene.material = parse_material(require(root, "", "material", "an object {alpha, E1, nu, coulomb} is required"), base_dir);
   scene.speed = required_number(root, "", "speed", positive, "sliding speed");
   const auto& list = require(root, "", "indentors", "a non-empty array of indentors is required");
   if (!list.is_array()) fail("indentors must be a non-empty array [...], got " + type_of(list) + " " + show(list));

@@ -10,6 +10,10 @@
 //                  {"shape": "wedge", "slope_leading": 0.1, "slope_trailing": 0.1, "load": 50.0},
 //                  {"shape": "flat", "width": 0.004, "load": 20.0, "apex": 0.05}]}
 //
+// Instead of alpha and E1 the material may name a measured master curve (see master_curve_spec):
+//   "material": {"master_curve": "FILE.csv", "temperature": 40, "wlf": {"C1": 8.86, "C2": 101.6,
+//                "T_ref": 20}, "nu": 0.5, "coulomb": 0.3}
+//
 // Field            valid range        meaning
 // material.alpha   [0, 1)             power-law exponent, E(t) = E1 t^-alpha (0: elastic)
 // material.E1      (0, inf)           modulus coefficient, unit stress * time^alpha
@@ -45,6 +49,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -54,13 +59,30 @@ namespace rhabel::cli {
 /// Deepest nesting of arrays and objects accepted in a scene (the top-level object is level 1).
 inline constexpr std::size_t max_scene_depth = 256;
 
+/// A material given by its measured master curve instead of (alpha, E1) (cli/material_solve.hpp):
+///   "material": {"master_curve": "FILE.csv", "temperature": T, "wlf": {"C1": .., "C2": .., "T_ref": ..},
+///                "nu": .., "coulomb": .., "name": ".."}
+/// The path is relative to the scene file's directory (to the working directory for stdin).
+/// `temperature` and `wlf` go together (both or neither); without them the curve is used as is.
+struct master_curve_spec {
+  std::string path;           ///< as written in the scene
+  std::string resolved_path;  ///< path joined to the scene's directory
+  bool shifted = false;       ///< temperature and wlf given
+  double temperature = 0;     ///< finite
+  double C1 = 0;              ///< (0, inf)
+  double C2 = 0;              ///< (0, inf)
+  double T_ref = 0;           ///< finite
+};
+
 /// Power-law viscoelastic half-space, E(t) = E1 t^-alpha, and its interface friction.
+/// With a master curve, alpha and E1 are 0 until cli/material_solve.cpp fits them.
 struct material_spec {
   double alpha = 0;    ///< material exponent, [0, 1)
   double E1 = 0;       ///< modulus coefficient, > 0
   double nu = 0;       ///< Poisson ratio, [0, 0.5]
   double coulomb = 0;  ///< Coulomb coefficient k >= 0
   std::string name;    ///< optional label
+  std::optional<master_curve_spec> curve;  ///< set when the scene gives "master_curve"
 };
 
 enum class shape_kind { parabolic, wedge, flat };
@@ -91,6 +113,7 @@ struct scene_spec {
 /// Parses and validates a scene. `source` names the input in messages (a file name or "stdin").
 /// Throws rhabel::cli::input_error (one line, naming the field and its valid range) on any
 /// syntax, type, range, missing-field, unknown-field or duplicate-key error. Never partial.
-scene_spec parse_scene(std::string_view text, const std::string& source);
+/// `base_dir` is the directory that a relative "master_curve" path is resolved against.
+scene_spec parse_scene(std::string_view text, const std::string& source, const std::string& base_dir = {});
 
 }  // namespace rhabel::cli

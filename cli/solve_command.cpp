@@ -22,6 +22,7 @@
 #include "commands.hpp"
 #include "scene_json.hpp"
 #include "scene_solve.hpp"
+#include "material_solve.hpp"
 
 #include <cerrno>
 #include <cstdio>
@@ -177,12 +178,18 @@ void write_stdout(const std::string& document) {
 int run(const solve_arguments& args) {
   if (args.csv && args.csv_prefix.empty()) throw input_error("solve: --csv needs a non-empty PREFIX");
   const std::string source = args.scene_path == "-" ? "(stdin)" : "'" + args.scene_path + "'";
-  const scene_spec scene = parse_scene(read_scene(args.scene_path), source);
+  // A relative "master_curve" path is relative to the scene file (to the working directory for stdin).
+  const std::string base_dir =
+      args.scene_path == "-" ? std::string() : std::filesystem::path(args.scene_path).parent_path().string();
+  const scene_spec scene = parse_scene(read_scene(args.scene_path), source, base_dir);
 
   run_request request;
   request.grid = args.grid;
   if (request.grid == 0 && args.csv) request.grid = default_csv_grid;
-  const run_outcome outcome = run_scene(scene, request);
+  std::string warning;
+  const run_outcome outcome = run_scene_with_material(scene, request, &warning);
+  // A master-curve fit that is not ok is never silent: one warning line (and exit code 3).
+  if (!warning.empty()) std::cerr << "rhabel: solve: warning: " << one_line(warning) << '\n';
 
   // Serialise before writing anything so that a failure cannot leave partial output. Order:
   // CSV temporaries, stdout (flushed and checked), then the renames: a CSV file appears only

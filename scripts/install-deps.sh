@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian packages rhabel needs, and only those that are missing.
 # Idempotent: a second run does nothing and touches no package index.
+# Usage: scripts/install-deps.sh [--mpi]
 set -euo pipefail
 
 packages=(
@@ -16,6 +17,12 @@ packages=(
   pybind11-dev python3-dev    # the Python package rhabel (python/)
   python3-numpy python3-pytest  # its arrays and its tests (tests/python/)
 )
+
+# `make test` (scripts/install-deps.sh --mpi) also tests `rhabel sweep` under mpirun; the main
+# job (`make demo`) needs no MPI.
+if [ "${1:-}" = "--mpi" ]; then
+  packages+=(libopenmpi-dev openmpi-bin)  # Debian's OpenMPI: RHABEL_WITH_MPI, cli.mpi_sweep
+fi
 
 missing=()
 for p in "${packages[@]}"; do

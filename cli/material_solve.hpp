@@ -1,0 +1,36 @@
+// cli/material_solve.hpp: solving a scene whose material is a measured master curve.
+//
+// A scene with "material": {"master_curve": ...} is solved by the self-consistent fit of
+// rhabel::materials (rhabel/materials/master_curve.hpp): the curve (shifted by WLF to the scene's
+// temperature if given) is fitted by a local power law at omega0, the scene is solved with it, and
+// omega0 = U / L is iterated to a fixed point, L being the mean contact length of the indentors
+// (with several indentors: first with each indentor solved alone, which is fast, then on the whole
+// scene from there: the coupled solve can take seconds at a trial material far from the answer).
+// The final solve, with the converged (alpha, E1), is the written result; it gains
+//   "material_fit": {"master_curve", "temperature", "log10_aT", "alpha", "E1", "omega0",
+//                    "alpha_slope", "alpha_tan_delta", "modulus", "window": [lo, hi],
+//                    "contact_length", "iterations", "status", "warning"}
+// and its "scene" echoes the fitted alpha and E1. The fit's status is "ok", "poor_power_law"
+// (the two alpha estimates differ by more than 0.05), "window_clipped" (the window reached the end
+// of the measured range) or "not_converged" (no fixed point in 60 steps); anything but "ok" makes
+// run_outcome::ok false (`rhabel solve` exits 3) and is also returned in `warning`.
+#pragma once
+
+#include "scene_json.hpp"
+#include "scene_solve.hpp"
+
+#include <rhabel/materials.hpp>
+
+#include <string>
+
+namespace rhabel::cli {
+
+/// The master curve of `spec`, read once per resolved path and process (thread-safe cache), shifted
+/// to its temperature. Throws input_error with one line naming the file, row and column.
+materials::master_curve load_master_curve(const master_curve_spec& spec, const std::string& command);
+
+/// run_scene for any scene: with a master curve, the fixed point above first. `warning` receives the
+/// fit's warning (empty when it is ok or the scene has an explicit material).
+run_outcome run_scene_with_material(const scene_spec& scene, const run_request& request, std::string* warning = nullptr);
+
+}  // namespace rhabel::cli

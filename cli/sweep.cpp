@@ -1,0 +1,384 @@
+// cli/sweep.cpp: sweep files and rows (see sweep.hpp).
+#include "sweep.hpp"
+
+#include "commands.hpp"
+#include "material_solve.hpp"
+#include "scene_json.hpp"
+#include "scene_solve.hpp"
+
+#include <rhabel/materials.hpp>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
+
+namespace rhabel::cli {
+namespace {
+
+using json = nlohmann::json;
+namespace fs = std::filesystem;
+
+[[noreturn]] void fail(const std::string& message) { throw input_error("sweep: " + one_line(message)); }
+
+std::string read_text(const std::string& path, const char* what) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) fail(std::string("cannot read ") + what + " '" + path + "': it is a directory");
+  std::ifstream file(path, std::ios::binary);
+  if (!file) fail(std::string("cannot read ") + what + " '" + path + "': " + std::strerror(errno));
+  std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
+  if (file.bad()) fail(std::string("cannot read ") + what + " '" + path + "': read error");
+  return text;
+}
+
+json parse_json(const std::string& text, const std::string& source) {
+  try {
+    return json::parse(text);
+  } catch (const json::exception& e) {
+    std::string what = e.what();
+    if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
+    fail(source + " is not valid JSON: " + what);
+  }
+}
+
+// "indentors[0].load" -> /indentors/0/load
+json::json_pointer to_pointer(const std::string& path, const std::string& where) {
+  std::string pointer;
+  std::size_t i = 0;
+  auto bad = [&] { fail(where + " = \"" + path + "\" is not a field path like speed, indentors[0].load, material.temperature"); };
+  if (path.empty()) bad();
+  while (i < path.size()) {
+    std::size_t j = i;
+    while (j < path.size() && path[j] != '.' && path[j] != '[') ++j;
+    if (j == i) bad();
+    pointer += '/';
+    pointer.append(path, i, j - i);
+    while (j < path.size() && path[j] == '[') {
+      const auto close = path.find(']', j);
+      if (close == std::string::npos || close == j + 1) bad();
+      const std::string index = path.substr(j + 1, close - j - 1);
+      if (index.find_first_not_of("0123456789") != std::string::npos) bad();
+      pointer += '/';
+      pointer += index;
+      j = close + 1;
+    }
+    if (j < path.size()) {
+      if (path[j] != '.' || j + 1 == path.size()) bad();
+      ++j;
+    }
+    i = j;
+  }
+  return json::json_pointer(pointer);
+}
+
+double range_number(const json& object, const std::string& where, const char* key) {
+  const auto it = object.find(key);
+  if (it == object.end() || !it->is_number() || !std::isfinite(it->get<double>())) {
+    fail(where + "." + key + " must be a finite number");
+  }
+  return it->get<double>();
+}
+
+std::vector<json> expand_range(const json& spec, const std::string& where, bool logarithmic) {
+  if (!spec.is_object()) fail(where + " must be an object {\"from\": .., \"to\": .., \"count\": ..}");
+  for (const auto& item : spec.items()) {
+    if (item.key() != "from" && item.key() != "to" && item.key() != "count") {
+      fail(where + "." + item.key() + " is not a known field (known: from, to, count)");
+    }
+  }
+  const double from = range_number(spec, where, "from"), to = range_number(spec, where, "to");
+  const auto c = spec.find("count");
+  if (c == spec.end() || !c->is_number_integer() || c->get<long long>() < 1 ||
+      c->get<long long>() > static_cast<long long>(max_sweep_rows)) {
+    fail(where + ".count must be an integer in [1, " + std::to_string(max_sweep_rows) + "]");
+  }
+  const auto n = static_cast<std::size_t>(c->get<long long>());
+  if (logarithmic && !(from > 0 && to > 0)) fail(where + ": from and to must be > 0 for a log_range");
+  std::vector<json> values;
+  for (std::size_t i = 0; i < n; ++i) {
+    double v;
+    if (i == 0) {
+      v = from;
+    } else if (i + 1 == n) {
+      v = to;
+    } else {
+      const double t = static_cast<double>(i) / static_cast<double>(n - 1);
+      v = logarithmic ? std::exp(std::log(from) + t * (std::log(to) - std::log(from))) : from + t * (to - from);
+    }
+    values.emplace_back(v);
+  }
+  return values;
+}
+
+// Makes a relative master_curve path absolute against `dir`.
+void absolutize_curve(json& scene, const fs::path& dir) {
+  if (!scene.is_object()) return;
+  const auto m = scene.find("material");
+  if (m == scene.end() || !m->is_object()) return;
+  const auto c = m->find("master_curve");
+  if (c == m->end() || !c->is_string()) return;
+  const fs::path p = c->get<std::string>();
+  if (!p.empty() && p.is_relative()) *c = fs::absolute(dir / p).lexically_normal().string();
+}
+
+std::string number_text(double x) { return json(x).dump(); }  // shortest round trip
+
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"") == std::string::npos && !text.empty()) return text;
+  std::string out = "\"";
+  for (const char c : text) {
+    if (c == '"') out += '"';
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string value_text(const json& v, row_format format) {
+  if (format == row_format::jsonl) return v.dump();
+  return v.is_string() ? csv_field(one_line(v.get<std::string>())) : v.dump();
+}
+
+}  // namespace
+
+sweep_spec read_sweep(const std::string& path) {
+  const json doc = parse_json(read_text(path, "sweep file"), "sweep file '" + path + "'");
+  if (!doc.is_object()) fail("sweep file '" + path + "': the top level must be an object");
+  for (const auto& item : doc.items()) {
+    if (item.key() != "description" && item.key() != "scene" && item.key() != "axes" && item.key() != "combine") {
+      fail(item.key() + " is not a known field of a sweep (known: description, scene, axes, combine)");
+    }
+  }
+  const fs::path dir = fs::path(path).parent_path();
+  sweep_spec sweep;
+  const auto s = doc.find("scene");
+  if (s == doc.end()) fail("scene is missing: a scene object or the name of a scene file is required");
+  fs::path scene_dir = dir;
+  if (s->is_string()) {
+    const fs::path scene_path = dir / s->get<std::string>();
+    sweep.base = parse_json(read_text(scene_path.string(), "scene file"), "scene file '" + scene_path.string() + "'");
+    scene_dir = scene_path.parent_path();
+  } else if (s->is_object()) {
+    sweep.base = *s;
+  } else {
+    fail("scene must be an object or a file name");
+  }
+  absolutize_curve(sweep.base, scene_dir);
+  // The base scene must be valid by itself (its errors name the field: "sweep: scene: ...").
+  try {
+    const auto spec = parse_scene(sweep.base.dump(), "(base scene)");
+    sweep.indentors = spec.indentors.size();
+    // A bad master curve is bad input of the whole sweep (exit 2), not a failed row each time.
+    if (spec.material.curve) {
+      try {
+        (void)materials::read_master_curve(spec.material.curve->resolved_path);
+      } catch (const std::invalid_argument& e) {
+        fail(std::string("scene: material.master_curve: ") + e.what());
+      }
+    }
+  } catch (const input_error& e) {
+    std::string what = e.what();
+    if (what.starts_with("solve: ")) what = what.substr(7);
+    fail("scene: " + what);
+  }
+  if (const auto c = doc.find("combine"); c != doc.end()) {
+    if (*c == "zip") sweep.zip = true;
+    else if (*c != "product") fail("combine = " + c->dump() + " is not known (valid: \"product\", \"zip\")");
+  }
+  const auto a = doc.find("axes");
+  if (a == doc.end() || !a->is_array() || a->empty()) fail("axes must be a non-empty array of {path, values|range|log_range}");
+  for (std::size_t k = 0; k < a->size(); ++k) {
+    const json& item = (*a)[k];
+    const std::string where = "axes[" + std::to_string(k) + "]";
+    if (!item.is_object()) fail(where + " must be an object");
+    sweep_axis axis;
+    int kinds = 0;
+    for (const auto& field : item.items()) {
+      if (field.key() == "path") continue;
+      if (field.key() == "values") {
+        ++kinds;
+        if (!field.value().is_array() || field.value().empty()) fail(where + ".values must be a non-empty array");
+        for (std::size_t i = 0; i < field.value().size(); ++i) {
+          const auto& v = field.value()[i];
+          if (!(v.is_number() || v.is_string() || v.is_boolean())) {
+            fail(where + ".values[" + std::to_string(i) + "] must be a number, string or boolean");
+          }
+          axis.values.push_back(v);
+        }
+      } else if (field.key() == "range" || field.key() == "log_range") {
+        ++kinds;
+        axis.values = expand_range(field.value(), where + "." + field.key(), field.key() == "log_range");
+      } else {
+        fail(where + "." + field.key() + " is not a known field (known: path, values, range, log_range)");
+      }
+    }
+    if (kinds != 1) fail(where + " needs exactly one of values, range, log_range");
+    const auto p = item.find("path");
+    if (p == item.end() || !p->is_string()) fail(where + ".path is missing: the JSON path of a scene field, e.g. speed");
+    axis.path = p->get<std::string>();
+    axis.pointer = to_pointer(axis.path, where + ".path");
+    const auto parent = axis.pointer.parent_pointer();
+    if (!sweep.base.contains(parent) || !(sweep.base.at(parent).is_object() || sweep.base.at(parent).is_array())) {
+      fail(where + ".path = \"" + axis.path + "\": its parent does not exist in the base scene");
+    }
+    if (sweep.base.at(parent).is_array() && !sweep.base.contains(axis.pointer)) {
+      fail(where + ".path = \"" + axis.path + "\": index out of range in the base scene");
+    }
+    if (sweep.base.contains(axis.pointer) && !sweep.base.at(axis.pointer).is_primitive()) {
+      fail(where + ".path = \"" + axis.path + "\" is not a scalar field of the scene");
+    }
+    for (const auto& other : sweep.axes) {
+      if (other.pointer == axis.pointer) fail(where + ".path = \"" + axis.path + "\" is swept twice");
+    }
+    sweep.axes.push_back(std::move(axis));
+  }
+  std::size_t rows = sweep.zip ? sweep.axes.front().values.size() : 1;
+  for (const auto& axis : sweep.axes) {
+    if (sweep.zip) {
+      if (axis.values.size() != rows) {
+        fail("combine \"zip\" needs axes of one length: " + axis.path + " has " + std::to_string(axis.values.size()) +
+             " values, " + sweep.axes.front().path + " has " + std::to_string(rows));
+      }
+    } else {
+      if (rows > max_sweep_rows / axis.values.size()) fail("more than " + std::to_string(max_sweep_rows) + " rows");
+      rows *= axis.values.size();
+    }
+  }
+  sweep.rows = rows;
+  return sweep;
+}
+
+std::vector<json> row_values(const sweep_spec& sweep, std::size_t row) {
+  std::vector<json> out(sweep.axes.size());
+  if (sweep.zip) {
+    for (std::size_t k = 0; k < sweep.axes.size(); ++k) out[k] = sweep.axes[k].values[row];
+    return out;
+  }
+  for (std::size_t k = sweep.axes.size(); k-- > 0;) {  // the last axis varies fastest
+    const auto n = sweep.axes[k].values.size();
+    out[k] = sweep.axes[k].values[row % n];
+    row /= n;
+  }
+  return out;
+}
+
+std::string row_scene(const sweep_spec& sweep, std::size_t row) {
+  json scene = sweep.base;
+  const auto values = row_values(sweep, row);
+  for (std::size_t k = 0; k < values.size(); ++k) scene[sweep.axes[k].pointer] = values[k];
+  return scene.dump();
+}
+
+std::vector<std::string> row_columns(const sweep_spec& sweep) {
+  std::vector<std::string> cols{"row"};
+  for (const auto& axis : sweep.axes) cols.push_back(axis.path);
+  for (const char* c : {"status", "alpha", "E1", "omega0", "alpha_tan_delta"}) cols.emplace_back(c);
+  for (std::size_t i = 0; i < sweep.indentors; ++i) {
+    const std::string p = "ind" + std::to_string(i) + "_";
+    for (const char* c : {"a", "b", "contact_length", "load", "C_f", "total_friction"}) cols.push_back(p + c);
+  }
+  for (const char* c : {"residual", "seconds", "message"}) cols.emplace_back(c);
+  return cols;
+}
+
+std::string header_line(const sweep_spec& sweep, row_format format) {
+  if (format == row_format::jsonl) return {};
+  std::string line;
+  for (const auto& c : row_columns(sweep)) line += (line.empty() ? "" : ",") + csv_field(c);
+  return line + "\n";
+}
+
+std::string row_prefix(const sweep_spec& sweep, std::size_t row, row_format format) {
+  const auto values = row_values(sweep, row);
+  std::string out;
+  if (format == row_format::csv) {
+    out = std::to_string(row) + ",";
+    for (const auto& v : values) out += value_text(v, format) + ",";
+  } else {
+    out = "{\"row\":" + std::to_string(row) + ",";
+    for (std::size_t k = 0; k < values.size(); ++k) out += json(sweep.axes[k].path).dump() + ":" + values[k].dump() + ",";
+  }
+  return out;
+}
+
+std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format format, bool& ok) {
+  const auto columns = row_columns(sweep);
+  const std::size_t first_output = 1 + sweep.axes.size();
+  std::vector<std::string> fields(columns.size() - first_output);  // status .. message, as text ("" = empty)
+  auto set = [&](const std::string& column, const std::string& text) {
+    for (std::size_t j = first_output; j < columns.size(); ++j) {
+      if (columns[j] == column) fields[j - first_output] = text;
+    }
+  };
+  std::string status = "ok", message;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    scene_spec scene;
+    try {
+      scene = parse_scene(row_scene(sweep, row), "(row " + std::to_string(row) + ")");
+    } catch (const input_error& e) {
+      status = "invalid_scene";
+      throw;
+    }
+    std::string warning;
+    const run_outcome outcome = run_scene_with_material(scene, run_request{}, &warning);
+    const auto& r = outcome.result;
+    const auto& diag = r.at("diagnostics");
+    status = diag.at("status").get<std::string>();
+    message = status == "ok" ? std::string() : diag.at("status_message").get<std::string>();
+    set("alpha", number_text(scene.material.curve ? r.at("material_fit").at("alpha").get<double>() : scene.material.alpha));
+    set("E1", number_text(scene.material.curve ? r.at("material_fit").at("E1").get<double>() : scene.material.E1));
+    if (scene.material.curve) {
+      const auto& fit = r.at("material_fit");
+      set("omega0", number_text(fit.at("omega0").get<double>()));
+      set("alpha_tan_delta", number_text(fit.at("alpha_tan_delta").get<double>()));
+      if (status == "ok" && fit.at("status") != "ok") {
+        status = fit.at("status").get<std::string>();
+        message = fit.at("warning").get<std::string>();
+      }
+    }
+    const auto& inds = r.at("indentors");
+    for (std::size_t i = 0; i < inds.size(); ++i) {
+      const std::string p = "ind" + std::to_string(i) + "_";
+      const auto& ind = inds[i];
+      set(p + "a", number_text(ind.at("contact")[0].get<double>()));
+      set(p + "b", number_text(ind.at("contact")[1].get<double>()));
+      set(p + "contact_length", number_text(ind.at("contact_length").get<double>()));
+      set(p + "load", number_text(ind.at("load").get<double>()));
+      set(p + "C_f", number_text(ind.at("hysteretic_friction").get<double>()));
+      set(p + "total_friction", number_text(ind.at("total_friction").get<double>()));
+    }
+    set("residual", number_text(diag.at("residual").get<double>()));
+  } catch (const input_error& e) {
+    if (status == "ok") status = "no_solution";
+    message = e.what();
+  } catch (const std::exception& e) {
+    status = "error";
+    message = e.what();
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", seconds);
+  set("seconds", buf);
+  set("status", status);
+  set("message", one_line(message));
+  ok = status == "ok";
+
+  std::string line = row_prefix(sweep, row, format);
+  for (std::size_t j = 0; j < fields.size(); ++j) {
+    const auto& name = columns[first_output + j];
+    const auto& text = fields[j];
+    const bool is_string = name == "status" || name == "message";
+    if (format == row_format::csv) {
+      line += (j ? "," : "") + (is_string ? csv_field(text) : text);
+    } else {
+      line += (j ? "," : "") + json(name).dump() + ":" + (is_string ? json(text).dump() : text.empty() ? "null" : text);
+    }
+  }
+  return line + (format == row_format::csv ? "\n" : "}\n");
+}
+
+}  // namespace rhabel::cli

@@ -1,0 +1,440 @@
+// rhabel sweep SWEEP.json --out FILE.csv [--jsonl] [--threads N] [--print-scenes] [--quiet]
+//
+// Solves every scene of a sweep (cli/sweep.hpp) and writes one row per scene: CSV with a header, or
+// JSON lines (--jsonl: one object per line, the same keys). Rows: row, the swept values, status,
+// alpha, E1, omega0 and alpha_tan_delta (master-curve materials), per indentor i: ind<i>_a, _b,
+// _contact_length, _load, _C_f, _total_friction, then residual, seconds (solve time of the row,
+// the only column that differs between runs) and message. Numbers in the shortest form that reads
+// back to the same double (as `rhabel solve` prints them: a row equals the single solve bit for bit).
+// A failed scene is a row too (status invalid_scene, no_solution or error, and its message).
+//
+// Resuming: rows are appended to FILE as they complete, each as one whole line written with one
+// write() and flushed, so a killed run leaves a readable file (at worst a last partial line, which
+// the next run cuts off). Rerunning the same command reads FILE, keeps the rows it recognises (same
+// index and the same swept values; another sweep's file is refused, exit 2), solves only the
+// missing ones and, when all are there, rewrites FILE in row order (temporary + rename): every row
+// exactly once, in scene order.
+//
+// Parallelism: --threads N worker threads (default: all cores; under MPI, the cores divided by the
+// ranks on the node). When built with RHABEL_WITH_MPI and started by mpirun, the rows still missing
+// are dealt cyclically over the ranks (row k of the missing list to rank k mod size); the ranks send
+// their lines to rank 0, the only one that touches FILE, so the output is the same as one process's
+// (same rows, same order, same bits but the seconds column).
+//
+// Progress (rows done, rate, remaining time) goes to stderr only when stderr is a terminal
+// (--quiet silences it). Exit codes: 0 every row ok, 3 every row written but some not ok, 2 bad
+// sweep file, arguments, a FILE from another sweep, or a failed write. Under mpirun only rank 0
+// returns the code (mpirun passes it on, with its own note on stderr when it is not 0).
+#include "commands.hpp"
+#include "scene_json.hpp"
+#include "sweep.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cerrno>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <deque>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <iterator>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#ifdef RHABEL_WITH_MPI
+#include <mpi.h>
+#endif
+
+namespace rhabel::cli {
+namespace {
+
+struct sweep_arguments {
+  std::string sweep_path;
+  std::string out;
+  bool jsonl = false;
+  std::size_t threads = 0;
+  bool print_scenes = false;
+  bool quiet = false;
+};
+
+// ---- MPI (a no-op without RHABEL_WITH_MPI or outside mpirun) --------------------------------------
+struct mpi_context {
+  int rank = 0, size = 1;
+  bool active = false;
+#ifdef RHABEL_WITH_MPI
+  static bool launched_by_mpirun() {
+    for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK"}) {
+      if (std::getenv(v)) return true;
+    }
+    return false;
+  }
+  mpi_context() {
+    if (!launched_by_mpirun()) return;
+    int provided = 0;
+    MPI_Init_thread(nullptr, nullptr, MPI_THREAD_FUNNELED, &provided);
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    active = true;
+  }
+  ~mpi_context() {
+    if (active) MPI_Finalize();
+  }
+#endif
+  mpi_context(const mpi_context&) = delete;
+  mpi_context& operator=(const mpi_context&) = delete;
+#ifndef RHABEL_WITH_MPI
+  mpi_context() = default;
+#endif
+};
+
+constexpr int tag_line = 1;
+
+// ---- the output file -------------------------------------------------------------------------------
+[[noreturn]] void write_failed(const std::string& file, const std::string& what) {
+  throw write_error("sweep: --out " + one_line(file) + ": " + what);
+}
+
+void write_all(int fd, const std::string& text, const std::string& file) {
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      write_failed(file, std::strerror(errno));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+}
+
+struct existing_rows {
+  std::map<std::size_t, std::string> lines;  // row -> whole line (with '\n')
+  std::size_t keep_bytes = 0;                 // length of the complete lines (a partial tail is cut)
+  bool has_header = false;
+};
+
+// Reads FILE if it exists: the header must be this sweep's, every complete line one of its rows.
+existing_rows scan_existing(const sweep_spec& sweep, row_format format, const std::string& file) {
+  existing_rows out;
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return out;
+  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const std::string header = header_line(sweep, format);
+  std::size_t pos = 0, line_no = 0;
+  if (!header.empty()) {
+    if (text.empty()) return out;
+    if (text.compare(0, header.size(), header) != 0) {
+      if (header.compare(0, text.size(), text) == 0 && text.find('\n') == std::string::npos) return out;  // cut header
+      throw input_error("sweep: --out " + one_line(file) +
+                        " exists with another header (from another sweep?): remove it or choose another name");
+    }
+    out.has_header = true;
+    pos = header.size();
+    line_no = 1;
+  }
+  out.keep_bytes = pos;
+  while (pos < text.size()) {
+    const auto end = text.find('\n', pos);
+    if (end == std::string::npos) break;  // partial last line of a killed run: cut off
+    ++line_no;
+    const std::string line = text.substr(pos, end + 1 - pos);
+    std::size_t row = 0;
+    const std::size_t skip = format == row_format::csv ? 0 : 7;  // {"row":
+    const char* digits = line.c_str() + std::min(skip, line.size());
+    char* stop = nullptr;
+    row = std::strtoull(digits, &stop, 10);
+    if (stop == digits || row >= sweep.rows || line.compare(0, row_prefix(sweep, row, format).size(),
+                                                            row_prefix(sweep, row, format)) != 0) {
+      throw input_error("sweep: --out " + one_line(file) + " line " + std::to_string(line_no) +
+                        " is not a row of this sweep (another sweep's file?): remove it or choose another name");
+    }
+    out.lines.emplace(row, line);  // a duplicate keeps the first
+    pos = end + 1;
+    out.keep_bytes = pos;
+  }
+  return out;
+}
+
+bool status_ok(const std::string& line, std::size_t prefix, row_format format) {
+  const std::string want = format == row_format::csv ? "ok," : "\"status\":\"ok\",";
+  return line.compare(prefix, want.size(), want) == 0;
+}
+
+// ---- progress ----------------------------------------------------------------------------------------
+class progress {
+ public:
+  progress(bool on, std::size_t total) : on_(on), total_(total), start_(clock::now()), last_(start_) {}
+  void update(std::size_t done, bool final = false) {
+    if (!on_) return;
+    const auto now = clock::now();
+    if (!final && now - last_ < std::chrono::milliseconds(200)) return;
+    last_ = now;
+    const double s = std::chrono::duration<double>(now - start_).count();
+    const double rate = s > 0 ? static_cast<double>(done) / s : 0;
+    const double eta = rate > 0 ? static_cast<double>(total_ - done) / rate : 0;
+    const int width = 30;
+    const int filled = total_ ? static_cast<int>(width * static_cast<double>(done) / static_cast<double>(total_)) : width;
+    std::fprintf(stderr, "\r[%s%s] %zu/%zu rows  %.1f rows/s  %s %.0f s   ", std::string(filled, '#').c_str(),
+                 std::string(width - filled, '.').c_str(), done, total_, rate, final ? "took" : "ETA", final ? s : eta);
+    if (final) std::fputc('\n', stderr);
+    std::fflush(stderr);
+  }
+ private:
+  using clock = std::chrono::steady_clock;
+  bool on_;
+  std::size_t total_;
+  clock::time_point start_, last_;
+};
+
+// ---- workers -------------------------------------------------------------------------------------
+struct finished_row {
+  std::size_t row;
+  std::string line;
+};
+
+class work_pool {
+ public:
+  work_pool(const sweep_spec& sweep, row_format format, std::vector<std::size_t> rows, std::size_t threads)
+      : sweep_(sweep), format_(format), rows_(std::move(rows)) {
+    threads = std::max<std::size_t>(1, std::min(threads, rows_.size()));
+    if (rows_.empty()) return;
+    for (std::size_t t = 0; t < threads; ++t) workers_.emplace_back([this] { work(); });
+  }
+  ~work_pool() {
+    stop_ = true;
+    for (auto& w : workers_) w.join();
+  }
+  std::size_t size() const { return rows_.size(); }
+  // Waits up to `wait` for finished rows and moves them out.
+  std::vector<finished_row> take(std::chrono::milliseconds wait) {
+    std::unique_lock lock(mutex_);
+    ready_.wait_for(lock, wait, [this] { return !done_.empty(); });
+    std::vector<finished_row> out(std::make_move_iterator(done_.begin()), std::make_move_iterator(done_.end()));
+    done_.clear();
+    return out;
+  }
+ private:
+  void work() {
+    for (;;) {
+      const std::size_t k = next_.fetch_add(1);
+      if (k >= rows_.size() || stop_) return;
+      bool ok = false;
+      std::string line = solve_row(sweep_, rows_[k], format_, ok);
+      {
+        std::lock_guard lock(mutex_);
+        done_.push_back({rows_[k], std::move(line)});
+      }
+      ready_.notify_one();
+    }
+  }
+  const sweep_spec& sweep_;
+  row_format format_;
+  std::vector<std::size_t> rows_;
+  std::atomic<std::size_t> next_{0};
+  std::atomic<bool> stop_{false};
+  std::mutex mutex_;
+  std::condition_variable ready_;
+  std::deque<finished_row> done_;
+  std::vector<std::thread> workers_;
+};
+
+std::size_t default_threads(const mpi_context& mpi) {
+  std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
+  if (mpi.active) {
+    const char* local = std::getenv("OMPI_COMM_WORLD_LOCAL_SIZE");
+    const long ranks_here = local ? std::strtol(local, nullptr, 10) : mpi.size;
+    cores = std::max<std::size_t>(1, cores / static_cast<std::size_t>(std::max(1L, ranks_here)));
+  }
+  return cores;
+}
+
+// Rewrites FILE in row order (temporary in the same directory, then rename).
+void rewrite_sorted(const std::string& file, const std::string& header, const std::map<std::size_t, std::string>& lines) {
+  std::string tmp = file + ".XXXXXX";
+  const int fd = ::mkstemp(tmp.data());
+  if (fd < 0) write_failed(file, std::string("cannot create a temporary next to it: ") + std::strerror(errno));
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  ::fchmod(fd, 0666 & ~mask);
+  try {
+    std::string text = header;
+    for (const auto& [row, line] : lines) text += line;
+    write_all(fd, text, file);
+    if (::fsync(fd) != 0 && errno != EINVAL) write_failed(file, std::strerror(errno));
+    if (::close(fd) != 0) write_failed(file, std::strerror(errno));
+    if (std::rename(tmp.c_str(), file.c_str()) != 0) write_failed(file, std::strerror(errno));
+  } catch (...) {
+    std::remove(tmp.c_str());
+    throw;
+  }
+}
+
+int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
+  const row_format format = args.jsonl ? row_format::jsonl : row_format::csv;
+  const sweep_spec sweep = read_sweep(args.sweep_path);
+  if (args.print_scenes) {
+    if (mpi.rank != 0) return exit_ok;
+    std::string text;
+    for (std::size_t i = 0; i < sweep.rows; ++i) text += row_scene(sweep, i) + "\n";
+    std::fwrite(text.data(), 1, text.size(), stdout);
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) throw write_error("sweep: cannot write to stdout");
+    return exit_ok;
+  }
+  if (args.out.empty()) throw input_error("sweep: --out FILE is required (or --print-scenes)");
+  const std::string header = header_line(sweep, format);
+
+  // Rank 0 reads what is there and decides what is missing; the list goes to every rank.
+  existing_rows existing;
+  std::vector<std::size_t> missing;
+  int fd = -1;
+  std::string scan_error;
+  if (mpi.rank == 0) {
+    try {
+      existing = scan_existing(sweep, format, args.out);
+      fd = ::open(args.out.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0666);
+      if (fd < 0) write_failed(args.out, std::strerror(errno));
+      if (::ftruncate(fd, static_cast<off_t>(existing.keep_bytes)) != 0) write_failed(args.out, std::strerror(errno));
+      if (::lseek(fd, 0, SEEK_END) < 0) write_failed(args.out, std::strerror(errno));
+      if (!existing.has_header) write_all(fd, header, args.out);
+    } catch (const std::exception& e) {
+      scan_error = e.what();
+    }
+    for (std::size_t i = 0; i < sweep.rows; ++i) {
+      if (!existing.lines.count(i)) missing.push_back(i);
+    }
+  }
+#ifdef RHABEL_WITH_MPI
+  if (mpi.active) {
+    int failed = scan_error.empty() ? 0 : 1;
+    MPI_Bcast(&failed, 1, MPI_INT, 0, MPI_COMM_WORLD);
+    if (failed) {
+      if (mpi.rank == 0) throw input_error(scan_error);
+      return exit_bad_input;
+    }
+    unsigned long long count = missing.size();
+    MPI_Bcast(&count, 1, MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+    std::vector<unsigned long long> list(missing.begin(), missing.end());
+    list.resize(count);
+    if (count) MPI_Bcast(list.data(), static_cast<int>(count), MPI_UNSIGNED_LONG_LONG, 0, MPI_COMM_WORLD);
+    missing.assign(list.begin(), list.end());
+  }
+#endif
+  if (!scan_error.empty()) {
+    if (fd >= 0) ::close(fd);
+    throw input_error(scan_error);
+  }
+  const std::size_t total_missing = missing.size();
+  std::vector<std::size_t> mine;
+  for (std::size_t k = 0; k < missing.size(); ++k) {
+    if (static_cast<int>(k % static_cast<std::size_t>(mpi.size)) == mpi.rank) mine.push_back(missing[k]);
+  }
+
+  const std::size_t threads = args.threads ? args.threads : default_threads(mpi);
+  progress bar(mpi.rank == 0 && !args.quiet && ::isatty(2), total_missing);
+  std::map<std::size_t, std::string> lines = std::move(existing.lines);
+  std::size_t received = 0;
+  {
+    work_pool pool(sweep, format, mine, threads);
+    std::size_t local_done = 0;
+    auto store = [&](finished_row&& r) {  // rank 0 only
+      write_all(fd, r.line, args.out);
+      lines.emplace(r.row, std::move(r.line));
+      ++received;
+    };
+    while (mpi.rank == 0 ? received < total_missing : local_done < mine.size()) {
+      auto batch = pool.take(std::chrono::milliseconds(mpi.active ? 2 : 200));
+      local_done += batch.size();
+      for (auto& r : batch) {
+        if (mpi.rank == 0) {
+          store(std::move(r));
+        } else {
+#ifdef RHABEL_WITH_MPI
+          std::string msg = std::to_string(r.row) + " " + r.line;
+          MPI_Send(msg.data(), static_cast<int>(msg.size()), MPI_CHAR, 0, tag_line, MPI_COMM_WORLD);
+#endif
+        }
+      }
+#ifdef RHABEL_WITH_MPI
+      if (mpi.active && mpi.rank == 0) {
+        for (;;) {
+          int flag = 0;
+          MPI_Status status;
+          MPI_Iprobe(MPI_ANY_SOURCE, tag_line, MPI_COMM_WORLD, &flag, &status);
+          if (!flag) break;
+          int count = 0;
+          MPI_Get_count(&status, MPI_CHAR, &count);
+          std::string msg(static_cast<std::size_t>(count), '\0');
+          MPI_Recv(msg.data(), count, MPI_CHAR, status.MPI_SOURCE, tag_line, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+          const auto space = msg.find(' ');
+          store({std::stoull(msg.substr(0, space)), msg.substr(space + 1)});
+        }
+      }
+#endif
+      bar.update(received);
+    }
+  }
+  bar.update(received, true);
+
+  int code = exit_ok;
+  if (mpi.rank == 0) {
+    // Every row exactly once, in row order.
+    if (lines.size() != sweep.rows) throw std::runtime_error("sweep: internal error: rows missing after the run");
+    rewrite_sorted(args.out, header, lines);
+    ::close(fd);
+    for (const auto& [row, line] : lines) {
+      if (!status_ok(line, row_prefix(sweep, row, format).size(), format)) code = exit_not_ok;
+    }
+  }
+  // Only rank 0 reports the exit code: mpirun aborts the job when any rank exits non-zero, and
+  // the other ranks have nothing to report (their rows are in FILE).
+  return mpi.rank == 0 ? code : exit_ok;
+}
+
+}  // namespace
+
+void add_sweep_command(CLI::App& app, command_action& action) {
+  auto args = std::make_shared<sweep_arguments>();
+  auto* cmd = app.add_subcommand(
+      "sweep",
+      "Solve every scene of a sweep (a base scene and axes of values; schema: examples/README.md)\n"
+      "and write one row per scene to FILE (CSV, or JSON lines with --jsonl). Rerunning the same\n"
+      "command resumes: rows already in FILE are kept, the missing ones solved. Under mpirun (when\n"
+      "built with RHABEL_WITH_MPI) the rows are distributed over the ranks.");
+  cmd->footer(exit_code_help);
+  cmd->add_option("SWEEP", args->sweep_path, "sweep file (JSON)")->required();
+  cmd->add_option("--out", args->out, "output file (rows appended as they complete, sorted at the end)");
+  cmd->add_flag("--jsonl", args->jsonl, "write JSON lines instead of CSV");
+  cmd->add_option("--threads", args->threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+  cmd->add_flag("--print-scenes", args->print_scenes, "print each row's scene as one JSON line and stop");
+  cmd->add_flag("--quiet", args->quiet, "no progress bar");
+  cmd->callback([&action, args] {
+    action = [args] {
+      mpi_context mpi;
+      if (!mpi.active) return run_sweep(*args, mpi);
+      try {
+        return run_sweep(*args, mpi);
+      } catch (const std::exception& e) {
+        if (mpi.rank != 0) return exit_bad_input;  // rank 0 reports
+#ifdef RHABEL_WITH_MPI
+        std::cerr << "rhabel: " << one_line(e.what()) << '\n';
+        std::cerr.flush();
+        MPI_Abort(MPI_COMM_WORLD, exit_bad_input);
+#endif
+        throw;
+      }
+    };
+  });
+}
+
+}  // namespace rhabel::cli

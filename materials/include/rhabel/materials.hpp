@@ -1,0 +1,4 @@
+// rhabel/materials.hpp: umbrella header of rhabel::materials (power-law fits of master curves).
+#pragma once
+
+#include "rhabel/materials/master_curve.hpp"
