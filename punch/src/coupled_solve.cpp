@@ -169,8 +169,7 @@ particular solve_particular(const indentor_state& st, const context& cx, role r,
     out.g.nu = 1;
     return out;
   }
-  const std::vector<indentor_state> none;
-  const forcing F = own_forcing(st, cx, none, 0, false);
+  const forcing F = own_forcing(st, cx);
   const double L = b - a;
   if (st.k == kind::wedge && r == role::smooth_both && cx.options.wedge_apex_split && st.apex - a > enrich_limit * L &&
       b - st.apex > enrich_limit * L) {
@@ -742,7 +741,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   edges isolated;
   for (auto& s : st) {
     pb.roles.push_back(role_of(s, cx));
-    solve_isolated(s, cx, true);  // the isolated contact: the start (its closed-form paths)
+    solve_isolated(s, cx);  // the isolated contact: the start (its closed-form paths)
     isolated.a.push_back(s.g.a());
     isolated.b.push_back(pb.roles.back() == role::line_load ? s.g.a() : s.g.b());
     int split = 0;

@@ -1,11 +1,20 @@
 // punch/src/internal.hpp: what the punch layer's source files share (not installed).
 //
-//   contact.cpp        materials, shapes and their forcing F = f'/Gamma(1 - alpha), the
-//                      single-contact builders (Jacobi series, the wedge's apex enrichment, the
-//                      near-edge split), the isolated edge root finding, the report and the fields;
+//   material.cpp       the material (beta, kappa, E_U, regime) and the solve context;
+//   shapes.cpp         the shapes and their forcing F = f'/Gamma(1 - alpha), its projection on
+//                      the image basis (steps in closed form);
+//   single_contact.cpp one contact alone: the density builders (Jacobi series, the wedge's apex
+//                      enrichment, the near-edge split form), edge conditions and root finding;
 //   coupled_solve.cpp  several contacts at once (paper system 41): one linear solve on the union
 //                      of the contact intervals for given edges, Newton on all edge conditions,
-//                      load continuation for close contacts.
+//                      load continuation for close contacts;
+//   fields.cpp         edge intensities, peak, Riemann-Hilbert samples, the displacement kernel;
+//   surface.hpp        the surface displacement (displacement grid, penetration check);
+//   report.cpp         the report of a solved contact: residual of (8), status, sampled fields;
+//   contact.cpp        the public entry points (solve, solve_single, trial_interval), validation.
+// A new shape: its forcing in shapes.cpp (own_slope, own_forcing), its isolated contact in
+// single_contact.cpp (solve_isolated), its role in the coupled system in coupled_solve.cpp
+// (role_of), its profile in surface.hpp. A new edge condition: coupled_solve.cpp (evaluate).
 #pragma once
 
 #include "rhabel/punch/contact.hpp"
@@ -13,11 +22,13 @@
 #include "rhabel/riemann/abel_solver.hpp"
 
 #include <boost/math/constants/constants.hpp>
+#include <boost/math/quadrature/tanh_sinh.hpp>
 
 #include <cstddef>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rhabel::punch::detail {
@@ -94,9 +105,8 @@ contact_density density_from_image(double a, double b, const abel::abel_paramete
 
 /// f'(s) of the indentor at absolute s.
 double own_slope(const indentor_state& st, double s);
-/// F = f'/Gamma(1 - alpha) (smooth part + steps), minus the others' action when couple.
-forcing own_forcing(const indentor_state& st, const context& cx, const std::vector<indentor_state>& all,
-                    std::size_t self, bool couple);
+/// F = f'/Gamma(1 - alpha) of the own profile (smooth part + steps).
+forcing own_forcing(const indentor_state& st, const context& cx);
 /// Options and tail rule of the wedge's abel::solve_step calls.
 abel::solve_options<double> step_options(const context& cx);
 double step_tail(const abel::enriched_solution<double>& sol, const context& cx);
@@ -114,10 +124,54 @@ contact_density build_wedge_near_edge(double eps, double one_minus_eps, const co
 /// A g (s) for s outside the support of g (abel_operator::apply plus the apex part).
 double apply_outside(const contact_density& g, double s, const abel::abel_parameters<double>& par);
 /// The isolated contact of one indentor (no other present): fills st.g, st.epsilon, st.status.
-void solve_isolated(indentor_state& st, const context& cx, bool only_indentor);
+void solve_isolated(indentor_state& st, const context& cx);
 /// "indentors[i] (shape)".
 std::string indentor_name(std::size_t i, const indentor& ind);
 
+// ---- material.cpp
+double material_beta(const material& m);
+double material_kappa(const material& m);
+double regime_offset(const material& m);  ///< alpha + beta/2 - 1/2
+
+// ---- shapes.cpp
+/// Position s of [a, b] -> (x, 1 + x, 1 - x) with both distances computed directly.
+struct mapped {
+  double x, one_plus, one_minus;
+};
+mapped map_to_reference(double s, double a, double b);
+/// C_f = int f' g / int g for a density without apex part (split at a general profile's corners).
+double mean_slope(const indentor_state& st, const contact_density& g);
+
+// ---- single_contact.cpp
+/// C_f of a wedge: (S1 int_a^apex g - S2 int_apex^b g) / int g, the smaller share integrated directly.
+double wedge_friction(const contact_density& g, const wedge& w, double apex);
+/// The density on [a, b] of the class e for the forcing F (adaptive when `adaptive`).
+contact_density build(double a, double b, const context& cx, const edge_exponents& e, const forcing& F, bool adaptive);
+
+// ---- fields.cpp
+/// K = lim g / distance^exponent at an edge (Richardson estimate next to a split wedge's apex).
+double edge_intensity(const contact_density& g, bool trailing);
+/// Peak of a bounded density and where: sampling + Brent.
+std::pair<double, double> peak_of(const contact_density& g);
+/// Pressure samples of an isolated wedge from its Riemann-Hilbert solution (fills r.pressure);
+/// returns the estimate of their error relative to the peak.
+double rh_pressure(const riemann::abel_rh_solution<double>& unit, double lo, double hi, double gam, double del,
+                   double apex, double L, double scale, indentor_result& r);
+/// The surface displacement's kernel Psi(t, s) (closed-form integral in s of (8)'s kernel).
+double psi(double t, double s, double alpha, double one_minus_kappa_over_alpha, double kappa);
+double psi_distance(double d, double alpha, double one_minus_kappa_over_alpha, double kappa);
+/// One tanh-sinh rule per thread.
+boost::math::quadrature::tanh_sinh<double>& tanh_sinh_rule();
+
+// ---- report.cpp
+class surface;
+/// Moves a result computed relative to `origin` (solve's first apex) back to absolute abscissae.
+void shift(indentor_result& r, double origin);
+/// The result of contact i with its evidence and status; `several`: other indentors are present.
+indentor_result report_contact(const std::vector<indentor_state>& st, std::size_t i, const context& cx,
+                               const surface& heights, double coulomb, bool several);
+
+// ---- coupled_solve.cpp
 /// Outcome of the coupled solve (coupled_solve.cpp).
 struct coupled_outcome {
   status_code code = status_code::ok;

@@ -1,0 +1,93 @@
+// punch/src/material.cpp: the material (beta, kappa, E_U, the regime) and the solve context.
+// See internal.hpp for the layout of punch/src.
+#include "internal.hpp"
+
+#include "rhabel/quadrature/gauss_jacobi.hpp"
+#include "rhabel/quadrature/jacobi_polynomial.hpp"
+#include "rhabel/riemann/abel_solver.hpp"
+
+#include <Eigen/Dense>
+#include <boost/math/constants/constants.hpp>
+#include <boost/math/special_functions/beta.hpp>
+#include <boost/math/special_functions/gamma.hpp>
+#include <boost/math/tools/roots.hpp>
+#include <boost/math/tools/minima.hpp>
+#include <boost/math/quadrature/tanh_sinh.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace rhabel::punch::detail {
+double material_beta(const material& m) {
+  return 2 / pi * std::atan(m.coulomb * (1 - 2 * m.poisson) / (2 * (1 - m.poisson)));
+}
+
+// alpha + beta/2 - 1/2: the regime parameter.
+double regime_offset(const material& m) { return m.alpha + material_beta(m) / 2 - 0.5; }
+
+// kappa = cos((alpha + beta/2) pi)/cos(beta pi/2) = -sin(pi (alpha + beta/2 - 1/2))/cos(beta pi/2):
+// the second form keeps full relative accuracy next to the boundary kappa = 0.
+double material_kappa(const material& m) {
+  const double off = regime_offset(m);
+  if (std::abs(off) <= boundary_width) return 0;
+  return -std::sin(pi * off) / std::cos(material_beta(m) * pi / 2);
+}
+
+
+// ---------------------------------------------------------------------------------------------
+// One indentor inside a scene: its shape, its own F and the solved density.
+
+context make_context(const material& m, double speed, const solve_options& options) {
+  context cx;
+  // alpha below 1e-300 (down to the subnormal 5e-324, where the small-alpha forms divide by alpha)
+  // is alpha = 0: the solution depends on alpha like alpha log(L), far below rounding there.
+  cx.alpha = m.alpha < alpha_zero ? 0.0 : m.alpha;
+  cx.beta = material_beta(m);
+  cx.kappa = material_kappa(m);
+  cx.offset = regime_offset(m);
+  if (std::abs(cx.offset) <= boundary_width) cx.offset = 0;
+  cx.gamma_factor = boost::math::tgamma(1 - cx.alpha);
+  cx.pressure_scale = pi / 2 * m.effective_modulus(speed);
+  cx.options = options;
+  cx.set_parameters();
+  return cx;
+}
+
+}  // namespace rhabel::punch::detail
+
+namespace rhabel::punch {
+
+using namespace detail;
+
+double material::beta() const { return material_beta(*this); }
+double material::kappa() const { return material_kappa(*this); }
+double material::effective_modulus(double speed) const {
+  return E1 * boost::math::tgamma(1 - alpha) * std::pow(speed, alpha) / (1 - poisson * poisson);
+}
+
+const char* to_string(status_code code) {
+  switch (code) {
+    case status_code::ok: return "ok";
+    case status_code::not_converged: return "not_converged";
+    case status_code::tension: return "tension";
+    case status_code::load_mismatch: return "load_mismatch";
+    case status_code::contacts_merge: return "contacts_merge";
+    case status_code::penetration: return "penetration";
+  }
+  return "unknown";
+}
+
+std::string regime(const material& m) {
+  const double off = regime_offset(m);
+  if (std::abs(off) <= boundary_width) return "boundary";
+  return off < 0 ? "below" : "above";
+}
+
+}  // namespace rhabel::punch

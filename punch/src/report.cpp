@@ -1,0 +1,391 @@
+// punch/src/report.cpp: the report of a solved contact and its evidence: the residual of (8) by an
+// independent quadrature at check points, the status (judge: residual, error estimate, sign of
+// the pressure, load, penetration), the sampled fields. See internal.hpp for the layout.
+#include "internal.hpp"
+#include "surface.hpp"
+
+#include "rhabel/quadrature/gauss_jacobi.hpp"
+#include "rhabel/quadrature/jacobi_polynomial.hpp"
+#include "rhabel/riemann/abel_solver.hpp"
+
+#include <Eigen/Dense>
+#include <boost/math/constants/constants.hpp>
+#include <boost/math/special_functions/beta.hpp>
+#include <boost/math/special_functions/gamma.hpp>
+#include <boost/math/tools/roots.hpp>
+#include <boost/math/tools/minima.hpp>
+#include <boost/math/quadrature/tanh_sinh.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+namespace rhabel::punch::detail {
+
+// A g (s) for s outside (or on the edge of) the support of g: the operator of (8)
+// (abel_operator::apply: graded Gauss-Jacobi quadrature outside the interval), plus the apex part.
+double apply_outside(const contact_density& g, double s, const abel::abel_parameters<double>& par) {
+  const double alpha = par.alpha();
+  if (g.line_load) {
+    const double r = g.a() - s;
+    if (r > 0) return g.line_weight * std::pow(r, alpha - 1);
+    return -par.kappa() * g.line_weight * std::pow(-r, alpha - 1);
+  }
+  const abel::abel_operator<double> op(par, g.a(), g.b());
+  double result = op.apply(g.jacobi, s);
+  if (g.has_apex) result += abel::apply(op, g.apex, s);
+  return result;
+}
+
+// (8) evaluated at points s inside the support by an independent quadrature of the two one-sided
+// integrals (abel_operator::quadrature_evaluator, built once per density; it does not use the
+// spectral relation, so it checks it), plus the apex enrichment by abel::apply (its direct graded
+// quadrature of A[phi]: the same quadrature abel::solve_step used to build the data, so for that
+// part the residual checks the smooth remainder only; s must not be the apex).
+class inside_action {
+ public:
+  inside_action(const contact_density& g, const abel::abel_parameters<double>& par)
+      : g_(g), op_(par, g.a(), g.b()), evaluate_(op_, g.jacobi.gam, g.jacobi.del, g.jacobi.coefficients.size() + 32),
+        evaluate_mapped_(op_, g.jacobi.gam, g.jacobi.del, g.apex.smooth.coefficients.size() + 32),
+        split_(g.apex.quadrature_nodes() - 4), series_(g.jacobi.coefficients, g.jacobi.del, g.jacobi.gam),
+        mapped_series_(g.apex.smooth.series_evaluator()) {}
+  inside_action(const inside_action&) = delete;
+  inside_action& operator=(const inside_action&) = delete;
+  double operator()(double s) const {
+    // g.jacobi.series(x) with the recurrence coefficients computed once (same sum to a few ulps).
+    double result = series_sum(evaluate_, series_, s);
+    if (!g_.has_apex) return result;
+    // A[C phi] as abel::apply computes it inside the interval, with the split rules built once
+    // for all check points (abel::apply builds them per call).
+    const double h = op_.half_length(), alpha = op_.parameters().alpha();
+    const auto& apex = g_.apex;
+    if (apex.mobius == 0) {
+      const double y = map_to_reference(s, g_.a(), g_.b()).x;
+      return result + std::pow(h, alpha) * apex.enrichment * abel::detail::enrichment_image_any(apex, op_.parameters(), split_, y);
+    }
+    // Mapped: the covariance A[g](M(sigma)) = (1 - s^2)^alpha (1 + s sigma)^(1 - alpha) A[g~](sigma)
+    // (abel/step_enrichment.hpp), with the series part of g~ by the same independent quadrature.
+    const auto d = apex.sigma_of((s - g_.a()) / h, (g_.b() - s) / h);
+    const double y = d[0] <= d[1] ? d[0] - 1 : 1 - d[1];
+    const double t = d[0] <= d[1] ? g_.a() + h * d[0] : g_.b() - h * d[1];
+    const double mapped = series_sum(evaluate_mapped_, mapped_series_, t) +
+                          std::pow(h, alpha) * apex.enrichment * abel::detail::enrichment_image_any(apex, op_.parameters(), split_, y);
+    return result + apex.covariance_factor(d[2]) * mapped;
+  }
+
+ private:
+  // The quadrature of the series part at s, its series summed in batches from degree 48 on
+  // (quadrature_evaluator::with_series: the same value bit for bit; the rule's work is done twice,
+  // so short series keep the one-node-at-a-time path). Whole scene with the residual, interleaved
+  // runs: degree 174 (eps 0.999) 4.9 -> 3.4 ms, 84 (eps 0.994) 2.3 -> 2.0, 51 (alpha 0.3) 0.94 -> 0.89.
+  static double series_sum(const abel::abel_operator<double>::quadrature_evaluator& evaluate,
+                           const rhabel::quadrature::jacobi_series<double>& series, double s) {
+    if (series.size() >= 48) return evaluate.with_series(series, s);
+    return evaluate([&](double x) { return series(x); }, s);
+  }
+
+  const contact_density& g_;
+  abel::abel_operator<double> op_;
+  abel::abel_operator<double>::quadrature_evaluator evaluate_, evaluate_mapped_;
+  abel::detail::split_integrator<double> split_;  // node count as in abel::apply
+  rhabel::quadrature::jacobi_series<double> series_;  // g.jacobi's series, coefficients precomputed
+  rhabel::quadrature::jacobi_series<double> mapped_series_;  // g.apex.smooth's (mapped only; else empty)
+};
+
+// Penetration check of a coupled contact i (an indentor that is not a flat punch, whose square
+// corners bound it): outside the contact the surface must stay at or above the rigid profile,
+// gap(x) = height(i, x) - profile(i, x) >= 0, at 2 x 7 points a - L 2^-m and b + L 2^-m
+// (m = 0 .. 6). Not closer to the edges: the moments' Gauss-Jacobi rule (~100 nodes) resolves the
+// own contact's log kernel at a distance d from its end to ~(1 + sqrt(4 d/L))^-200, 1e-6 at
+// d = L/1024 (measured: a spurious "penetration" of 1.5e-6 of the span there), 1e-20 at L/64. A
+// wrong edge next to a point closer than that shows as tension (non-zero intensity) instead.
+// Returns the worst gap relative to the profile's span over those points, and where (0 when none
+// is negative).
+std::pair<double, double> worst_gap(const surface& heights, const std::vector<indentor_state>& st, std::size_t i) {
+  const auto& g = st[i].g;
+  if (g.line_load || st[i].k == kind::flat) return {0.0, 0.0};
+  const double L = g.length();
+  double worst = 0, where = 0, span = 0;
+  std::vector<std::pair<double, double>> gaps;
+  for (int m = 0; m <= 6; ++m) {
+    for (const double x : {g.a() - L * std::ldexp(1.0, -m), g.b() + L * std::ldexp(1.0, -m)}) {
+      const double f = heights.profile(i, x);
+      span = std::max(span, std::abs(f));
+      gaps.push_back({x, heights.height(i, x) - f});
+    }
+  }
+  for (const auto& [x, gap] : gaps)
+    if (gap < worst) worst = gap, where = x;
+  return {span > 0 ? worst / span : worst, where};
+}
+
+// Moves a result computed relative to `origin` (solve's first apex) back to absolute abscissae.
+void shift(indentor_result& r, double origin) {
+  if (origin == 0) return;
+  r.a += origin;
+  r.b += origin;
+  r.peak_pressure_at += origin;
+  for (auto& e : r.edges) e.position += origin;
+  for (double& x : r.grid_x) x += origin;
+  for (double& x : r.displacement_x) x += origin;
+}
+
+// Check points of contact i for the residual of (8) and the sign of the pressure: 7 interior
+// points (1 - cos(pi k/8))/2 of [a, b], and points at 0.37 gap 3^k (k = 0, 1, ... while below L/4)
+// from an end that faces another contact at distance gap: the boundary layer of width ~ gap of
+// nearly touching contacts, which the interior points step over. Never within 1e-3 L of a
+// wedge's apex (the residual's quadrature of the enrichment needs a point off it).
+std::vector<double> check_points(const std::vector<indentor_state>& st, std::size_t i) {
+  const auto& g = st[i].g;
+  std::vector<double> out;
+  if (g.line_load) return out;
+  const double a = g.a(), b = g.b(), L = g.length();
+  for (int k = 1; k <= 7; ++k) out.push_back(a + L * (1 - std::cos(pi * k / 8)) / 2);
+  double gap_lo = std::numeric_limits<double>::infinity(), gap_hi = gap_lo;
+  for (std::size_t j = 0; j < st.size(); ++j) {
+    if (j == i) continue;
+    if (st[j].g.b() <= a) gap_lo = std::min(gap_lo, a - st[j].g.b());
+    if (st[j].g.a() >= b) gap_hi = std::min(gap_hi, st[j].g.a() - b);
+  }
+  for (double d = 0.37 * gap_lo; d < L / 4; d *= 3) out.push_back(a + d);
+  for (double d = 0.37 * gap_hi; d < L / 4; d *= 3) out.push_back(b - d);
+  if (st[i].k == kind::wedge)
+    for (double& x : out)
+      if (std::abs(x - st[i].apex) < 1e-3 * L) x = st[i].apex + (x < st[i].apex ? -2e-3 : 2e-3) * L;
+  return out;
+}
+
+// The status of one contact from its evidence (contact.hpp, status_code): the residual, the error
+// estimate, the sign of the pressure (at 64 interior points and the check points, relative to the
+// mean pressure) and the load. Keeps the solver's note (st.status) in front of the findings.
+void judge(indentor_result& r, const indentor_state& st, const std::vector<double>& points, double pressure_scale,
+           double acceptance, std::pair<double, double> gap) {
+  std::ostringstream why;
+  why.precision(3);
+  status_code code = status_code::ok;
+  auto fail = [&](status_code c, const std::string& text) {
+    if (code == status_code::ok) code = c;
+    why << (why.tellp() > 0 ? "; " : "") << text;
+  };
+  const double target = st.source->load;
+  if (r.residual > acceptance) {
+    std::ostringstream os;
+    os.precision(3);
+    os << "residual of (8) " << r.residual << " > acceptance " << acceptance;
+    fail(status_code::not_converged, os.str());
+  }
+  if (!(r.error_estimate <= acceptance)) {
+    std::ostringstream os;
+    os.precision(3);
+    os << "error estimate " << r.error_estimate << " > acceptance " << acceptance;
+    fail(status_code::not_converged, os.str());
+  }
+  if (!st.g.line_load && st.g.length() > 0) {
+    const double mean = st.g.integral() / st.g.length();
+    double lowest = std::numeric_limits<double>::infinity(), where = st.g.a();
+    auto probe = [&](double t) {
+      const double v = st.g.value(t);
+      if (v < lowest) lowest = v, where = t;
+    };
+    for (int k = 0; k < 64; ++k) probe(st.g.a() + st.g.length() * (1 - std::cos(pi * (k + 0.5) / 64)) / 2);
+    for (double t : points) probe(t);
+    if (lowest < -acceptance * std::abs(mean)) {
+      std::ostringstream os;
+      os.precision(3);
+      os << "negative pressure " << pressure_scale * lowest << " at x = " << where << " (" << lowest / mean
+         << " of the mean pressure)";
+      fail(status_code::tension, os.str());
+    }
+  }
+  if (gap.first < -acceptance) {
+    std::ostringstream os;
+    os.precision(3);
+    os << "the surface penetrates the indentor at x = " << gap.second << " (by " << -gap.first
+       << " of the profile's span next to the contact): the contact set is not the physical one";
+    fail(status_code::penetration, os.str());
+  }
+  if (!(std::abs(r.load - target) <= acceptance * target)) {
+    std::ostringstream os;
+    os.precision(10);
+    os << "load " << r.load << " for " << target << " requested";
+    fail(status_code::load_mismatch, os.str());
+  }
+  r.code = code;
+  if (code == status_code::ok) return;
+  r.status = (st.status == "ok" ? "" : st.status + "; ") + why.str();
+}
+// The result of contact i, everything in the coordinates of the solve (shifted back by the
+// caller): edges and their intensities, load, friction, peak, the residual of (8) at the check
+// points and the status (judge), and the sampled fields on request.
+indentor_result report_contact(const std::vector<indentor_state>& st, std::size_t i, const context& cx,
+                               const surface& heights, double coulomb, bool several) {
+  const solve_options& options = cx.options;
+  const double ps = cx.pressure_scale;
+  const auto& g = st[i].g;
+  indentor_result r;
+  r.a = g.jacobi.lo;
+  r.b = g.jacobi.hi;
+  r.contact_length = g.length();
+  r.epsilon = st[i].epsilon;
+  r.load = ps * g.integral();
+  // Mapped wedge density (abel's Moebius map): its series lives in apex.smooth, jacobi holds a c_0.
+  const auto& series = g.has_apex && g.apex.mobius != 0 ? g.apex.smooth.coefficients : g.jacobi.coefficients;
+  r.degree = series.empty() ? 0 : series.size() - 1;
+  r.error_estimate = g.tail;
+  r.status = st[i].status;
+  // Hysteretic friction C_f = int f' g / int g with the indentor's own f'.
+  if (g.line_load) {
+    r.hysteretic_friction = 0;
+  } else if (st[i].friction) {
+    r.hysteretic_friction = *st[i].friction;
+    r.error_estimate = std::max(r.error_estimate, st[i].friction_error);
+  } else if (st[i].k == kind::wedge && (g.has_apex || cx.offset >= 0)) {
+    r.hysteretic_friction = wedge_friction(g, std::get<wedge>(st[i].source->shape), st[i].apex);
+  } else if (st[i].k == kind::wedge) {
+    const auto& w = std::get<wedge>(st[i].source->shape);
+    // Plain series (apex next to an edge): C_f = S1 - (S1 + S2) int_apex^b g / int g. The Jacobi series of int_apex^b g converges only
+    // algebraically (the step of F at the apex): its truncation error behaves like
+    // N^(alpha-1) (1 + O(1/N)), so the partial sums at N/4, N/2, N are Richardson-extrapolated
+    // with the exponents alpha - 1 and alpha - 2; the spread of the extrapolants is the estimate.
+    auto fraction_behind = [&](std::size_t terms) {
+      contact_density t = g;
+      t.jacobi.coefficients.resize(std::min(terms, g.jacobi.coefficients.size()));
+      return t.integral_from(st[i].apex) / g.integral();
+    };
+    const std::size_t N = g.jacobi.coefficients.size();
+    double behind = fraction_behind(N);
+    if (N >= 32) {
+      const double s1 = fraction_behind(N / 4), s2 = fraction_behind(N / 2), s3 = behind;
+      const double r1 = std::pow(2.0, 1 - cx.alpha), r2 = std::pow(2.0, 2 - cx.alpha);
+      const double e12 = s2 + (s2 - s1) / (r1 - 1), e23 = s3 + (s3 - s2) / (r1 - 1);
+      behind = e23 + (e23 - e12) / (r2 - 1);
+      r.error_estimate = std::max(r.error_estimate, std::abs(behind - e23));
+    }
+    r.hysteretic_friction = w.slope_leading - (w.slope_leading + w.slope_trailing) * behind;
+  } else if (st[i].k == kind::flat) {
+    r.hysteretic_friction = 0;
+  } else {
+    r.hysteretic_friction = mean_slope(st[i], g);
+  }
+  r.total_friction = r.hysteretic_friction + coulomb;
+  // Edges.
+  if (!g.line_load) {
+    const edge_exponents e = g.exponents();
+    edge_report lead{edge_side::leading, g.jacobi.lo, e.gam < 0, e.gam, ps * edge_intensity(g, false)};
+    edge_report trail{edge_side::trailing, g.jacobi.hi, e.del < 0, e.del, ps * edge_intensity(g, true)};
+    r.edges = {lead, trail};
+    if (lead.singular) {
+      r.peak_pressure = std::numeric_limits<double>::infinity();
+      r.peak_pressure_at = g.jacobi.lo;
+    } else if (trail.singular) {
+      r.peak_pressure = std::numeric_limits<double>::infinity();
+      r.peak_pressure_at = g.jacobi.hi;
+    } else if (st[i].k == kind::wedge) {
+      // Below the boundary the wedge density has a weak singularity at the apex
+      // (|s|^-alpha, logarithmic at alpha = 0: docs/theory.md section 5).
+      r.peak_pressure = std::numeric_limits<double>::infinity();
+      r.peak_pressure_at = st[i].apex;
+    } else {
+      const auto [peak, where] = peak_of(g);
+      r.peak_pressure = ps * peak;
+      r.peak_pressure_at = where;
+    }
+  } else {
+    r.edges = {edge_report{edge_side::leading, g.jacobi.lo, true, -1, ps * g.line_weight},
+               edge_report{edge_side::trailing, g.jacobi.hi, true, -1, ps * g.line_weight}};
+    r.peak_pressure = std::numeric_limits<double>::infinity();
+    r.peak_pressure_at = g.jacobi.lo;
+  }
+  // Residual of (8) at check points, by an independent quadrature (evidence: see check_points).
+  // abel's quadrature_evaluator and enrichment image are uniform down to alpha = 0 (kernel
+  // singularity subtracted for small alpha), so the elastic limit is checked too.
+  const auto points = check_points(st, i);
+  if (!options.residual) {
+    r.residual = std::numeric_limits<double>::quiet_NaN();  // not asked for (documented)
+  } else if (!g.line_load) {
+    double worst = 0;
+    // Relative to the data's scale: max |F| at the points, and for a flat face (F = 0) the size
+    // of the density's own action, mean(g) (L/2)^alpha.
+    double scale = g.integral() / g.length() * std::pow(g.length() / 2, cx.alpha);
+    const inside_action apply_inside(g, cx.par);
+    for (const double sck : points) {
+      double lhs = apply_inside(sck);
+      for (std::size_t j = 0; j < st.size(); ++j)
+        if (j != i) lhs += apply_outside(st[j].g, sck, cx.par);
+      const double rhs = own_slope(st[i], sck) / cx.gamma_factor;
+      worst = std::max(worst, std::abs(lhs - rhs));
+      scale = std::max(scale, std::abs(rhs));
+    }
+    r.residual = scale > 0 ? worst / scale : worst;
+  }
+  judge(r, st[i], points, cx.pressure_scale, options.acceptance,
+        several ? worst_gap(heights, st, i) : std::pair<double, double>{0.0, 0.0});
+  // Fields on request.
+  if (options.grid_points > 0) {
+    const std::size_t n = options.grid_points;
+    r.grid_x.resize(n);
+    r.pressure.resize(n);
+    // g.value(t) at every sample through one abel::enriched_evaluator, in one values() call (the
+    // series' recurrence coefficients once, the series of four samples summed together, the
+    // weight w = (1-x)^del (1+x)^gam once per sample): without a map the
+    // density whose series is g.jacobi and whose enrichment is g.apex's; mapped (apex near an
+    // edge) g.apex itself, whose series lives in the mapped variable, plus g.jacobi's c_0.
+    const bool mapped = g.has_apex && g.apex.mobius != 0;
+    abel::enriched_density<double> whole = g.apex;
+    if (!mapped) whole.smooth = g.jacobi;
+    if (!g.has_apex) whole.enrichment = 0;
+    const abel::enriched_evaluator<double> density(whole);
+    const double h = g.jacobi.half_length();
+    std::vector<std::size_t> inside;  // samples strictly inside the contact, evaluated in one batch
+    std::vector<double> one_plus, one_minus;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double t = g.jacobi.lo + g.length() * (static_cast<double>(k) + 0.5) / static_cast<double>(n);
+      r.grid_x[k] = t;
+      r.pressure[k] = 0.0;
+      if (st[i].rh_unit) continue;  // filled by rh_pressure below
+      if (g.line_load || !(t > g.a()) || !(t < g.b())) continue;
+      inside.push_back(k);
+      one_plus.push_back((t - g.jacobi.lo) / h);
+      one_minus.push_back((g.jacobi.hi - t) / h);
+    }
+    std::vector<double> values(inside.size());
+    density.values(one_plus.data(), one_minus.data(), values.data(), inside.size());
+    for (std::size_t j = 0; j < inside.size(); ++j) {
+      const double t = r.grid_x[inside[j]];
+      double value = values[j];
+      if (mapped) value += g.jacobi.value_at_distance(t - g.jacobi.lo, g.jacobi.hi - t);
+      r.pressure[inside[j]] = ps * value;
+    }
+    if (st[i].rh_unit) {
+      const double estimate = rh_pressure(*st[i].rh_unit, -*st[i].epsilon, st[i].rh_one_minus_eps, g.jacobi.gam,
+                                          g.jacobi.del, st[i].apex, g.length(), ps * std::pow(g.length(), -cx.alpha), r);
+      std::ostringstream os;
+      os.precision(2);
+      os << "; pressure grid error estimate " << estimate << " of the peak";
+      r.status += os.str();
+    }
+    if (g.line_load) r.status += "; pressure grid is empty of meaning for a line load (all zeros)";
+  }
+  if (options.grid_points > 0 && options.displacement) {
+    const std::size_t n = options.grid_points;
+    const double L = g.length() > 0 ? g.length() : 1.0;
+    r.displacement_x.resize(n);
+    r.displacement.resize(n);
+    const double lo = g.jacobi.lo - L, hi = g.jacobi.hi + L;
+    for (std::size_t k = 0; k < n; ++k) {
+      const double x = n == 1 ? (lo + hi) / 2 : lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(n - 1);
+      r.displacement_x[k] = x;
+      r.displacement[k] = heights.height(i, x);
+    }
+  }
+  return r;
+}
+
+
+}  // namespace rhabel::punch::detail

@@ -1,0 +1,135 @@
+// punch/src/surface.hpp: the surface displacement of a solved scene (internal to punch/src: the
+// displacement grid of report.cpp and the penetration check of the coupled contacts).
+#pragma once
+
+#include "internal.hpp"
+
+#include "rhabel/abel.hpp"
+
+#include <cmath>
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+namespace rhabel::punch::detail {
+
+// Surface displacement w (downward positive: w = f(x) - f(a) + w(a) in contact, f the profile,
+// so that outside a contact w >= f - f(a) + w(a) means the surface clears the indentor) from the
+// slope field Gamma(1-alpha) A g (s) integrated in closed form in s (psi), relative to its value at
+// the leading edge a_i of contact i:
+//   x in contact i:        f_i(x) - f_i(a_i)                          (the indentor's profile),
+//   x in another contact j: f_j(x) - f_j(a_j) + Gamma (E_j - E_i),
+//   elsewhere:              Gamma (sum_o int g_o Psi(t, x) dt - E_i),
+// E_k = sum_o int g_o Psi(t, a_k) dt (the datum at a_k: the own contact's integral, log-singular at
+// t = a_k, by tanh-sinh in offsets from its singular ends; the others' by Gauss-Jacobi). Every
+// moment by Gauss-Jacobi for the regular part (smooth in t when x is off the interval) and abel's
+// composite rule for the apex part. E_k is computed once, on first use.
+class surface {
+ public:
+  surface(const std::vector<indentor_state>& st, const context& cx)
+      : st_(st), cx_(cx), omk_(cx.par.one_minus_kappa_over_alpha()), edge_(st.size()) {}
+
+  /// f_k(x) - f_k(a_k): the rigid profile of indentor k relative to its leading edge.
+  double profile(std::size_t k, double x) const {
+    const auto& s = st_[k];
+    const double a = s.g.jacobi.lo;
+    switch (s.k) {
+      case kind::parabola: {
+        const double R = std::get<parabolic>(s.source->shape).radius;
+        return -((x - s.apex) * (x - s.apex) - (a - s.apex) * (a - s.apex)) / (2 * R);
+      }
+      case kind::wedge: {
+        const auto& w = std::get<wedge>(s.source->shape);
+        auto f = [&](double y) { return y < s.apex ? w.slope_leading * (y - s.apex) : -w.slope_trailing * (y - s.apex); };
+        return f(x) - f(a);
+      }
+      case kind::flat: return 0.0;
+      case kind::general: {
+        // int_a^x f' by Gauss-Legendre (f' smooth on the contact).
+        const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(32, 0.0, 0.0);
+        const auto& rule = *rule_ptr;
+        double sum = 0;
+        for (std::size_t q = 0; q < rule.size(); ++q)
+          sum += rule.weight[q] * own_slope(s, a + (x - a) * (1 + rule.x[q]) / 2);
+        return sum * (x - a) / 2;
+      }
+    }
+    return 0.0;
+  }
+
+  /// Surface displacement at x relative to its value at a_i (see the class comment).
+  double height(std::size_t i, double x) const {
+    for (std::size_t j = 0; j < st_.size(); ++j) {
+      const auto& g = st_[j].g;
+      if (g.line_load || !(x >= g.jacobi.lo && x <= g.jacobi.hi)) continue;
+      if (j == i) return profile(i, x);
+      return profile(j, x) + cx_.gamma_factor * (datum(j) - datum(i));
+    }
+    double h = 0;
+    for (const auto& o : st_) h += moment(o.g, x);
+    return cx_.gamma_factor * (h - datum(i));
+  }
+
+ private:
+  double moment(const contact_density& d, double x) const {
+    if (d.line_load) return d.line_weight * psi(d.jacobi.lo, x, cx_.alpha, omk_, cx_.kappa);
+    const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(
+        std::max<std::size_t>(d.jacobi.coefficients.size() + 64, 96), d.jacobi.del, d.jacobi.gam);
+    const auto& rule = *rule_ptr;
+    double sum = 0;
+    for (std::size_t q = 0; q < rule.size(); ++q) {
+      const double t = rule.x_minus_lo[q] <= rule.hi_minus_x[q] ? d.jacobi.lo + d.length() * rule.x_minus_lo[q] / 2
+                                                                : d.jacobi.hi - d.length() * rule.hi_minus_x[q] / 2;
+      sum += rule.weight[q] * d.jacobi.series(rule.x[q]) * psi(t, x, cx_.alpha, omk_, cx_.kappa);
+    }
+    sum *= d.length() / 2;
+    // Apex enrichment: abel's composite Gauss-Jacobi, cut and graded at the apex (psi is smooth
+    // in t on the interval when x is outside it).
+    if (d.has_apex) sum += d.apex.integrate([&](double t) { return psi(t, x, cx_.alpha, omk_, cx_.kappa); });
+    return sum;
+  }
+
+  double datum(std::size_t k) const {
+    if (edge_[k]) return *edge_[k];
+    const auto& g = st_[k].g;
+    double value = 0;
+    for (std::size_t o = 0; o < st_.size(); ++o)
+      if (o != k) value += moment(st_[o].g, g.jacobi.lo);
+    if (!g.line_load) {  // psi(a, a) = 0 for a line load
+      // In offsets from the nearer end, so that the end singularities (t-a)^gam log(t-a) and
+      // (b-t)^del are evaluated from exact distances (tanh-sinh clusters its nodes there).
+      const double Lg = g.length();
+      // density from u = t - a, v = b - t and dx0 = x - x0 (reference axis), whichever are exact.
+      auto density_at = [&](double u, double v, double dx0) {
+        const double one_plus = 2 * u / Lg, one_minus = 2 * v / Lg;
+        const double xr = one_plus <= one_minus ? one_plus - 1 : 1 - one_minus;
+        double val = std::pow(one_minus, g.jacobi.del) * std::pow(one_plus, g.jacobi.gam) * g.jacobi.series(xr);
+        if (g.has_apex) val += g.apex.value_with_offset(one_plus, one_minus, dx0);
+        return val;
+      };
+      auto weight = [&](double u) { return psi_distance(-u, cx_.alpha, omk_, cx_.kappa); };
+      if (!g.has_apex) {
+        const double half = Lg / 2;
+        value += tanh_sinh_rule().integrate([&](double u) { return density_at(u, Lg - u, 0) * weight(u); }, 0.0, half, 1e-12) +
+                 tanh_sinh_rule().integrate([&](double v) { return density_at(Lg - v, v, 0) * weight(Lg - v); }, 0.0, half, 1e-12);
+      } else {
+        // Four pieces, each parametrised by the offset from its singular end (a, apex, apex, b).
+        const double ua = st_[k].apex - g.jacobi.lo, vb = g.jacobi.hi - st_[k].apex, x0 = g.apex.apex_reference();
+        auto piece = [&](auto&& f, double length) { return tanh_sinh_rule().integrate(f, 0.0, length, 1e-12); };
+        value += piece([&](double u) { return density_at(u, Lg - u, 2 * u / Lg - 1 - x0) * weight(u); }, ua / 2);
+        value += piece([&](double o) { return density_at(ua - o, vb + o, -2 * o / Lg) * weight(ua - o); }, ua / 2);
+        value += piece([&](double o) { return density_at(ua + o, vb - o, 2 * o / Lg) * weight(ua + o); }, vb / 2);
+        value += piece([&](double v) { return density_at(Lg - v, v, 1 - 2 * v / Lg - x0) * weight(Lg - v); }, vb / 2);
+      }
+    }
+    edge_[k] = value;
+    return value;
+  }
+
+  const std::vector<indentor_state>& st_;
+  const context& cx_;
+  double omk_;
+  mutable std::vector<std::optional<double>> edge_;
+};
+
+}  // namespace rhabel::punch::detail
