@@ -88,7 +88,6 @@
 // peak resident set of a whole double solve without residual (F = -s, gap 1e-4, this machine)
 // against the estimate: K = 2, M = 1024: 81 MB (84); K = 3, M = 1024: 123 MB (126);
 // K = 2, M = 2048: 268 MB (336); K = 1, M = 4096: 143 MB (134; the process itself ~9 MB).
-// (Before session 4 the LU worked on a copy: 3 (K M)^2 numbers, 410 MB at K = 2, M = 2048.)
 // solve_union throws std::domain_error BEFORE allocating anything when the estimate at the
 // largest degree it may use, max(degree, max_degree), exceeds options.max_memory_bytes (default
 // 2 GiB: K = 1 up to M = 16384, K = 2 up to 5181, K = 3 up to 4230); the message gives the

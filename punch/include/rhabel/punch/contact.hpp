@@ -92,7 +92,7 @@
 //     forward-difference Jacobian at the base point's degree (banded by Curtis-Powell-Reid colouring
 //     above 5 contacts) then Broyden updates, steps limited to keep every contact at least half and
 //     every gap at least a fifth of its size. Started from the isolated contacts, or, when those
-//     overlap or lie within L/4, by continuation in the load (all loads times t, contacts shrinking
+//     overlap (or Newton from them fails), by continuation in the load (all loads times t, contacts shrinking
 //     about their apexes, t raised to 1). The contacts' order along x is found, not assumed (above
 //     alpha = 1/2 a blunt indentor's contact can lie ahead of a sharper one's). A gap below
 //     1e-4 of the smaller contact that a step keeps closing ends the iteration: contacts_merge
@@ -139,11 +139,18 @@
 //     ratios 1e-6 and 1e6 (apex within ~1e-7 L; C_f within 2.2e-12 .. 1.8e-9 of an order-16
 //     reference that is itself good to ~1e-10 there: README.md). So the target of issue #4 (1e-10
 //     for eps, L, C_f and 1000 samples in < 1 ms) is met without the residual for every measured
-//     isolated wedge (before session 7: not within 0.002 L of an edge, 1.0-17.4 ms).
+//     isolated wedge.
 //     Where the time goes (alpha = 0.3, S2/S1 = 0.1): abel::solve_step's quadrature of A[phi]
 //     ~0.3 ms (65 points), the 1000 samples ~0.11 ms (their series summed four points at a time,
-//     quadrature::jacobi_series::evaluate: was 0.17 ms one point at a time), the independent
-//     residual 0.1-0.3 ms. Several indentors: COUPLED_COST
+//     quadrature::jacobi_series::evaluate), the independent
+//     residual 0.1-0.3 ms. Several indentors (build/bin/study_multi_contact, studies/README.md; two
+//     parabolas, all `ok`, edges and C_f to ~1e-12): gap ~ L 3-10 ms, 0.1 L 48-610 ms, 0.01 L
+//     0.6-2.4 s, 1e-3 L 3-18 s (the correction's degree grows like sqrt(L/gap) and each Newton
+//     evaluation is a dense solve); parabola + wedge 30 ms - 1 s; rows of N parabolas 1.5 L apart:
+//     N = 5 47 ms, 10 0.25 s, 20 1.9 s, 40 111 s (dense union solve and 2 x 5 finite-difference
+//     evaluations per Jacobian: cost grows faster than N^3). Against the usual boundary-element
+//     method (the tests' oracle at 3200 uniform panels): edges to 3e-4 .. 1.2e-3 L and C_f to
+//     1e-7 .. 4e-6 in 2-8 s.
 //
 // UNITS: any consistent set; the comments use SI: lengths in m, E1 in Pa s^alpha, speed in m/s,
 //   load per unit length in N/m, pressure in Pa. Slopes and friction coefficients are dimensionless.
@@ -263,10 +270,10 @@ struct edge_report {
   double position = 0;          ///< abscissa of the edge [m]
   bool singular = false;        ///< exponent < 0 (infinite pressure at the edge)
   double exponent = 0;          ///< gam (leading) or del (trailing) of the notes
-  /// K = lim p / distance^exponent [Pa m^-exponent], of the whole density (series and apex part;
-  /// before session 7 the apex part was left out). At the edge next to the apex of an isolated
-  /// wedge nearer an edge than L/4: an estimate (Richardson extrapolation, contact.cpp
-  /// edge_intensity), measured within 2.8e-11 of the elastic closed form.
+  /// K = lim p / distance^exponent [Pa m^-exponent], of the whole density (series and apex part).
+  /// At the edge next to the apex of a wedge in the split form (apex nearer an edge than L/4): an
+  /// estimate (Richardson extrapolation, punch/src/fields.cpp edge_intensity), measured within
+  /// 2.8e-11 of the elastic closed form.
   double intensity_factor = 0;
 };
 
