@@ -205,7 +205,10 @@ double psi_distance(double d, double alpha, double one_minus_kappa_over_alpha, d
   };
   if (s < t) return -em(t - s);
   if (s > t) return -kappa * em(s - t) + one_minus_kappa_over_alpha;
-  return 0;
+  // d = 0: both sides tend to 1/alpha (a line load's own point; line loads exist only for
+  // alpha + beta/2 >= 1/2, so alpha > 0 there). It was 0: a line load's displacement samples were
+  // off by w/alpha against its documented reference point (found by notebooks/flat_punch.ipynb).
+  return alpha > 0 ? 1 / alpha : 0.0;
 }
 
 

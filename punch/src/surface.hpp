@@ -95,7 +95,9 @@ class surface {
     double value = 0;
     for (std::size_t o = 0; o < st_.size(); ++o)
       if (o != k) value += moment(st_[o].g, g.jacobi.lo);
-    if (!g.line_load) {  // psi(a, a) = 0 for a line load
+    if (g.line_load) {
+      value += moment(g, g.jacobi.lo);  // w Psi(a, a): the kernel's continuous value w/alpha there
+    } else {
       // In offsets from the nearer end, so that the end singularities (t-a)^gam log(t-a) and
       // (b-t)^del are evaluated from exact distances (tanh-sinh clusters its nodes there).
       const double Lg = g.length();
