@@ -73,7 +73,6 @@ struct indentor_state {
   // the unit interval, the source of the pressure samples (see wedge_by_rh).
   std::shared_ptr<const riemann::abel_rh_solution<double>> rh_unit;
   double rh_one_minus_eps = 0;  // its interval is [-eps, rh_one_minus_eps]
-  bool solved = false;
 };
 
 struct context {

@@ -42,7 +42,7 @@ double material_kappa(const material& m) {
 
 
 // ---------------------------------------------------------------------------------------------
-// One indentor inside a scene: its shape, its own F and the solved density.
+// The context of one solve: the material's derived constants and the options.
 
 context make_context(const material& m, double speed, const solve_options& options) {
   context cx;

@@ -199,7 +199,7 @@ double step_tail(const abel::enriched_solution<double>& sol, const context& cx) 
 
 // Wedge density on [a, b] for a forcing with ONE step, at the apex (jump -(S1+S2)/Gamma(1-alpha)):
 // abel::solve_step builds the apex singularity in (g = C phi + w sum c_n P_n, C from the jump in
-// closed form), the rest of F (the faces' constants, the other indentors' smooth action) is solved
+// closed form), the rest of F (the faces' constants) is solved
 // spectrally with adaptive Chebyshev interpolation. The series is moved to g.jacobi, C phi stays
 // in g.apex (with an empty series of its own).
 contact_density build_wedge_step(double a, double b, double apex, int nu, const context& cx, const forcing& F,
@@ -499,7 +499,6 @@ void solve_isolated(indentor_state& st, const context& cx) {
     case kind::flat: solve_flat(st, cx, F); break;
     case kind::general: solve_general(st, cx, F); break;
   }
-  st.solved = true;
 }
 
 }  // namespace rhabel::punch::detail
