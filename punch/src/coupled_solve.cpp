@@ -32,6 +32,7 @@
 // stalls is status_code::not_converged with its residuals. The caller (contact.cpp) then checks the
 // result independently (residual of (8), sign of the pressure, loads) before it says ok.
 #include "internal.hpp"
+#include "surface.hpp"
 
 #include "rhabel/abel.hpp"
 
@@ -239,8 +240,8 @@ double data_scale(const indentor_state& st, const context& cx, double a, double 
 }
 
 struct problem {
-  const std::vector<indentor_state>* st;
-  const context* cx;
+  const std::vector<indentor_state>* st = nullptr;
+  const context* cx = nullptr;
   std::vector<role> roles;
   // Wedges below the boundary with the apex in an outer quarter of the isolated contact: the split
   // form (build_wedge_near_edge) in the class nu = 0 singular at the near edge (+1 trailing, -1
@@ -250,6 +251,11 @@ struct problem {
   // singular at both edges, the load carried by the homogeneous solution, the conditions the two
   // intensity factors. Empty or false: the bounded class nu = -1 with the solvability defect.
   std::vector<bool> loaded;
+  // scene::body: the total load (units of int g); the loads are then unknowns and each contact's
+  // second condition is its level (see body_conditions).
+  std::optional<double> body_load;
+  double height_factor = 1;          // scene::body continuation: every height times this
+  std::vector<double> start_length;  // the isolated contacts' lengths (a body's vanishing contact)
   double load_factor = 1;  // continuation: every load times this
   // > 0: the correction at exactly this many points per contact, without its residual (the
   // finite differences of the Jacobian: the base point's degree, so that both sides of a
@@ -386,16 +392,51 @@ struct evaluation {
   Eigen::VectorXd r;
 };
 
+/// scene::body: the level of every contact, approach_i + height_i (surface::approach: w - f_i on
+/// the contact, w from the kernel Psi), which must be the same for all indentors.
+std::vector<double> body_levels(const std::vector<indentor_state>& states, const std::vector<contact_density>& g,
+                                const context& cx, double height_factor) {
+  std::vector<indentor_state> tmp = states;
+  for (std::size_t i = 0; i < tmp.size(); ++i) tmp[i].g = g[i];
+  const surface w(tmp, cx);
+  std::vector<double> level(tmp.size());
+  for (std::size_t i = 0; i < tmp.size(); ++i) level[i] = w.approach(i) + height_factor * tmp[i].height;
+  return level;
+}
+
+/// scene::body: the second condition of every contact (the one a per-indentor load would fill):
+/// contact 0 the total load, sum int g_j / body_load - 1; contact i > 0 its level against contact
+/// i - 1's, relative to the larger max|f'| L of the two (the size of a contact's own displacement).
+std::vector<double> body_conditions(const problem& pb, const fixed_solution& sol, const std::vector<double>& a,
+                                    const std::vector<double>& b) {
+  const auto& st = *pb.st;
+  const auto& cx = *pb.cx;
+  const std::vector<double> level = body_levels(st, sol.g, cx, pb.height_factor);
+  std::vector<double> r(st.size());
+  double total = 0;
+  for (const auto& g : sol.g) total += g.integral();
+  r[0] = total / (pb.load_factor * *pb.body_load) - 1;
+  for (std::size_t i = 1; i < st.size(); ++i) {
+    const double scale = cx.gamma_factor * std::max(data_scale(st[i], cx, a[i], b[i]) * (b[i] - a[i]),
+                                                    data_scale(st[i - 1], cx, a[i - 1], b[i - 1]) * (b[i - 1] - a[i - 1]));
+    r[i] = (level[i] - level[i - 1]) / std::max(scale, std::numeric_limits<double>::min());
+  }
+  return r;
+}
+
 /// The conditions, in the order of the unknowns: (h^alpha d_j / data scale, load/P - 1) for a
 /// smooth contact, (load/P - 1) for a wedge ending at its apex.
 evaluation evaluate(const problem& pb, const unknowns& u, const std::vector<double>& a, const std::vector<double>& b) {
   evaluation ev{solve_fixed(pb, a, b), Eigen::VectorXd(static_cast<Eigen::Index>(u.state.size()))};
   const auto& st = *pb.st;
   const auto& cx = *pb.cx;
+  const std::vector<double> body_rows = pb.body_load ? body_conditions(pb, ev.sol, a, b) : std::vector<double>{};
   for (std::size_t k = 0; k < u.state.size(); ++k) {
     const std::size_t i = u.state[k];
     const double load = ev.sol.g[i].integral() / (pb.load_factor * st[i].target_load) - 1;
-    if (is_loaded(pb, i)) {
+    if (pb.body_load && (u.trailing[k] || pb.roles[i] == role::apex_ended)) {
+      ev.r[static_cast<Eigen::Index>(k)] = body_rows[i];
+    } else if (is_loaded(pb, i)) {
       // Load imposed: both intensities vanish (K L^exponent relative to the mean g).
       const auto& g = ev.sol.g[i].jacobi;
       const double L = b[i] - a[i];
@@ -483,7 +524,12 @@ struct newton_result {
   double residual = 0;  // max |condition|
   std::string failure;
   std::optional<std::pair<std::size_t, std::size_t>> merged;
+  std::optional<std::size_t> lost;  // scene::body: the contact that shrank below vanishing_length
 };
+
+/// scene::body: a contact shorter than this fraction of its isolated length (at an equal share of
+/// the load) is taken as vanishing: its indentor would carry no load.
+constexpr double vanishing_length = 1e-3;
 
 /// Forward-difference Jacobian of the edge conditions (relative step 1e-7 of each contact's
 /// length; backward where the forward step would close a gap). Up to `full_width` contacts: one
@@ -505,7 +551,8 @@ Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x,
   std::iota(order.begin(), order.end(), 0);
   std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return x.a[i] < x.a[j]; });
   for (std::size_t k = 0; k < n; ++k) rank[order[k]] = k;
-  const std::size_t colours = n <= full_width ? n : full_width;
+  // A rigid body's total load is one dense row: the full Jacobian there.
+  const std::size_t colours = n <= full_width || pb.body_load ? n : full_width;
   std::vector<double> h(static_cast<std::size_t>(m));
   for (std::size_t k = 0; k < h.size(); ++k) h[k] = 1e-7 * (x.b[u.state[k]] - x.a[u.state[k]]);
   for (std::size_t colour = 0; colour < colours; ++colour) {
@@ -641,6 +688,14 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
     }
     out.x = y;
     ev = std::move(next);
+    if (pb.body_load) {
+      for (std::size_t i = 0; i < pb.roles.size(); ++i)
+        if (pb.roles[i] == role::smooth_both && y.b[i] - y.a[i] < vanishing_length * pb.start_length[i]) out.lost = i;
+      if (out.lost) {
+        out.failure = "a contact vanishes";
+        break;
+      }
+    }
     if (step <= 10 * tol) {
       out.converged = true;
       break;
@@ -753,6 +808,39 @@ newton_result attempt(problem& pb, const edges& isolated) {
   return result;
 }
 
+/// scene::body, when Newton from the isolated contacts fails (typically one indentor set much
+/// higher than the others): continuation in the heights, from all at one level (height factor 0)
+/// to theirs, each Newton solve starting from the last; the contact of an indentor that the rising
+/// heights lift off vanishes on the way (newton_result::lost).
+newton_result height_continuation(problem& pb, const edges& isolated) {
+  problem p = pb;
+  p.height_factor = 0;
+  newton_result r = attempt(p, isolated);
+  std::size_t total = r.iterations;
+  double step = 0.25;
+  while (r.converged && p.height_factor < 1) {
+    problem q = p;
+    q.height_factor = std::min(1.0, p.height_factor + step);
+    auto t = newton(q, r.x);
+    total += t.iterations;
+    if (t.converged) {
+      r = std::move(t);
+      p = q;
+      step = std::min(0.5, 1.5 * step);
+    } else if (t.lost || step < 1e-3) {
+      r = std::move(t);
+      p = q;
+      break;
+    } else {
+      step /= 2;
+    }
+  }
+  r.iterations = total;
+  if (r.converged && p.height_factor < 1) r.converged = false;
+  pb = p;
+  return r;
+}
+
 /// Whether a contact is iterated with its load imposed: a smooth contact whose own data has no
 /// step (parabola, general profile without corners), below the boundary.
 /// WHY: in the bounded class the load of each contact is an output of its edges, so moving one
@@ -763,7 +851,8 @@ newton_result attempt(problem& pb, const edges& isolated) {
 /// contact's action only by a dipole, ~ distance^(alpha - 2), and the banded Jacobian is nearly
 /// exact: 13, 16 and 19 iterations. A wedge (its apex enrichment) and a split wedge keep the
 /// bounded class.
-bool loaded_form(const indentor_state& s, role r, const context& cx) {
+bool loaded_form(const indentor_state& s, role r, const context& cx, bool body) {
+  if (body) return false;  // the loads are unknowns
   // The class singular at both edges exists (gam = -(1 + 2 alpha + beta)/2 > -1) only below the
   // boundary alpha + beta/2 = 1/2.
   if (r != role::smooth_both || cx.offset >= -boundary_width) return false;
@@ -773,8 +862,11 @@ bool loaded_form(const indentor_state& s, role r, const context& cx) {
 
 }  // namespace
 
-coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx) {
-  problem pb{&st, &cx, {}, {}, {}, 1.0};
+coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx, std::optional<double> body_load) {
+  problem pb;
+  pb.st = &st;
+  pb.cx = &cx;
+  pb.body_load = body_load;
   edges isolated;
   for (auto& s : st) {
     pb.roles.push_back(role_of(s, cx));
@@ -792,10 +884,22 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
       }
     }
     pb.split.push_back(split);
-    pb.loaded.push_back(loaded_form(s, pb.roles.back(), cx));
+    pb.loaded.push_back(loaded_form(s, pb.roles.back(), cx, body_load.has_value()));
   }
+  for (std::size_t i = 0; i < st.size(); ++i) pb.start_length.push_back(isolated.b[i] - isolated.a[i]);
   coupled_outcome out;
   newton_result result = attempt(pb, isolated);
+  const bool uneven = std::any_of(st.begin(), st.end(), [&](const indentor_state& s) { return s.height != st[0].height; });
+  if (pb.body_load && !result.converged && !result.merged && uneven) {
+    const std::size_t before = result.iterations;
+    problem continued = pb;
+    auto second = height_continuation(continued, isolated);
+    second.iterations += before;
+    if (second.converged || second.lost) {
+      result = std::move(second);
+      pb = continued;
+    }
+  }
   if (!result.converged && !result.merged && std::any_of(pb.split.begin(), pb.split.end(), [](int v) { return v != 0; })) {
     // A split wedge whose apex left its contact (its contact moved onto one face) or that did not
     // converge: again with the plain forms, which take any position of the apex.
@@ -822,7 +926,17 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   }
   out.iterations = result.iterations;
   out.union_degree = result.sol.degree;
-  if (!result.converged) {
+  if (!result.converged && result.lost) {
+    // The indentor would carry no load: the others lift it off at these heights and this load.
+    const std::size_t i = *result.lost;
+    out.code = status_code::contact_lost;
+    std::ostringstream os;
+    os.precision(3);
+    os << "the contact of " << indentor_name(st[i].scene_index, *st[i].source)
+       << " vanishes: at this body load and these heights it carries no load (lower it, or remove it from the scene)";
+    out.message = os.str();
+  }
+  if (!result.converged && out.code == status_code::ok) {
     std::ostringstream os;
     os.precision(3);
     if (result.merged) {
@@ -840,6 +954,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   if (!result.sol.g.empty()) {
     for (std::size_t i = 0; i < st.size(); ++i) {
       st[i].g = std::move(result.sol.g[i]);
+      if (pb.body_load) st[i].target_load = st[i].g.integral();  // the solved share (checked by the caller)
       st[i].friction.reset();
       st[i].rh_unit.reset();
       st[i].status = "ok";

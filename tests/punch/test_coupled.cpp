@@ -281,3 +281,61 @@ TEST_CASE("a status is ok only with evidence within the acceptance") {
   CHECK(q.diagnostics.code == status_code::not_converged);
   CHECK(q.diagnostics.status.find("see indentors[") != std::string::npos);
 }
+
+TEST_CASE("indentors on one rigid body: the loads' split, the common approach, contact_lost, bad input") {
+  // The split and the approaches are checked against the boundary-element oracle in
+  // test_coupled_bem.cpp; here the relations that hold whatever the numbers.
+  constexpr double level_tol = 1e-9;  // the acceptance: levels agree to it relative to max|f'| L
+  SUBCASE("identical elastic parabolas at one height share the load equally (mirror symmetry)") {
+    scene s = two(material{0.0, 1.0, 0.3, 0.0}, indentor{parabolic{1.0}, 1.0, 0.0}, indentor{parabolic{1.0}, 1.0, 3.0});
+    s.body = rigid_body{1.0};
+    const auto r = solve(s);
+    REQUIRE(r.diagnostics.code == status_code::ok);
+    CHECK(std::abs(r.indentors[0].load - 0.5) < level_tol);
+    CHECK(std::abs(r.indentors[1].load - 0.5) < level_tol);
+    REQUIRE(r.body_approach.has_value());
+    CHECK(std::abs(*r.body_approach - r.indentors[1].approach) < level_tol);
+  }
+  SUBCASE("the per-indentor solve with the body's loads has the body's relative offsets") {
+    // alpha 0.3: the trailing indentor sits in the leading one's wake; a raised one carries less.
+    const material m{0.3, 1.0, 0.3, 0.0};
+    scene s = two(m, indentor{parabolic{1.0}, 1.0, 0.0}, indentor{parabolic{1.0}, 1.0, 3.0});
+    s.indentors[1].height = 0.05;
+    s.body = rigid_body{1.0};
+    const auto r = solve(s);
+    REQUIRE(r.diagnostics.code == status_code::ok);
+    CHECK(r.indentors[1].load < r.indentors[0].load);
+    CHECK(std::abs(r.indentors[0].load + r.indentors[1].load - 1.0) < level_tol);
+    const double L = r.indentors[0].contact_length;  // max|f'| L = L^2/(2R) scale, R = 1
+    CHECK(std::abs((r.indentors[0].approach + 0.0) - (r.indentors[1].approach + 0.05)) < level_tol * L * L);
+    scene per = s;
+    per.body.reset();
+    per.indentors[0].load = r.indentors[0].load;
+    per.indentors[1].load = r.indentors[1].load;
+    const auto q = solve(per);
+    REQUIRE(q.diagnostics.code == status_code::ok);
+    CHECK(!q.body_approach.has_value());
+    // The relative vertical offset of the two indentors (paper, end of section 3) is the height.
+    CHECK(std::abs((q.indentors[0].approach - q.indentors[1].approach) - 0.05) < 1e-8);
+    CHECK(std::abs(q.indentors[0].a - r.indentors[0].a) < 1e-8 * L);
+  }
+  SUBCASE("an indentor raised above the surface is contact_lost, never ok") {
+    scene s = two(material{0.0, 1.0, 0.3, 0.0}, indentor{parabolic{1.0}, 1.0, 0.0}, indentor{parabolic{1.0}, 1.0, 3.0});
+    s.indentors[1].height = 5.0;  // far above what a unit load presses into the surface
+    s.body = rigid_body{1.0};
+    const auto r = solve(s);
+    CHECK(r.diagnostics.code == status_code::contact_lost);
+    CHECK(r.diagnostics.status.find("indentors[1]") != std::string::npos);
+  }
+  SUBCASE("bad input names the scene field") {
+    scene s = two(material{0.0, 1.0, 0.3, 0.0}, indentor{parabolic{1.0}, 1.0, 0.0}, indentor{flat{1.0}, 1.0, 3.0});
+    s.body = rigid_body{1.0};
+    CHECK_THROWS_WITH_AS(solve(s), doctest::Contains("indentors[1].shape"), std::invalid_argument);
+    s.indentors[1] = indentor{parabolic{1.0}, 1.0, 3.0};
+    s.body = rigid_body{-1.0};
+    CHECK_THROWS_WITH_AS(solve(s), doctest::Contains("body.load"), std::invalid_argument);
+    s.body = rigid_body{1.0};
+    s.indentors[0].height = std::numeric_limits<double>::infinity();
+    CHECK_THROWS_WITH_AS(solve(s), doctest::Contains("indentors[0].height"), std::invalid_argument);
+  }
+}
