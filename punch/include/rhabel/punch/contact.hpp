@@ -91,7 +91,10 @@
 //     at once (d_j = 0, or a vanishing near-edge intensity for a split wedge, and int g_j = P_j),
 //     forward-difference Jacobian at the base point's degree (banded by Curtis-Powell-Reid colouring
 //     above 5 contacts) then Broyden updates, steps limited to keep every contact at least half and
-//     every gap at least a fifth of its size. Started from the isolated contacts, or, when those
+//     every gap at least a fifth of its size. Parabolas and general profiles without corners
+//     below the boundary are iterated with their loads imposed (the class singular at both edges,
+//     conditions: both intensity factors vanish; then re-solved in the bounded class), which
+//     keeps the banded Jacobian of many contacts accurate. Started from the isolated contacts, or, when those
 //     overlap (or Newton from them fails), by continuation in the load (all loads times t, contacts shrinking
 //     about their apexes, t raised to 1). The contacts' order along x is found, not assumed (above
 //     alpha = 1/2 a blunt indentor's contact can lie ahead of a sharper one's). A gap below
@@ -102,7 +105,16 @@
 //     error ~1e-5 L) within twice its error bar for two parabolas at alpha 0, 0.25, 0.7, beta 0,
 //     0.3 and for parabola-wedge-parabola and flat-flat-parabola rows (test_coupled_bem.cpp);
 //     mirror symmetry of identical elastic frictionless indentors to 1e-9; the coupling decaying
-//     like distance^(alpha - 1). Cost: see "Cost" below.
+//     like distance^(alpha - 1); the rigid approaches (indentor_result::approach) against the
+//     oracle's. Cost: see "Cost" below.
+//   * Rigid body (scene::body): the loads are unknowns; each contact's load condition is replaced
+//     by the total load (one contact) or equal levels approach + height (the others), solved by
+//     the same Newton iteration (full Jacobian), from an equal split of the load, with a
+//     continuation in the height differences when that fails. Against the boundary-element
+//     oracle (one_body mode): the loads' split, edges, C_f and the approach within twice its
+//     error bar (test_coupled_bem.cpp). An indentor lifted off by the others is reported as
+//     status_code::contact_lost (it is not removed from the scene); flat punches on a body are
+//     refused (their load would be an unknown without an edge).
 //   * residual (computed unless solve_options::residual is false; NaN then): max over check points
 //     of |A g - F| relative to the data's scale (max |F| there, and mean(g) (L/2)^alpha, the size of
 //     the density's own action, which is all a flat face has), with the two one-sided integrals
