@@ -91,8 +91,8 @@
 //     at once (d_j = 0, or a vanishing near-edge intensity for a split wedge, and int g_j = P_j),
 //     forward-difference Jacobian at the base point's degree (banded by Curtis-Powell-Reid colouring
 //     above 5 contacts) then Broyden updates, steps limited to keep every contact at least half and
-//     every gap at least a fifth of its size. Parabolas and general profiles without corners
-//     below the boundary are iterated with their loads imposed (the class singular at both edges,
+//     every gap at least a fifth of its size. Above 5 contacts, parabolas and general profiles
+//     without corners below the boundary are iterated with their loads imposed (the class singular at both edges,
 //     conditions: both intensity factors vanish; then re-solved in the bounded class), which
 //     keeps the banded Jacobian of many contacts accurate. Started from the isolated contacts, or, when those
 //     overlap (or Newton from them fails), by continuation in the load (all loads times t, contacts shrinking
