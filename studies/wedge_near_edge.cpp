@@ -8,14 +8,12 @@
 // plus the short side's step by abel::solve_step with the apex mapped to the centre
 // (apex_placement::centred, abel/step_enrichment.hpp); C_f, the pressure samples, the residual and
 // the displacement all come from it (column `path`: step). The Riemann-Hilbert path (`rh`, named
-// in the status) is taken only with solve_options::wedge_apex_split off. (Before: the balanced
-// Moebius map down to 1e-4 L, the Riemann-Hilbert route within 1e-4 L.)
+// in the status) is taken only with solve_options::wedge_apex_split off.
 //
 // Cases (nu = 0.3, E1 = 1, U = 1, unit load): eps in {0.84, 0.907, 0.953, 0.972} (alpha = 0.2, 0.3,
 // 0.1, 0.2 with k in {0, 0.5} and S2/S1 = 1 or 3), eps in {0.99, 0.995, 0.998, 0.999, 0.9995,
 // 0.9999, 0.99999} and 0.01 at alpha = 0.2, k = 0 (the slope ratio that gives this eps), and the
 // elastic frictionless wedge (alpha = k = 0: closed form) at eps 0.972, 0.999, 0.9999 and 0.99999.
-// (0.9999 and 0.99999 were on the Riemann-Hilbert path before the split form.)
 //
 // References, each computed once per case, and how independent they are:
 //   * eps, L: study_support.hpp's wedge_moment_reference at 50 digits: eps by the 50-digit

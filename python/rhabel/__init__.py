@@ -6,6 +6,8 @@ The Python face of the C++ library (python/README.md). Everything numerical runs
 
 Contents
     solve(scene, ...)           contact of rigid indentors (rhabel::punch::solve)
+    trial_interval(scene, a, b) the field of a prescribed contact interval (paper Section 4;
+                                rhabel::punch::trial_interval)
     validate_scene(scene)       the validation of solve() alone
     load_scene(path)            read a scene JSON file (duplicate keys rejected, as the CLI)
     Record                      the result type: a dict whose keys are also attributes
@@ -21,6 +23,7 @@ solve scenes in parallel.
 """
 
 import json as _json
+import math as _math
 from collections import namedtuple as _namedtuple
 
 from . import _rhabel
@@ -30,7 +33,7 @@ from . import abel, riemann
 
 __version__ = _rhabel.__version__
 
-__all__ = ["solve", "load_scene", "validate_scene", "Record", "gauss_jacobi", "GaussJacobiRule", "jacobi_p",
+__all__ = ["solve", "trial_interval", "load_scene", "validate_scene", "Record", "gauss_jacobi", "GaussJacobiRule", "jacobi_p",
            "abel", "riemann", "__version__"]
 
 
@@ -134,6 +137,69 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True):
     result = _rhabel._solve(spec, grid, bool(displacement), float(tolerance), bool(residual))
     result["scene"] = spec
     return result
+
+
+def trial_interval(scene, a, b, tolerance=1e-12):
+    """The trial field of the paper's Section 4 on a PRESCRIBED contact interval [a, b].
+
+    For the scene's single indentor, the unique solution of the Abel equation (8) on [a, b] for
+    the indentor's own profile that is bounded at the leading edge a and unbounded at the trailing
+    edge b (index nu = 0: p ~ (t - a)^gam (b - t)^del with gam = (1 - 2 alpha - beta)/2,
+    del = (beta - 1)/2), with nothing scaled: its load is whatever (8) gives. Returns that field's
+    load and its hysteretic friction C_f = int f' p / int p. At the true contact interval of a
+    smooth indentor (rhabel.solve) the trial field is the true one (its trailing-edge intensity
+    vanishes), so the load and C_f are the solution's.
+
+    Section 4 of the paper conjectures that among the trial intervals carrying a given load, C_f
+    is stationary at the true one (docs/theory.md section 8; notebooks/two_indentors.ipynb
+    measures it for the parabola and the wedge).
+
+    Parameters
+    ----------
+    scene : dict
+        A scene as for rhabel.solve with exactly one indentor, "parabolic" or "wedge" (a flat
+        punch's interval is fixed by its face: ValueError). The indentor's ``load`` is validated
+        but not used. The wedge's apex singularity is built in as in rhabel.solve when the apex
+        lies inside (a, b).
+    a, b : float
+        Leading and trailing edge, absolute abscissae (the apex is the indentor's ``apex``),
+        finite, a < b.
+    tolerance : float in (0, 1)
+        Relative tolerance of the density's expansion (default 1e-12).
+
+    Returns
+    -------
+    Record
+        ``load`` (int p over [a, b], N/m), ``hysteretic_friction`` (C_f of the trial field) and
+        ``error_estimate`` (estimated relative error of the density: an estimate, not a bound).
+
+    Raises ValueError for an invalid scene, more than one indentor, a flat punch, a >= b or a
+    non-finite edge. Releases the GIL.
+
+    Example
+    -------
+    >>> sc = {"material": {"alpha": 0.3, "E1": 1.0, "nu": 0.5, "coulomb": 0}, "speed": 1.0,
+    ...       "indentors": [{"shape": "parabolic", "radius": 1.0, "load": 1.0}]}
+    >>> t = rhabel.trial_interval(sc, -0.6, 0.5)
+    >>> t.load, t.hysteretic_friction
+    """
+    spec = _validate(scene)
+    if len(spec["indentors"]) != 1:
+        raise ValueError(f"trial_interval: the scene has {len(spec['indentors'])} indentors; "
+                         "a trial interval belongs to exactly one")
+    if not (0 < tolerance < 1):
+        raise ValueError(f"trial_interval: tolerance = {tolerance!r} is outside the valid range (0, 1)")
+    return _rhabel._trial_interval(spec, _finite(a, "a"), _finite(b, "b"), float(tolerance))
+
+
+def _finite(value, name):
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"trial_interval: {name} = {value!r} must be a finite number") from None
+    if not _math.isfinite(x):
+        raise ValueError(f"trial_interval: {name} = {x!r} must be a finite number")
+    return x
 
 
 def _grid(grid):

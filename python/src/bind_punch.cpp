@@ -1,4 +1,5 @@
-// python/src/bind_punch.cpp: rhabel.solve's compiled part, _rhabel._solve(scene, ...).
+// python/src/bind_punch.cpp: the compiled part of rhabel.solve and rhabel.trial_interval,
+// _rhabel._solve(scene, ...) and _rhabel._trial_interval(scene, a, b, tolerance).
 //
 // The scene arrives already validated by python/rhabel/_scene.py (the schema of
 // examples/README.md: every required field present, no unknown field, numbers in range) and is
@@ -20,30 +21,38 @@ namespace {
 
 double number(const py::handle& object, const char* key) { return object[key].cast<double>(); }
 
+punch::material to_material(const py::dict& material) {
+  punch::material m;
+  m.alpha = number(material, "alpha");
+  m.E1 = number(material, "E1");
+  m.poisson = number(material, "nu");
+  m.coulomb = number(material, "coulomb");
+  return m;
+}
+
+punch::indentor to_indentor(const py::dict& d) {
+  punch::indentor ind;
+  ind.load = number(d, "load");
+  ind.apex = number(d, "apex");
+  const auto shape = d["shape"].cast<std::string>();
+  if (shape == "parabolic") {
+    ind.shape = punch::parabolic{number(d, "radius")};
+  } else if (shape == "wedge") {
+    ind.shape = punch::wedge{number(d, "slope_leading"), number(d, "slope_trailing")};
+  } else if (shape == "flat") {
+    ind.shape = punch::flat{number(d, "width")};
+  } else {
+    throw py::value_error("rhabel: unknown shape '" + shape + "' (the scene was not validated)");
+  }
+  return ind;
+}
+
 punch::scene to_scene(const py::dict& spec) {
   punch::scene s;
-  const py::dict material = spec["material"];
-  s.material.alpha = number(material, "alpha");
-  s.material.E1 = number(material, "E1");
-  s.material.poisson = number(material, "nu");
-  s.material.coulomb = number(material, "coulomb");
+  s.material = to_material(spec["material"]);
   s.speed = number(spec, "speed");
   for (const py::handle item : spec["indentors"].cast<py::list>()) {
-    const py::dict d = py::reinterpret_borrow<py::dict>(item);
-    punch::indentor ind;
-    ind.load = number(d, "load");
-    ind.apex = number(d, "apex");
-    const auto shape = d["shape"].cast<std::string>();
-    if (shape == "parabolic") {
-      ind.shape = punch::parabolic{number(d, "radius")};
-    } else if (shape == "wedge") {
-      ind.shape = punch::wedge{number(d, "slope_leading"), number(d, "slope_trailing")};
-    } else if (shape == "flat") {
-      ind.shape = punch::flat{number(d, "width")};
-    } else {
-      throw py::value_error("rhabel.solve: unknown shape '" + shape + "' (the scene was not validated)");
-    }
-    s.indentors.push_back(std::move(ind));
+    s.indentors.push_back(to_indentor(py::reinterpret_borrow<py::dict>(item)));
   }
   return s;
 }
@@ -144,12 +153,33 @@ py::dict solve(const py::dict& spec, std::size_t grid, bool displacement, double
   return to_python(std::move(result), spec, s.material.effective_modulus(s.speed));
 }
 
+/// punch::trial_interval for the scene's single indentor on [a, b]; a Record {load,
+/// hysteretic_friction, error_estimate}.
+py::dict trial_interval(const py::dict& spec, double a, double b, double tolerance) {
+  const punch::scene s = to_scene(spec);
+  punch::solve_options options;
+  options.tolerance = tolerance;
+  punch::trial_result result;
+  {
+    py::gil_scoped_release nogil;
+    result = punch::trial_interval(s.material, s.speed, s.indentors.front(), a, b, options);
+  }
+  py::dict out = record();
+  out["load"] = result.load;
+  out["hysteretic_friction"] = result.hysteretic_friction;
+  out["error_estimate"] = result.error_estimate;
+  return out;
+}
+
 }  // namespace
 
 void bind_punch(py::module_& m) {
   m.def("_solve", &solve, py::arg("scene"), py::arg("grid"), py::arg("displacement"), py::arg("tolerance"),
         py::arg("residual"),
         "Solves a VALIDATED scene dict (rhabel.solve validates first). Returns nested Records.");
+  m.def("_trial_interval", &trial_interval, py::arg("scene"), py::arg("a"), py::arg("b"), py::arg("tolerance"),
+        "punch::trial_interval for a VALIDATED one-indentor scene dict (rhabel.trial_interval validates "
+        "first). Returns a Record {load, hysteretic_friction, error_estimate}.");
 }
 
 }  // namespace rhabel::python

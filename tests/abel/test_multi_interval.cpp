@@ -248,11 +248,11 @@ TEST_CASE("gap 1e-4, alpha 0, beta 0: the coupled homogeneous density is (c0 + c
   CHECK(std::abs(slope) * 1 > 1e-3 * size);  // a genuine line, not a constant (c1 != 0)
 }
 
-// Regression "gap 1e-4": before session 3 the cross blocks were built by interpolation and
-// re-expansion at O(degree^3) per block (degree 256 took 1.5 s) and the degree was not
-// adaptive, so the layer of width 1e-4 was never resolved (residual 2.6e-6 at degree 256; with
-// points graded toward the facing ends it was in fact 3e-5). Now collocation with one matrix
-// product per cross block reaches it. Oracle for int g: the same case at degree 1536 (residual
+// Regression "gap 1e-4": the layer of width 1e-4 needs an adaptive degree and cross blocks that
+// stay cheap at high degree. Cross blocks by interpolation and re-expansion cost O(degree^3)
+// each (degree 256 in 1.5 s), and at a fixed degree 256 the layer is not resolved (residual
+// 2.6e-6; 3e-5 with points graded toward the facing ends); collocation with one matrix product
+// per cross block reaches it. Oracle for int g: the same case at degree 1536 (residual
 // 1.6e-14, against 1.8e-12 at degree 1024): a long-degree run, recorded here; reproduce with
 // `build/bin/study_union_convergence out.csv 1536`, column loads of the row
 // 2,1e-04,0.25,0.3,nu-1,1536.
@@ -350,7 +350,7 @@ TEST_CASE("union: bad input") {
 // Memory guard (multi_interval.hpp, "Memory"): a degree whose dense system would exceed
 // options.max_memory_bytes is refused with std::domain_error naming the option, its value and
 // the largest admissible degree, before anything is allocated (regression: max_degree = 1e6
-// used to start allocating a 3e13-byte matrix); the bound is sharp at the limit it reports.
+// must not start allocating a 3e13-byte matrix); the bound is sharp at the limit it reports.
 TEST_CASE("union: memory guard refuses a degree beyond options.max_memory_bytes") {
   abel_parameters<double> par(0.3, 0.2);
   const std::vector<interval_spec<double>> two{{0.0, 1.0}, {1.5, 2.0}};

@@ -50,9 +50,9 @@ TEST_CASE("50 digits: parabolic punch closed form (nu = -1)") {
 
 TEST_CASE("regression: double Gauss-Jacobi rule with both exponents at -1 + 1e-9 against 50 digits") {
   // The abel module reaches this corner (class nu = +1 as alpha -> 1, beta -> -1; step enrichment
-  // as alpha -> 0, 2 alpha + beta -> 1). quadrature::gauss_jacobi<double> erred there by 1.6e5 eps
-  // (weights) until session 2, and abel kept a private rule for it; the quadrature module's own
-  // table test now covers the corner, this pins the case as abel uses it. Oracle: the 50-digit
+  // as alpha -> 0, 2 alpha + beta -> 1). Recurrence constants expanded in p and q cancel there
+  // (1.6e5 eps in the weights); the quadrature module's own table test covers the corner, this
+  // pins the case as abel uses it. Oracle: the 50-digit
   // recurrence path of quadrature::gauss_jacobi (another algorithm: n = 80 takes the asymptotic path in double).
   const double eps = std::numeric_limits<double>::epsilon();
   // 45 eps: the quadrature module's contract (1e-14 relative) for p, q in (-1, 5].

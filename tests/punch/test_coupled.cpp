@@ -229,7 +229,7 @@ TEST_CASE("a solution of the slope equations whose surface penetrates an indento
 }
 
 TEST_CASE("contacts that pass each other: the surface stays on the right side of both indentors") {
-  // Apexes 0.5 apart, isolated contacts 1.3 long (formerly refused as overlapping): the first
+  // Apexes 0.5 apart, isolated contacts 1.3 long (the isolated contacts overlap): the first
   // contact lies wholly ahead of its apex, the second covers that apex, and the surface clears the
   // first indentor there. Checked on the displacement grid: gap = w - (f - f(a)) >= 0 outside each
   // contact (w is the surface height relative to the contact's leading edge).

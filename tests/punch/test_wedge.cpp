@@ -224,7 +224,7 @@ TEST_CASE("apex within 0.1 L of an edge (Moebius-mapped solve): C_f and pressure
   // abel::solve_step maps the apex toward the centre (abel/step_enrichment.hpp, "Apex near an
   // edge"); the oracle is the Riemann-Hilbert route (riemann::solve_abel_rh: Riemann problem plus
   // Abel inversion, no code shared with the enrichment or the map), its C_f and its pointwise g at
-  // 200 samples. 1 - eps = 0.08 here. Before the map the solver took both from that route itself.
+  // 200 samples. 1 - eps = 0.08 here.
   const double alpha = 0.1, S1 = 0.1, S2 = 0.3;
   const material m{alpha, 1.0, 0.5, 0.0};  // nu = 1/2: beta = 0
   solve_options grid;

@@ -118,7 +118,7 @@ def test_invalid_argument_becomes_value_error_with_the_message():
 
 
 def test_nearly_coincident_indentors_are_a_result_not_an_exception():
-    # Two identical indentors 1e-4 apart (formerly a ValueError "the contacts ... overlap"): the
+    # Two identical indentors 1e-4 apart (their isolated contacts overlap, not an error): the
     # coupled solve returns a result with its evidence. Measured: two adjacent contacts, the first
     # wholly ahead of its apex, each carrying its load ("ok"); a non-ok outcome must name both.
     scene = parabola_scene()

@@ -211,9 +211,9 @@ TEST_CASE("gauss_jacobi: regression p = q = -1 + 1e-9, odd n = 101 (the middle n
 TEST_CASE("gauss_jacobi: regression p or q = 5, Newton steps in the batch (weights 14.1 eps when t was rounded)") {
   // An interior weight is Q s^(2a+1) c^(2b+1) / G'^2: at a = 5 the half-ulp rounding of s is
   // amplified 11 times (5.5 eps), and G', Q and the factor add ~3 eps: measured 8.9 eps over
-  // these rows. Batch Newton steps whose phase belonged to K + correction while s, c were taken
-  // at the rounded t gave 14.1 eps at n = 10^4, p = q = 5 (index 49); session 3 therefore kept
-  // the steps away from a <= 5. Named tolerance 12 eps: between the two.
+  // these rows. Batch Newton steps whose phase belongs to K + correction while s, c are taken
+  // at the rounded t give 14.1 eps at n = 10^4, p = q = 5 (index 49). Named tolerance 12 eps:
+  // between the two.
   constexpr double exponent_5_tolerance = 12 * eps;
   std::map<std::tuple<std::size_t, double, double>, std::vector<const reference_row*>> cases;
   for (const auto& row : reference_table()) {

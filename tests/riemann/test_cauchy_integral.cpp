@@ -109,9 +109,9 @@ TEST_CASE("jacobi_cauchy_integral: p + q = -1, h polynomial, against the closed 
 
 TEST_CASE("jacobi_cauchy_integral 1e-7 and 1e-10 from an end: PV to full precision (regression)") {
   // p = q = -1/2, h = 1 + 2t: PV = pi cot(-pi/2) w h + 2 pi = 2 pi exactly (closed form above),
-  // while w(x) ~ 2e3..7e4 there. Regression: the piece touching the OTHER end used to take the
-  // singularity subtraction, evaluating its phi (which carries that end's factor (x - lo)^q or
-  // (hi - x)^p) at x, and lost ~eps w(x); and K(-1/2, rho) cancelled two rho^(-1/2) terms.
+  // while w(x) ~ 2e3..7e4 there. Regression: the piece touching the OTHER end must not take the
+  // singularity subtraction (evaluating its phi, which carries that end's factor (x - lo)^q or
+  // (hi - x)^p, at x loses ~eps w(x)), and K(-1/2, rho) must not cancel two rho^(-1/2) terms.
   constexpr double tolerance = 64 * eps;  // sums of ~n O(1) terms (measured 24 eps at 1 - 1e-10)
   piecewise_function<double> h{[](double t) { return 1 + 2 * t; }, {}};
   jacobi_cauchy_integral<double> C(-1.0, 1.0, -0.5, -0.5, h);

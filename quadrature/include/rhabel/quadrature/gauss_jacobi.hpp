@@ -43,12 +43,12 @@
 //    Points whose guess is not yet within the finishing threshold take up to three Newton
 //    steps in the batch, for every exponent (about 2000 nodes at p = 30, n = 10^4; 11 at
 //    (-0.9, 0.3), 170 at (5, 5)); only the points that move are evaluated again, and each step
-//    puts the phase and s, c at the same double t (interior_guesser::move). Session 3 took these
-//    steps only for p > 5, because they moved the worst weight at p = q = 5 from 11.6 to 15.6
-//    eps (s, c by the addition theorem, about an ulp less accurate than sin and cos of t/2) or
-//    14.1 eps (s, c of the rounded t, the phase of the unrounded K + correction: up to
-//    (2p + 1) eps/2 in the weight); with the point made consistent they lower it to 8.9 eps
-//    (accuracy figures below; the regression test for p or q = 5 pins it). A node is interior when the
+//    puts the phase and s, c at the same double t (interior_guesser::move). That consistency
+//    matters: with s, c by the addition theorem (about an ulp less accurate than sin and cos of
+//    t/2) the steps raise the worst weight at p = q = 5 from 11.6 to 15.6 eps, with s, c of the
+//    rounded t and the phase of the unrounded K + correction to 14.1 eps (up to (2p + 1) eps/2
+//    in the weight); with the point consistent they lower it to 8.9 eps (accuracy figures
+//    below; the regression test for p or q = 5 pins it). A node is interior when the
 //    expansion, summed to at most 30 terms, has a phase-independent term bound below eps/16
 //    and a sum of term bounds <= max(2, (2p + 1)/4) for the exponent p at that end
 //    (detail::hahn_admissible_total, continuous in p: the weights carry the (2p + 1)-fold
@@ -65,12 +65,12 @@
 //    threshold and one sweep per end suffices. The sweep runs in double with all four running
 //    sums compensated, two nodes per SIMD vector, and coefficients formed from p + 1 and q + 1
 //    (no cancellation at p = -0.999); the Newton step is also required to be small relative to
-//    u (first node at p = -0.999). Against the former long double sweep it moves these nodes by
+//    u (first node at p = -0.999). Against a long double sweep it moves these nodes by
 //    <= 1 ulp and their weights by <= 4.5 eps (measured, n = 101 ... 10^6, p, q down to -0.999),
 //    at a ninth of the cost. Hale & Townsend use the Baratella-Gatteschi Bessel expansion there;
 //    the recurrence is used instead because it has no truncation error to control at any n,
 //    at the price of O(n) per boundary node (28% of the time at n = 10^4 and at 10^6 for
-//    (-0.9, 0.3), 6 boundary nodes per end; perf, session 3).
+//    (-0.9, 0.3), 6 boundary nodes per end; perf).
 //    Safety net: if the Newton iterations fail or the distances of the nodes are not strictly
 //    monotone, the routine falls back to the recurrence path for n <= gauss_jacobi_fallback_max_n
 //    = 20000 and throws std::runtime_error above (observed only for p = q = -1 + 1e-9 at odd n,
@@ -85,25 +85,24 @@
 //    n = 10^6 for five pairs, 1024 and 65536 for the regression values; node indices on both
 //    sides of the boundary/interior switch; and both exponents near -1: p, q in
 //    {-1 + 1e-9, -1 + 1e-5, -0.999}, n = 1, 2, 3, 16, 40, 41, 80, 101, 10^4), measured by
-//    tests/quadrature/test_gauss_jacobi.cpp (its -s output, session 4): worst 3.2 eps for the
-//    nodes and 8.9 eps for the weights (11.6 eps before the batch steps were made consistent;
-//    n = 10^6: 2.0 and 5.7 eps; both exponents near -1, n >= 41: 2.6 and 7.8 eps). The weights
+//    tests/quadrature/test_gauss_jacobi.cpp (its -s output): worst 3.2 eps for the nodes and
+//    8.9 eps for the weights (n = 10^6: 2.0 and 5.7 eps; both exponents near -1, n >= 41: 2.6
+//    and 7.8 eps). The weights
 //    of the asymptotic path carry s^(2p+1) c^(2q+1), s = sin(t/2), c = cos(t/2), so a one-ulp
 //    rounding of the node is amplified by up to 2p + 1; the recurrence path (n <= 40, or
-//    forced) is within 0.5 eps, also for p = q = -1 + 1e-9 (issue #2: the expanded recurrence
-//    constant (p+q+1)(p+1)(p+q) had cancelled there, 1.6e5 eps in the weights, 4e4 eps in the
-//    nodes; now formed from p + 1 and q + 1). For n = 10 ... 100 (across the 40 / 41 switch)
+//    forced) is within 0.5 eps, also for p = q = -1 + 1e-9 (its constants are formed from p + 1
+//    and q + 1: the expanded (p+q+1)(p+1)(p+q) cancels there, 1.6e5 eps in the weights and 4e4
+//    eps in the nodes). For n = 10 ... 100 (across the 40 / 41 switch)
 //    the asymptotic path is within 5.0 eps (min(1 - x, 1 + x)) and 14 eps (weights) of the
-//    recurrence path (every n, p and q in {-0.999, -0.9, -0.5, 0, 0.25, 0.5, 5}; 5.0 and 18 eps
-//    before session 4 on the same grid, where 4.0 and 16.5 eps had been recorded).
+//    recurrence path (every n, p and q in {-0.999, -0.9, -0.5, 0, 0.25, 0.5, 5}).
 //  * p or q in (5, 30]: nodes within 4 eps (measured 2.5), weights within 128 eps (measured
-//    62 eps at n = 100 and at n = 10^4 (64 eps before session 4), 49 eps at n = 10^6).
+//    62 eps at n = 100 and at n = 10^4, 49 eps at n = 10^6).
 //  * Real = cpp_bin_float_50 (recurrence path): measured 49 eps_50 (n <= 100, q = 30).
 //  * p or q > 30: refused (std::domain_error naming the parameter and the range (-1, 30];
 //    gauss_jacobi_max_exponent), for every Real and n. Beyond 30 nothing above is measured and
-//    the paths failed silently (issue 14): p = q = 1000, n = 2 gave weights 0 (the sum is 0.056);
-//    p = 10^6, n = 1 NaN; q = 1000 with p = -1 + 1e-12 inf; p = 10^300 Newton's method did not
-//    converge; p = 300, q = -0.9 took 75 s at n = 10^4. Subnormal exponents (1e-320) are in range
+//    the paths, unguarded, fail silently: p = q = 1000, n = 2 gives weights 0 (the sum is 0.056);
+//    p = 10^6, n = 1 NaN; q = 1000 with p = -1 + 1e-12 inf; for p = 10^300 Newton's method does
+//    not converge; p = 300, q = -0.9 takes 75 s at n = 10^4. Subnormal exponents (1e-320) are in range
 //    and give the rule of exponent 0 to the contract.
 //  Never judge a rule by sum(w) alone: it hides 1e-9 errors in individual weights.
 //
@@ -117,34 +116,24 @@
 //
 // Cost (bench/gauss_jacobi.cpp, Release, median CPU time of 5 repetitions,
 //   build/bin/bench_gauss_jacobi --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
-// on the shared 2-core machine at load 4-5, where wall time was up to twice that; measured back
-// to back with the session-2 version (commit 0a0b04c), whose figures follow in brackets):
-//   (p, q) = (0.25, -0.5): n = 8 4 us [4 us], 100 39 us [44 us], 4000 0.28 ms [0.37 ms; GSL's
+// on the shared 2-core machine at load 4-5, where wall time was up to twice that):
+//   (p, q) = (0.25, -0.5): n = 8 4 us, 100 39 us, 4000 0.28 ms (GSL's
 //   gsl_integration_fixed_jacobi 286 ms, 1000 times slower, its weights off by up to 4e-10
-//   there], 10^4 0.64 ms [0.81 ms], 10^6 82 ms [84 ms]; Legendre 10^4 0.38 ms [0.52 ms], 10^6
-//   56 ms [61 ms]; (-0.5, 0): 10^4 0.58 ms [0.83 ms], 10^6 79 ms [90 ms]; (0.25, 0): 0.74 ms
-//   [1.00 ms], 79 ms [99 ms]. Generic exponents (2p + 1 or 2q + 1 not in {0, 1/2, 1, 3/2, 2}),
-//   n = 10^4 and 10^6: (-0.9, 0.3) 0.87 ms, 86 ms [1.19 ms, 113 ms]; (0.3, 0.7) 0.87 ms, 86 ms
-//   [1.15 ms, 113 ms]; (-0.5, 2.2) 0.74 ms, 90 ms [0.94 ms, 93 ms]; (4.5, -0.7) 0.97 ms, 96 ms
-//   [1.18 ms, 114 ms] (0.91 ms, 89 ms in a second run); large exponents: (5, 5) 0.62 ms, 61 ms
-//   [0.65 ms, 66 ms]; (30, 0) 2.3 ms, 152 ms [5.2 ms, 406 ms]. GSL at n = 8: 2 us.
+//   there), 10^4 0.64 ms, 10^6 82 ms; Legendre 10^4 0.38 ms, 10^6 56 ms; (-0.5, 0): 10^4
+//   0.58 ms, 10^6 79 ms; (0.25, 0): 0.74 ms, 79 ms. Generic exponents (2p + 1 or 2q + 1 not in
+//   {0, 1/2, 1, 3/2, 2}), n = 10^4 and 10^6: (-0.9, 0.3) 0.87 ms, 86 ms; (0.3, 0.7) 0.87 ms,
+//   86 ms; (-0.5, 2.2) 0.74 ms, 90 ms; (4.5, -0.7) 0.97 ms, 96 ms (0.91 ms, 89 ms in a second
+//   run); large exponents: (5, 5) 0.62 ms, 61 ms; (30, 0) 2.3 ms, 152 ms. GSL at n = 8: 2 us.
 // The issue's targets (n = 10^4 in 1 ms, 10^6 in 100 ms, >= 100x GSL at 4000) are met on this
 // loaded machine for all these pairs except (30, 0), the generic ones with 3-15% margin. Where
 // the time goes ((-0.9, 0.3), perf): at n = 10^4 the interior arithmetic (guesses, expansion,
 // finishing step, weight factor) 60%, the boundary sweeps 28%, the Bessel-zero guesses 5%; at
 // 10^6 the same split plus ~8% for the first touch of the 32 MB of the rule (page faults).
-// Session 3 removed from the interior: two pow per node (now two per batch of 32), the sincos
-// and two fma calls per guess (Taylor series and Dekker products in the vectorised loop),
-// five memset calls per term of the expansion, twelve divisions per node, and an unvectorised
-// accumulation loop (pointer aliasing). (30, 0) is still above the targets: its 38 boundary nodes
-// per sweep (191 before the interior region was widened, see the regimes) cost half of the
-// time at 10^6 (perf), and its interior needs 10 to 27 terms per node at 10^4. Session 4 (one
-// accumulation loop in evaluate_batch, batch Newton steps for every exponent evaluating only
-// the moving points, the direct single-value endpoint_power) kept the cost: medians of three
-// interleaved runs of the command above with --benchmark_repetitions=3 against the session-3
-// binary at load 2.3-3, n = 10^4 and 10^6, session 3 -> 4: Legendre 0.42 -> 0.39 ms, 50 -> 50 ms;
-// (-0.9, 0.3) 0.92 -> 0.90 ms, 91 -> 88 ms; (0.3, 0.7) 0.87 -> 0.86 ms, 90 -> 87 ms; (5, 5)
-// 0.52 -> 0.48 ms, 53 -> 55 ms; (30, 0) 2.28 -> 2.14 ms, 155 -> 151 ms. Small n (recurrence path):
+// The interior takes two pow per batch of 32 nodes, no sincos or fma call per guess (Taylor
+// series and Dekker products in the vectorised loop), no division per node beyond the batch's
+// and one vectorised accumulation loop (evaluate_batch). (30, 0) is above the targets: its 38
+// boundary nodes per sweep cost half of the time at 10^6 (perf), and its interior needs 10 to
+// 27 terms per node at 10^4. Small n (recurrence path):
 // the eigenvalues, one long double sweep per end and the constants take 4 us at n = 8, twice
 // GSL's 2 us.
 //
@@ -664,10 +653,9 @@ inline bool gauss_jacobi_asymptotic_half(std::size_t n, double a, double b, std:
   constexpr double finish_threshold = 1e-6;
   // Newton sweeps over a batch before its remaining unfinished points go node by node, for
   // every exponent (at a = 30, n = 10^4, about 2000 nodes need them, which took 3/4 of the time
-  // node by node; at (-0.9, 0.3) 11 nodes, at (5, 5) 170). Session 3 took them only for
-  // a > 5, because they had moved the worst weight at p = q = 5 from 11.6 to 15.6 eps; the
-  // cause was the point after a step (interior_guesser::move), and with it made consistent
-  // the sweeps improve the table's worst weight instead (11.6 to 8.9 eps).
+  // node by node; at (-0.9, 0.3) 11 nodes, at (5, 5) 170). With the point after a step made
+  // consistent (interior_guesser::move) they also lower the table's worst weight at p = q = 5
+  // (8.9 eps, against 11.6 without the sweeps).
   constexpr int batch_newton_sweeps = 3;
   const interior_guesser guesser(a, b, rho);
   const interior_finisher finisher(n, a, b);

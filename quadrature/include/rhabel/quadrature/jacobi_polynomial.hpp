@@ -346,7 +346,7 @@ template <class Real>
 Real jacobi_weight(const Real& p, const Real& q, const Real& one_minus_x, const Real& one_plus_x) {
   using std::pow;
   detail::check_jacobi_exponents("jacobi_weight", p, q);
-  // The message always said [0, 2]; complements above 2 were accepted until session 3.
+  // Complements outside [0, 2] (NaN included) are refused, as the message says.
   detail::check_complement("jacobi_weight", "one_minus_x", one_minus_x);
   detail::check_complement("jacobi_weight", "one_plus_x", one_plus_x);
   Real value = 1;

@@ -60,12 +60,11 @@ inline constexpr double hahn_max_total = 2;
 // larger value from a = 3.5 on). For large a the interior weights already carry s^(2a+1),
 // which turns the rounding of the node into a relative error of up to (2a + 1) ulp (measured
 // 62 eps at a = 30), so a rounding error of G' up to a quarter of that is not visible in the
-// weights; and it moves the first interior node at a = 30 from rho t ~ 650 to ~ 165 (38
-// instead of 191 boundary nodes, each an O(n) recurrence sweep: n = 10^6 in 0.15 s instead of
-// 0.4 s). Measured at a = 30, n = 4000, against the long double recurrence: the nodes that
-// became interior have weight errors <= 50 eps, below the 55-62 eps of the interior nodes
-// beyond them. Session 3 switched from 2 to (2a + 1)/4 at a = 5 (a jump from 2 to 2.75); the
-// continuous form changes the table's figures for p or q = 5 by nothing (measured).
+// weights; and it moves the first interior node at a = 30 from rho t ~ 650 (with the bound 2)
+// to ~ 165 (38 instead of 191 boundary nodes, each an O(n) recurrence sweep: n = 10^6 in 0.15 s
+// instead of 0.4 s). Measured at a = 30, n = 4000, against the long double recurrence: the
+// nodes that the larger bound makes interior have weight errors <= 50 eps, below the 55-62 eps
+// of the interior nodes beyond them.
 inline double hahn_admissible_total(double a) { return std::max(hahn_max_total, (2 * a + 1) / 4); }
 
 // The weight factor Q of the header comment (symmetric in a, b).
