@@ -64,15 +64,20 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True):
         speed                       (0, inf)        sliding speed U; indentors move towards -x
         indentors                   non-empty list  indentors sliding together
         indentors[i].shape          "parabolic", "wedge" or "flat"
-        indentors[i].load           (0, inf)        normal force per unit length [N/m]
+        indentors[i].load           (0, inf)        normal force per unit length [N/m] (not with a body)
         indentors[i].apex           finite, def. 0  parabola vertex, wedge tip, flat face centre
+        body.load                   (0, inf)        optional: all indentors on one rigid body with
+                                                    this total load; the loads are then unknowns
+        indentors[i].height         finite, def. 0  with a body only: apex height on it [m], upward
         indentors[i].radius         (0, inf)        parabolic only: f = -(x - apex)^2 / (2 R)
         indentors[i].slope_leading  (0, inf)        wedge only: slope of the face at x < apex
         indentors[i].slope_trailing (0, inf)        wedge only: slope of the face at x > apex
         indentors[i].width          (0, inf)        flat only: width of the face
         ==========================  ==============  ============================================
 
-        Every field is required except ``apex``, ``name``, ``description``; unknown fields are
+        Every field is required except ``apex``, ``name``, ``description``, ``body`` and
+        ``height`` (with a body an indentor has no ``load``; flat punches on a body are not
+        supported); unknown fields are
         errors (also a field of another shape, e.g. ``radius`` on a wedge); numbers must be
         finite ints or floats (NumPy scalars too), not booleans or strings.
     grid : int
@@ -95,6 +100,7 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True):
           kappa = cos((alpha + beta/2) pi)/cos(beta pi/2).
         - ``regime``: "below", "boundary" or "above" (sign of alpha + beta/2 - 1/2).
         - ``effective_modulus``: E_U = E1 Gamma(1-alpha) U^alpha/(1-nu^2) [Pa].
+        - ``body_approach`` (with a body): approach + height, the same for every indentor [m].
         - ``indentors``: one Record per indentor, in scene order: ``shape``, ``name`` (if
           given), ``contact`` (a, b) with a the leading edge, ``contact_length`` L = b - a,
           ``epsilon`` = (apex - a)/L (wedges only), ``load`` (int p dx, recomputed from the
@@ -103,8 +109,10 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True):
           ``peak_pressure_singular`` is True), ``peak_pressure_at``, ``edges`` (two Records:
           ``side``, ``at``, ``singular``, ``exponent``, ``intensity_factor``: p ~ K d^exponent),
           ``residual`` (relative residual of the Abel equation, an estimate), ``error_estimate``
-          (an estimate, not a bound), ``degree``, ``status`` ("ok", "not_converged", "tension",
-          "load_mismatch" or "contacts_merge": "ok" only when the residual, the sign of the
+          (an estimate, not a bound), ``approach`` (several indentors: the rigid approach w - f
+          on the contact [m], w the displacement of docs/theory.md section 7),
+          ``degree``, ``status`` ("ok", "not_converged", "tension", "load_mismatch",
+          "contacts_merge", "penetration" or "contact_lost": "ok" only when the residual, the sign of the
           pressure, the load and the error estimate pass the acceptance 1e-9),
           ``status_message`` (the numbers behind a non-ok status, or a note);
           with grid > 0 ``pressure`` {``x``, ``p``} and ``displacement`` {``x``, ``w``} as NumPy

@@ -5,7 +5,8 @@ one-line message (without the command line's "solve: " prefix; tests/python/test
 compares them).
 
 Policy (as the command line): every field is required except ``apex``, ``name``,
-``description`` and ``material.name``; unknown fields are errors (also a field of another shape,
+``description``, ``material.name``, ``body`` and ``height`` (with a body, an indentor has no
+``load`` and may have a ``height``; without one, no ``height``); unknown fields are errors (also a field of another shape,
 e.g. ``radius`` on a wedge); numbers must be finite (ints and NumPy numbers are numbers, booleans
 and strings are not). Python-only cases: keys must be strings, NaN is rejected like an
 overflow, the scene and its objects may be any Mapping and ``indentors`` any list or tuple.
@@ -170,7 +171,7 @@ _WHAT = {
 }
 
 
-def _indentor(value, path):
+def _indentor(value, path, body):
     _require_object(value, path)
     shape = _require(value, path, "shape", 'one of "parabolic", "wedge", "flat" is required')
     if not isinstance(shape, str):
@@ -180,11 +181,21 @@ def _indentor(value, path):
         _fail(f'{_child(path, "shape")} = {_show(shape)} is not a known shape '
               '(valid: "parabolic", "wedge", "flat")')
     geometry = SHAPES[shape]
-    _only_keys(value, path, ("shape", "load", "apex", "name") + geometry, f' for shape "{shape}"')
+    if body and "load" in value:
+        _fail(f"{_child(path, 'load')} is not used on a rigid body (the body's load is split over the "
+              "indentors): remove it")
+    if not body and "height" in value:
+        _fail(f'{_child(path, "height")} needs a rigid body ("body": {{"load": ...}}): remove it or add the body')
+    own = ("shape", "height", "apex", "name") if body else ("shape", "load", "apex", "name")
+    _only_keys(value, path, own + geometry, f' for shape "{shape}"')
     d = Record(shape=shape)
     for key in geometry:
         d[key] = _required_number(value, path, key, _POSITIVE, _WHAT[key])
-    d["load"] = _required_number(value, path, "load", _POSITIVE, "normal force per unit length")
+    if body:
+        d["height"] = (_number(value["height"], _child(path, "height"), _ANY_FINITE, "height of the apex on the body")
+                       if "height" in value else 0.0)
+    else:
+        d["load"] = _required_number(value, path, "load", _POSITIVE, "normal force per unit length")
     d["apex"] = _number(value["apex"], _child(path, "apex"), _ANY_FINITE, "apex position") if "apex" in value else 0.0
     name = _optional_string(value, path, "name")
     if name:  # the command line's echo: shape, name, geometry, load, apex
@@ -198,17 +209,23 @@ def validate(scene):
     ValueError with one line naming the field."""
     if not isinstance(scene, Mapping):
         _fail(f"scene: the top level must be a JSON object {{...}} (a dict), got {_type_of(scene)}")
-    _only_keys(scene, "", ("description", "material", "speed", "indentors"))
+    _only_keys(scene, "", ("description", "material", "speed", "body", "indentors"))
     out = Record()
     description = _optional_string(scene, "", "description")
     if description:
         out["description"] = description
     out["material"] = _material(_require(scene, "", "material", "an object {alpha, E1, nu, coulomb} is required"))
     out["speed"] = _required_number(scene, "", "speed", _POSITIVE, "sliding speed")
+    body = "body" in scene
+    if body:
+        value = scene["body"]
+        _require_object(value, "body")
+        _only_keys(value, "body", ("load",))
+        out["body"] = Record(load=_required_number(value, "body", "load", _POSITIVE, "total normal force per unit length"))
     items = _require(scene, "", "indentors", "a non-empty array of indentors is required")
     if not isinstance(items, (list, tuple)):
         _fail(f"indentors must be a non-empty array [...], got {_type_of(items)} {_show(items)}")
     if not items:
         _fail("indentors is empty: at least one indentor is required")
-    out["indentors"] = [_indentor(item, f"indentors[{i}]") for i, item in enumerate(items)]
+    out["indentors"] = [_indentor(item, f"indentors[{i}]", body) for i, item in enumerate(items)]
     return out

@@ -32,7 +32,8 @@ punch::material to_material(const py::dict& material) {
 
 punch::indentor to_indentor(const py::dict& d) {
   punch::indentor ind;
-  ind.load = number(d, "load");
+  if (d.contains("load")) ind.load = number(d, "load");
+  if (d.contains("height")) ind.height = number(d, "height");
   ind.apex = number(d, "apex");
   const auto shape = d["shape"].cast<std::string>();
   if (shape == "parabolic") {
@@ -51,6 +52,7 @@ punch::scene to_scene(const py::dict& spec) {
   punch::scene s;
   s.material = to_material(spec["material"]);
   s.speed = number(spec, "speed");
+  if (spec.contains("body")) s.body = punch::rigid_body{number(spec["body"], "load")};
   for (const py::handle item : spec["indentors"].cast<py::list>()) {
     s.indentors.push_back(to_indentor(py::reinterpret_borrow<py::dict>(item)));
   }
@@ -77,6 +79,7 @@ py::dict to_python(punch::indentor_result&& r, const py::dict& spec) {
   out["contact_length"] = r.contact_length;
   if (r.epsilon) out["epsilon"] = *r.epsilon;
   out["load"] = r.load;
+  if (!std::isnan(r.approach)) out["approach"] = r.approach;
   out["hysteretic_friction"] = r.hysteretic_friction;
   out["total_friction"] = r.total_friction;
   // As the command line: an unbounded pressure is None with peak_pressure_singular = True.
@@ -122,6 +125,7 @@ py::dict to_python(punch::scene_result&& r, const py::dict& spec, double effecti
   out["kappa"] = r.kappa;
   out["regime"] = r.regime;
   out["effective_modulus"] = effective_modulus;
+  if (r.body_approach) out["body_approach"] = *r.body_approach;
   py::list indentors;
   const auto specs = spec["indentors"].cast<py::list>();
   for (std::size_t i = 0; i < r.indentors.size(); ++i) {
