@@ -259,7 +259,7 @@ material_spec parse_material(const json& value, const std::string& base_dir) {
   return m;
 }
 
-indentor_spec parse_indentor(const json& value, const std::string& path) {
+indentor_spec parse_indentor(const json& value, const std::string& path, bool body) {
   require_object(value, path);
   indentor_spec d;
   const auto& shape = require(value, path, "shape", "one of \"parabolic\", \"wedge\", \"flat\" is required");
@@ -269,23 +269,36 @@ indentor_spec parse_indentor(const json& value, const std::string& path) {
   }
   const auto name = shape.get<std::string>();
   const std::string context = " for shape \"" + name + "\"";
+  // Python's rhabel/_scene.py mirrors these checks and their order (the messages are compared).
+  if (name == "parabolic" || name == "wedge" || name == "flat") {
+    if (body && value.contains("load"))
+      fail(child(path, "load") + " is not used on a rigid body (the body's load is split over the indentors): remove it");
+    if (!body && value.contains("height"))
+      fail(child(path, "height") + " needs a rigid body (\"body\": {\"load\": ...}): remove it or add the body");
+  }
+  const char* own = body ? "height" : "load";
   if (name == "parabolic") {
     d.shape = shape_kind::parabolic;
-    only_keys(value, path, {"shape", "load", "apex", "name", "radius"}, context);
+    only_keys(value, path, {"shape", own, "apex", "name", "radius"}, context);
     d.radius = required_number(value, path, "radius", positive, "radius of curvature of the parabola");
   } else if (name == "wedge") {
     d.shape = shape_kind::wedge;
-    only_keys(value, path, {"shape", "load", "apex", "name", "slope_leading", "slope_trailing"}, context);
+    only_keys(value, path, {"shape", own, "apex", "name", "slope_leading", "slope_trailing"}, context);
     d.slope_leading = required_number(value, path, "slope_leading", positive, "slope of the face at x < apex");
     d.slope_trailing = required_number(value, path, "slope_trailing", positive, "slope of the face at x > apex");
   } else if (name == "flat") {
     d.shape = shape_kind::flat;
-    only_keys(value, path, {"shape", "load", "apex", "name", "width"}, context);
+    only_keys(value, path, {"shape", own, "apex", "name", "width"}, context);
     d.width = required_number(value, path, "width", positive, "width of the flat face");
   } else {
     fail(child(path, "shape") + " = " + show(shape) + " is not a known shape (valid: \"parabolic\", \"wedge\", \"flat\")");
   }
-  d.load = required_number(value, path, "load", positive, "normal force per unit length");
+  if (body) {
+    if (const auto it = value.find("height"); it != value.end())
+      d.height = number(*it, child(path, "height"), any_finite, "height of the apex on the body");
+  } else {
+    d.load = required_number(value, path, "load", positive, "normal force per unit length");
+  }
   if (const auto it = value.find("apex"); it != value.end()) {
     d.apex = number(*it, child(path, "apex"), any_finite, "apex position");
   }
@@ -319,17 +332,22 @@ scene_spec parse_scene(std::string_view text, const std::string& source, const s
     fail(guard.path() + " is out of range: " + what + " (numbers must be finite doubles)");
   }
   if (!root.is_object()) fail("scene " + source + ": the top level must be a JSON object {...}, got " + type_of(root));
-  only_keys(root, "", {"description", "material", "speed", "indentors"});
+  only_keys(root, "", {"description", "material", "speed", "body", "indentors"});
 
   scene_spec scene;
   scene.description = optional_string(root, "", "description");
   scene.material = parse_material(require(root, "", "material", "an object {alpha, E1, nu, coulomb} is required"), base_dir);
   scene.speed = required_number(root, "", "speed", positive, "sliding speed");
+  if (const auto it = root.find("body"); it != root.end()) {
+    require_object(*it, "body");
+    only_keys(*it, "body", {"load"});
+    scene.body_load = required_number(*it, "body", "load", positive, "total normal force per unit length");
+  }
   const auto& list = require(root, "", "indentors", "a non-empty array of indentors is required");
   if (!list.is_array()) fail("indentors must be a non-empty array [...], got " + type_of(list) + " " + show(list));
   if (list.empty()) fail("indentors is empty: at least one indentor is required");
   for (std::size_t i = 0; i < list.size(); ++i) {
-    scene.indentors.push_back(parse_indentor(list[i], "indentors[" + std::to_string(i) + "]"));
+    scene.indentors.push_back(parse_indentor(list[i], "indentors[" + std::to_string(i) + "]", scene.body_load.has_value()));
   }
   return scene;
 }

@@ -30,9 +30,14 @@
 //   slope_trailing (0, inf)           wedge only: slope of the face behind the tip (x > apex)
 //   width          (0, inf)           flat only: width of the face, centred at apex
 //   name           string, optional   label used in tables and plots
+//   height         finite, default 0  with a body only: height of the apex on the body (upward)
+// body             object, optional   {"load": P}: all indentors on one rigid body pressed with the
+//                                     total load P in (0, inf); the indentors then have no `load`
+//                                     (the split is solved) and may have a `height`
 //
 // Policy (decided deliberately, each one is tested in tests/cli/test_solve_errors.sh):
-// - Every field listed is required except `apex`, `name`, `description` (and `material.name`).
+// - Every field listed is required except `apex`, `name`, `description` (and `material.name`),
+//   `body` and `height`; with a body an indentor's `load` is an error, without one its `height`.
 //   Unknown fields are errors, including a field of another shape (a `radius` on a wedge):
 //   a misspelt optional field must not be silently ignored.
 // - Duplicate keys are errors (nlohmann-json would keep the last one silently).
@@ -93,8 +98,9 @@ const char* shape_name(shape_kind shape) noexcept;
 /// One rigid indentor. Only the geometry fields of its own shape are meaningful (others are 0).
 struct indentor_spec {
   shape_kind shape = shape_kind::parabolic;
-  double load = 0;            ///< force per unit length, > 0
+  double load = 0;            ///< force per unit length, > 0 (0 on a rigid body: an unknown)
   double apex = 0;            ///< apex position
+  double height = 0;          ///< rigid body only: height of the apex on the body (upward)
   double radius = 0;          ///< parabolic
   double slope_leading = 0;   ///< wedge, face at x < apex
   double slope_trailing = 0;  ///< wedge, face at x > apex
@@ -107,6 +113,7 @@ struct scene_spec {
   std::string description;
   material_spec material;
   double speed = 0;
+  std::optional<double> body_load;  ///< "body": {"load": P}: all indentors on one rigid body
   std::vector<indentor_spec> indentors;
 };
 

@@ -33,10 +33,12 @@ punch::scene to_punch(const scene_spec& spec) {
   s.material.poisson = spec.material.nu;
   s.material.coulomb = spec.material.coulomb;
   s.speed = spec.speed;
+  if (spec.body_load) s.body = punch::rigid_body{*spec.body_load};
   for (const auto& d : spec.indentors) {
     punch::indentor ind;
-    ind.load = d.load;
+    if (!spec.body_load) ind.load = d.load;
     ind.apex = d.apex;
+    ind.height = d.height;
     switch (d.shape) {
       case shape_kind::parabolic: ind.shape = punch::parabolic{d.radius}; break;
       case shape_kind::wedge: ind.shape = punch::wedge{d.slope_leading, d.slope_trailing}; break;
@@ -65,7 +67,11 @@ ordered_json echo_scene(const scene_spec& spec) {
         break;
       case shape_kind::flat: item["width"] = d.width; break;
     }
-    item["load"] = d.load;
+    if (spec.body_load) {
+      item["height"] = d.height;
+    } else {
+      item["load"] = d.load;
+    }
     item["apex"] = d.apex;
     indentors.push_back(std::move(item));
   }
@@ -73,6 +79,7 @@ ordered_json echo_scene(const scene_spec& spec) {
   if (!spec.description.empty()) out["description"] = spec.description;
   out["material"] = std::move(material);
   out["speed"] = spec.speed;
+  if (spec.body_load) out["body"] = {{"load", *spec.body_load}};
   out["indentors"] = std::move(indentors);
   return out;
 }
@@ -118,6 +125,7 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   doc["kappa"] = r.kappa;
   doc["regime"] = r.regime;
   doc["effective_modulus"] = to_punch(spec).material.effective_modulus(spec.speed);
+  if (r.body_approach) doc["body_approach"] = *r.body_approach;
   ordered_json indentors = ordered_json::array();
   out.pressure.columns = {"indentor", "x", "pressure"};
   out.displacement.columns = {"indentor", "x", "displacement"};
@@ -131,6 +139,7 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
     item["contact_length"] = ir.contact_length;
     if (spec_i.shape == shape_kind::wedge && ir.epsilon) item["epsilon"] = *ir.epsilon;
     item["load"] = ir.load;
+    if (!std::isnan(ir.approach)) item["approach"] = ir.approach;
     item["hysteretic_friction"] = ir.hysteretic_friction;
     item["total_friction"] = ir.total_friction;
     const bool singular_peak = !std::isfinite(ir.peak_pressure);

@@ -62,6 +62,15 @@ BAD_SCENES = [
     ("second_indentor",
      edited(("indentors",), GOOD["indentors"] + [{"shape": "flat", "width": -1, "load": 1}]),
      ["indentors[1].width = -1", "(0, inf)"]),
+    ("load_on_body", edited(("body",), {"load": 50.0}), ["indentors[0].load", "not used on a rigid body"]),
+    ("height_without_body", edited(("indentors", 0, "height"), 1e-3), ["indentors[0].height", "needs a rigid body"]),
+    ("body_not_object", edited(("body",), 3), ["body", "object"]),
+    ("body_unknown_field",
+     {**edited(("body",), {"load": 1.0, "weight": 2}), "indentors": [{"shape": "parabolic", "radius": 0.02}]},
+     ["body.weight", "not a known field"]),
+    ("body_negative_load",
+     {**edited(("body",), {"load": -1.0}), "indentors": [{"shape": "parabolic", "radius": 0.02}]},
+     ["body.load = -1", "(0, inf)"]),
 ]
 
 
