@@ -161,6 +161,7 @@ TEST_CASE("parabola: contact length, edges, C_f and density against docs/theory.
         worst = std::max(worst, std::abs(d.g[i] / g - 1));
       }
       CHECK(worst < density_tol);
+      if (bem::sanitizer_build) return;  // one case under ASan (bem::sanitizer_build)
     }
   }
 }
@@ -242,6 +243,7 @@ TEST_CASE("wedge below the boundary: the apex fraction satisfies I_eps((1+beta)/
     CHECK(std::abs(eps - eps_exact) <= eps_bar);
     CHECK(c.length.error < bar_budget * L);
     CHECK(r.min_gap > -gap_tol);
+    if (bem::sanitizer_build) break;  // one case under ASan (bem::sanitizer_build)
   }
 }
 
@@ -295,6 +297,7 @@ TEST_CASE("two identical far-apart parabolas tend to two single contacts, shifts
     // Doubling D scales each shift by 2^(alpha-1) (measured within 3%).
     for (int j = 0; j < 2; ++j) CHECK(shift[1][j] / shift[0][j] == doctest::Approx(std::pow(2.0, alpha - 1)).epsilon(0.1));
     if (alpha == 0 && beta == 0) CHECK(shift[0][0] == doctest::Approx(-shift[0][1]).epsilon(1e-3));  // mirror symmetry
+    if (bem::sanitizer_build) break;  // one case under ASan (bem::sanitizer_build)
   }
 }
 
