@@ -17,8 +17,9 @@
 // non-finite solver result). The CSV files are written to temporaries in their directory and
 // renamed into place only after stdout was written and flushed successfully; a failed write
 // (of a CSV file, or of stdout: a full disk, /dev/full) removes the temporaries. If the final
-// rename fails, stdout already holds the result, but no CSV file is left (exit code 2). Numbers are printed by nlohmann-json in the shortest form that
-// reads back to the same double (at most 17 significant digits: lossless round trip).
+// rename fails, stdout already holds the result, but no CSV file is left (exit code 2). Numbers
+// are printed in the shortest form that reads back to the same double (at most 17 significant
+// digits: lossless round trip): by nlohmann-json in the JSON, by std::to_chars in the CSV files.
 #include "commands.hpp"
 #include "scene_json.hpp"
 #include "scene_solve.hpp"

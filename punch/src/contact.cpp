@@ -46,15 +46,18 @@ namespace detail {
 // scaling of the closed forms (docs/theory.md section 5) in logarithms, so that they never overflow:
 // with E_U the effective modulus (material::effective_modulus), a contact length and a strain
 //   parabola: L ~ (P R/E_U)^(1/(2 - alpha)), strain L/R;
-//   wedge:    L ~ (P/(E_U S))^(1/(1 - alpha)), S = (S1 + S2)/2, strain S;
+//   wedge:    L from P/pressure_scale = K L^(1 - alpha), K in closed form (validate_scales),
+//             strain S = (S1 + S2)/2;
 //   flat:     L = width,                       strain P/(E_U width^(1 - alpha)).
-// The constants of the closed forms (Beta functions of order 1) do not matter at these margins.
+// The parabola's constants (Beta functions of order 1, to the power 1/(2 - alpha) < 1) do not
+// matter at these margins.
 constexpr double max_decades_modulus = 250;  // E_U in [1e-250, 1e250]
 constexpr double max_decades_length = 100;   // contact lengths in [1e-100, 1e100]
 constexpr double max_decades_strain = 100;   // strains in [1e-100, 1e100]
 // 1 - beta = (2/pi) atan(1/q), q = coulomb (1 - 2 nu)/(2 (1 - nu)): beyond q = 1e12, beta is
 // within 7e-13 of 1, where the exponents of (8) (1 + beta)/2 and the kernel's factor
-// tan(beta pi/2) leave no digits to the solve (measured: q = 3e7 still ok, q = 3e9 not_converged).
+// tan(beta pi/2) leave no digits to the solve (measured at nu = 0.3: q = 3e5 ok; q = 3e7 .. 3e11
+// not_converged, exit code 3; q = 3e299 gave beta = 1 exactly, an internal error).
 constexpr double max_friction_ratio = 1e12;
 // Below the boundary (alpha + beta/2 < 1/2), a wedge's leading slope at most 1e7 times its
 // trailing one: beyond, the contact starts within ~1e-14 L of the apex, the apex split of the

@@ -5,9 +5,10 @@
 #include "internal.hpp"
 
 #include "rhabel/abel.hpp"
+#include "rhabel/riemann/abel_solver.hpp"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <utility>
 #include <optional>
@@ -103,16 +104,6 @@ class surface {
     return out;
   }
 
-  /// sum_k c_k T_k(x) by Clenshaw's recurrence.
-  static double chebyshev_sum(const std::vector<double>& c, double x) {
-    double b1 = 0, b2 = 0;
-    for (std::size_t n = c.size(); n-- > 1;) {
-      const double b0 = 2 * x * b1 - b2 + c[n];
-      b2 = b1;
-      b1 = b0;
-    }
-    return x * b1 - b2 + c[0];
-  }
 
  private:
   // The regular part of contact o's density as weights on nodes: sum_q w_q Psi(t_q, x) is its
@@ -202,7 +193,7 @@ class surface {
         coefficients = abel::detail::chebyshev_coefficients(values);
         for (std::size_t m = begin; m < end; ++m) {
           const double r = near[m].first;
-          out[near[m].second] = chebyshev_sum(coefficients, ((r - bottom) - (top - r)) / (top - bottom));
+          out[near[m].second] = riemann::detail::chebyshev_fit<double>::clenshaw(coefficients, ((r - bottom) - (top - r)) / (top - bottom));
         }
         end = begin;
         top = bottom;

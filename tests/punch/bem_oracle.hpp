@@ -758,13 +758,13 @@ struct result {
   bool converged = false;             ///< every stage converged
 };
 
-/// The refinement of the sanitizer build: fitted levels 25 .. 200 panels per contact (the finest
-/// dense solve ~64x cheaper than at 800; test_coupled_bem's first cases 1.6 s instead of 48 s in
-/// Release, every check still passing). Three levels (25 .. 100) are not yet asymptotic: a bar
-/// there underestimated an edge's error 3x.
-inline options sanitizer_options() {
+/// Options with `levels` fitted levels, at most 4 in the sanitizer build (25 .. 200 panels per
+/// contact: the finest dense solve ~64x cheaper than at 800; test_coupled_bem's first cases 1.6 s
+/// instead of 48 s in Release, every check still passing). Three levels (25 .. 100) are not yet
+/// asymptotic: a bar there underestimated an edge's error 3x.
+inline options test_options(int levels) {
   options o;
-  o.levels = 4;
+  o.levels = sanitizer_build ? std::min(levels, 4) : levels;
   return o;
 }
 

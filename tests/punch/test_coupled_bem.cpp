@@ -74,8 +74,7 @@ void compare(double alpha, double beta, const std::vector<shape_case>& cases) {
   }
   for (std::size_t i = 0; i < cases.size(); ++i)
     bs.indentors.push_back({cases[i].theirs, cases[i].ours.apex, cases[i].ours.load / ps, lo[i], hi[i]});
-  const auto oracle = punch_test::bem::solve(bs, punch_test::bem::sanitizer_build ? punch_test::bem::sanitizer_options()
-                                                                               : punch_test::bem::options{});
+  const auto oracle = punch_test::bem::solve(bs, punch_test::bem::test_options(punch_test::bem::options{}.levels));
   REQUIRE(oracle.converged);
   for (std::size_t i = 0; i < cases.size(); ++i) {
     CAPTURE(i);
