@@ -147,7 +147,7 @@ void validate(const scene& s) {
   for (std::size_t i = 0; i < s.indentors.size(); ++i) {
     const auto& ind = s.indentors[i];
     const std::string p = "indentors[" + std::to_string(i) + "].";
-    if (!(ind.load > 0) || !std::isfinite(ind.load)) bad_field(p + "load", ind.load, "finite and > 0");
+    if (!s.body && (!(ind.load > 0) || !std::isfinite(ind.load))) bad_field(p + "load", ind.load, "finite and > 0");
     if (!std::isfinite(ind.apex)) bad_field(p + "apex", ind.apex, "finite");
     if (const auto* q = std::get_if<parabolic>(&ind.shape)) {
       if (!(q->radius > 0) || !std::isfinite(q->radius)) bad_field(p + "radius", q->radius, "finite and > 0");
@@ -218,9 +218,59 @@ indentor_result solve_single(const material& m, double speed, const indentor& in
   return solve(s, options).indentors.front();
 }
 
+namespace detail {
+
+/// scene::body: the total load, the heights, and the shapes a body carries.
+void validate_body(const scene& s) {
+  if (!s.body) return;
+  if (!(s.body->load > 0) || !std::isfinite(s.body->load)) bad_field("body.load", s.body->load, "finite and > 0");
+  for (std::size_t i = 0; i < s.indentors.size(); ++i) {
+    const auto& ind = s.indentors[i];
+    const std::string p = "indentors[" + std::to_string(i) + "].";
+    if (!std::isfinite(ind.height)) bad_field(p + "height", ind.height, "finite");
+    if (std::holds_alternative<flat>(ind.shape))
+      throw std::invalid_argument("rhabel::punch::solve: " + p +
+                                  "shape: a flat punch on a rigid body (scene body) is not supported; give each "
+                                  "indentor its own load instead");
+  }
+}
+
+/// scene::body: the body's approach, and the evidence that the loads add up to the total and the
+/// levels approach_i + height_i agree (diagnostics code and status otherwise).
+void report_body(const scene& s, const std::vector<indentor_state>& st, const context& cx, scene_result& out) {
+  double total = 0, spread = 0, scale = 0;
+  const auto& first = out.indentors[st[0].scene_index];
+  const double level0 = first.approach + st[0].height;
+  for (const auto& state : st) {
+    const auto& r = out.indentors[state.scene_index];
+    total += r.load;
+    spread = std::max(spread, std::abs(r.approach + state.height - level0));
+    double slope = 0;
+    for (int k = 0; k <= 8; ++k) slope = std::max(slope, std::abs(own_slope(state, state.g.a() + state.g.length() * k / 8.0)));
+    scale = std::max(scale, slope * state.g.length());
+  }
+  out.body_approach = level0;
+  const double load_defect = std::abs(total / s.body->load - 1), level_defect = spread / scale;
+  const double tol = cx.options.acceptance;
+  if (out.diagnostics.code != status_code::ok || (load_defect <= tol && level_defect <= tol)) return;
+  std::ostringstream os;
+  os.precision(3);
+  if (load_defect > tol) {
+    out.diagnostics.code = status_code::load_mismatch;
+    os << "the indentors' loads add up to " << total << " for a body load of " << s.body->load;
+  } else {
+    out.diagnostics.code = status_code::not_converged;
+    os << "the indentors' levels (approach + height) differ by " << level_defect << " of max |f'| L";
+  }
+  out.diagnostics.status = os.str();
+}
+
+}  // namespace detail
+
 scene_result solve(const scene& s, const solve_options& options) {
   const auto start = std::chrono::steady_clock::now();
   validate(s);
+  validate_body(s);
   if (!(options.tolerance > 0) || !(options.tolerance < 1))
     throw std::invalid_argument("rhabel::punch::solve: options.tolerance must be in (0, 1)");
   const context cx = make_context(s.material, s.speed, options);
@@ -240,7 +290,9 @@ scene_result solve(const scene& s, const solve_options& options) {
     // Coordinates relative to the first apex (shifted back in the report): a contact far from
     // the origin keeps its digits (a wedge of L = 5e-13 at apex 1e6 was an internal error).
     st[i].apex = ind.apex - origin;
-    st[i].target_load = ind.load / cx.pressure_scale;
+    // On a rigid body the loads are unknowns: an equal share is the start.
+    st[i].target_load = (s.body ? s.body->load / static_cast<double>(st.size()) : ind.load) / cx.pressure_scale;
+    st[i].height = ind.height;
   }
   const bool isolated = st.size() == 1;
   coupled_outcome coupled;
@@ -251,7 +303,7 @@ scene_result solve(const scene& s, const solve_options& options) {
       throw std::domain_error("rhabel::punch::solve: " + indentor_name(order[0], *st[0].source) + " failed: " + err.what());
     }
   } else {
-    coupled = solve_coupled(st, cx);
+    coupled = solve_coupled(st, cx, s.body ? std::optional<double>(s.body->load / cx.pressure_scale) : std::nullopt);
   }
   scene_result out;
   out.beta = cx.beta;
@@ -262,6 +314,7 @@ scene_result solve(const scene& s, const solve_options& options) {
   const surface heights(st, cx);
   for (std::size_t i = 0; i < st.size(); ++i) {
     indentor_result r = report_contact(st, i, cx, heights, s.material.coulomb, !isolated);
+    if (!isolated || s.body) r.approach = heights.approach(i);
     if (!options.residual) worst_residual = r.residual;
     else if (!std::isnan(worst_residual)) worst_residual = std::max(worst_residual, r.residual);
     shift(r, origin);
@@ -276,6 +329,7 @@ scene_result solve(const scene& s, const solve_options& options) {
       out.diagnostics.code = out.indentors[i].code;
       out.diagnostics.status = "see indentors[" + std::to_string(i) + "].status";
     }
+  if (s.body) report_body(s, st, cx, out);
   out.diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -63,6 +63,7 @@ struct indentor_state {
   std::size_t scene_index = 0;  // position in scene::indentors
   double apex = 0;
   double target_load = 0;  // in units of int g (the load divided by (pi/2) E_U)
+  double height = 0;       // scene::body: the apex's height on the body [m]
   contact_density g;
   std::string status = "ok";
   status_code code = status_code::ok;
@@ -181,6 +182,9 @@ struct coupled_outcome {
 
 /// Solves several indentors together (paper system 41): fills every st[i].g (and epsilon for
 /// wedges). st in any order; the contacts' order along x is found, not assumed.
-coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx);
+/// body_load (in units of int g): all indentors on one rigid body with this total load; their
+/// target_load is then only the starting split, and is set to the solved load on return.
+coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx,
+                              std::optional<double> body_load = std::nullopt);
 
 }  // namespace rhabel::punch::detail

@@ -80,6 +80,7 @@ const char* to_string(status_code code) {
     case status_code::load_mismatch: return "load_mismatch";
     case status_code::contacts_merge: return "contacts_merge";
     case status_code::penetration: return "penetration";
+    case status_code::contact_lost: return "contact_lost";
   }
   return "unknown";
 }

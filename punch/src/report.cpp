@@ -173,7 +173,7 @@ void judge(indentor_result& r, const indentor_state& st, const std::vector<doubl
     if (code == status_code::ok) code = c;
     why << (why.tellp() > 0 ? "; " : "") << text;
   };
-  const double target = st.source->load;
+  const double target = st.target_load * pressure_scale;  // the requested load (on a rigid body: its solved share)
   if (r.residual > acceptance) {
     std::ostringstream os;
     os.precision(3);

@@ -60,6 +60,32 @@ class surface {
     return 0.0;
   }
 
+  /// The rigid approach of indentor i: w - f_i on its contact, w = Gamma sum_o int g_o Psi(t, x) dt
+  /// (the absolute displacement of this Psi), f_i the profile with f_i(apex) = 0.
+  double approach(std::size_t i) const {
+    const auto& s = st_[i];
+    const double a = s.g.jacobi.lo;
+    double f_a = 0;  // f_i(a_i)
+    switch (s.k) {
+      case kind::parabola: f_a = -(a - s.apex) * (a - s.apex) / (2 * std::get<parabolic>(s.source->shape).radius); break;
+      case kind::wedge: {
+        const auto& w = std::get<wedge>(s.source->shape);
+        f_a = a < s.apex ? w.slope_leading * (a - s.apex) : -w.slope_trailing * (a - s.apex);
+        break;
+      }
+      case kind::flat: break;
+      case kind::general: {
+        const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(32, 0.0, 0.0);
+        const auto& rule = *rule_ptr;
+        for (std::size_t q = 0; q < rule.size(); ++q)
+          f_a += rule.weight[q] * own_slope(s, s.apex + (a - s.apex) * (1 + rule.x[q]) / 2);
+        f_a *= (a - s.apex) / 2;
+        break;
+      }
+    }
+    return cx_.gamma_factor * datum(i) - f_a;
+  }
+
   /// Surface displacement at x relative to its value at a_i (see the class comment).
   double height(std::size_t i, double x) const {
     for (std::size_t j = 0; j < st_.size(); ++j) {

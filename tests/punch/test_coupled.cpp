@@ -119,6 +119,46 @@ TEST_CASE("elastic frictionless half-plane: identical indentors give mirror-symm
   }
 }
 
+TEST_CASE("rows of parabolas: mirror symmetry of an elastic row, few Newton iterations for a viscoelastic one") {
+  // Six identical elastic frictionless parabolas 1.2 isolated lengths apart: the scene mirrored
+  // about the row's centre is itself, so contact k and contact 5 - k are mirror images. Nothing in
+  // the solver imposes it (the contacts are iterated with their loads imposed, then re-solved in
+  // the bounded class).
+  constexpr double mirror_tol = 1e-9;  // edges converged to 1e-11 L
+  const material elastic{0.0, 1.0, 0.3, 0.0};
+  const indentor one{parabolic{1.0}, 0.5, 0.0};
+  const double L = solve_single(elastic, 1.0, one).contact_length;
+  scene row{elastic, 1.0, {}};
+  for (int k = 0; k < 6; ++k) row.indentors.push_back({one.shape, one.load, 1.2 * L * k});
+  const auto r = solve(row);
+  REQUIRE(r.diagnostics.code == status_code::ok);
+  const double centre2 = 1.2 * L * 5;  // twice the centre
+  for (int k = 0; k < 3; ++k) {
+    CAPTURE(k);
+    const auto& p = r.indentors[static_cast<std::size_t>(k)];
+    const auto& q = r.indentors[static_cast<std::size_t>(5 - k)];
+    CHECK(std::abs((p.a + q.b) - centre2) < mirror_tol * L);
+    CHECK(std::abs((p.b + q.a) - centre2) < mirror_tol * L);
+    CHECK(std::abs(p.load - q.load) < mirror_tol * p.load);
+  }
+  // The inner contacts are squeezed by both neighbours: shorter than the outer ones.
+  CHECK(r.indentors[2].contact_length < r.indentors[0].contact_length);
+
+  // Viscoelastic row of 10 (alpha 0.3) 1.5 lengths apart. Every load acts on every contact with
+  // a far field decaying only like distance^(alpha - 1); iterated with the loads imposed, the
+  // banded Jacobian stays accurate and Newton converges in 13 iterations (27 when the loads are
+  // conditions of the iteration). Bound with a margin for other platforms' rounding.
+  constexpr std::size_t row_iterations = 16;
+  const material visco{0.3, 1.0, 0.3, 0.0};
+  const double Lv = solve_single(visco, 1.0, one).contact_length;
+  scene vrow{visco, 1.0, {}};
+  for (int k = 0; k < 10; ++k) vrow.indentors.push_back({one.shape, one.load, 1.5 * Lv * k});
+  const auto v = solve(vrow);
+  REQUIRE(v.diagnostics.code == status_code::ok);
+  CHECK(v.diagnostics.iterations <= row_iterations);
+  for (const auto& c : v.indentors) CHECK(std::abs(c.load / one.load - 1) < 1e-9);
+}
+
 TEST_CASE("viscoelastic sliding breaks the mirror symmetry") {
   const material m{0.3, 1.0, 0.3, 0.0};
   const auto r = solve(two(m, indentor{parabolic{1.0}, 0.1, 0.0}, indentor{parabolic{1.0}, 0.1, 1.5}));
@@ -240,4 +280,62 @@ TEST_CASE("a status is ok only with evidence within the acceptance") {
   const auto q = solve(s, strict);
   CHECK(q.diagnostics.code == status_code::not_converged);
   CHECK(q.diagnostics.status.find("see indentors[") != std::string::npos);
+}
+
+TEST_CASE("indentors on one rigid body: the loads' split, the common approach, contact_lost, bad input") {
+  // The split and the approaches are checked against the boundary-element oracle in
+  // test_coupled_bem.cpp; here the relations that hold whatever the numbers.
+  constexpr double level_tol = 1e-9;  // the acceptance: levels agree to it relative to max|f'| L
+  SUBCASE("identical elastic parabolas at one height share the load equally (mirror symmetry)") {
+    scene s = two(material{0.0, 1.0, 0.3, 0.0}, indentor{parabolic{1.0}, 1.0, 0.0}, indentor{parabolic{1.0}, 1.0, 3.0});
+    s.body = rigid_body{1.0};
+    const auto r = solve(s);
+    REQUIRE(r.diagnostics.code == status_code::ok);
+    CHECK(std::abs(r.indentors[0].load - 0.5) < level_tol);
+    CHECK(std::abs(r.indentors[1].load - 0.5) < level_tol);
+    REQUIRE(r.body_approach.has_value());
+    CHECK(std::abs(*r.body_approach - r.indentors[1].approach) < level_tol);
+  }
+  SUBCASE("the per-indentor solve with the body's loads has the body's relative offsets") {
+    // alpha 0.3: the trailing indentor sits in the leading one's wake; a raised one carries less.
+    const material m{0.3, 1.0, 0.3, 0.0};
+    scene s = two(m, indentor{parabolic{1.0}, 1.0, 0.0}, indentor{parabolic{1.0}, 1.0, 3.0});
+    s.indentors[1].height = 0.05;
+    s.body = rigid_body{1.0};
+    const auto r = solve(s);
+    REQUIRE(r.diagnostics.code == status_code::ok);
+    CHECK(r.indentors[1].load < r.indentors[0].load);
+    CHECK(std::abs(r.indentors[0].load + r.indentors[1].load - 1.0) < level_tol);
+    const double L = r.indentors[0].contact_length;  // max|f'| L = L^2/(2R) scale, R = 1
+    CHECK(std::abs((r.indentors[0].approach + 0.0) - (r.indentors[1].approach + 0.05)) < level_tol * L * L);
+    scene per = s;
+    per.body.reset();
+    per.indentors[0].load = r.indentors[0].load;
+    per.indentors[1].load = r.indentors[1].load;
+    const auto q = solve(per);
+    REQUIRE(q.diagnostics.code == status_code::ok);
+    CHECK(!q.body_approach.has_value());
+    // The relative vertical offset of the two indentors (paper, end of section 3) is the height.
+    CHECK(std::abs((q.indentors[0].approach - q.indentors[1].approach) - 0.05) < 1e-8);
+    CHECK(std::abs(q.indentors[0].a - r.indentors[0].a) < 1e-8 * L);
+  }
+  SUBCASE("an indentor raised above the surface is contact_lost, never ok") {
+    scene s = two(material{0.0, 1.0, 0.3, 0.0}, indentor{parabolic{1.0}, 1.0, 0.0}, indentor{parabolic{1.0}, 1.0, 3.0});
+    s.indentors[1].height = 5.0;  // far above what a unit load presses into the surface
+    s.body = rigid_body{1.0};
+    const auto r = solve(s);
+    CHECK(r.diagnostics.code == status_code::contact_lost);
+    CHECK(r.diagnostics.status.find("indentors[1]") != std::string::npos);
+  }
+  SUBCASE("bad input names the scene field") {
+    scene s = two(material{0.0, 1.0, 0.3, 0.0}, indentor{parabolic{1.0}, 1.0, 0.0}, indentor{flat{1.0}, 1.0, 3.0});
+    s.body = rigid_body{1.0};
+    CHECK_THROWS_WITH_AS(solve(s), doctest::Contains("indentors[1].shape"), std::invalid_argument);
+    s.indentors[1] = indentor{parabolic{1.0}, 1.0, 3.0};
+    s.body = rigid_body{-1.0};
+    CHECK_THROWS_WITH_AS(solve(s), doctest::Contains("body.load"), std::invalid_argument);
+    s.body = rigid_body{1.0};
+    s.indentors[0].height = std::numeric_limits<double>::infinity();
+    CHECK_THROWS_WITH_AS(solve(s), doctest::Contains("indentors[0].height"), std::invalid_argument);
+  }
 }

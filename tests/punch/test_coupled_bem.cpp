@@ -50,11 +50,22 @@ rhabel::punch::material material_of(double alpha, double beta) {
 }
 double pressure_scale(double alpha) { return pi / 2 * boost::math::tgamma(1 - alpha); }
 
-/// Solves the scene both ways and compares every contact within the oracle's error bar.
-void compare(double alpha, double beta, const std::vector<shape_case>& cases) {
+/// All indentors on one rigid body: total load (units of int g) and the apexes' heights.
+struct body_case {
+  double load_g;
+  std::vector<double> heights;
+};
+
+/// Solves the scene both ways and compares every contact within the oracle's error bar (with a
+/// body: also the loads' split and the approaches).
+void compare(double alpha, double beta, const std::vector<shape_case>& cases, const body_case* body = nullptr) {
   const auto m = material_of(alpha, beta);
   rhabel::punch::scene s{m, 1.0, {}};
   for (const auto& c : cases) s.indentors.push_back(c.ours);
+  if (body) {
+    s.body = rhabel::punch::rigid_body{body->load_g * pressure_scale(alpha)};
+    for (std::size_t i = 0; i < cases.size(); ++i) s.indentors[i].height = body->heights[i];
+  }
   const auto r = rhabel::punch::solve(s);
   REQUIRE(r.diagnostics.code == rhabel::punch::status_code::ok);
   const double ps = pressure_scale(alpha);
@@ -74,6 +85,14 @@ void compare(double alpha, double beta, const std::vector<shape_case>& cases) {
   }
   for (std::size_t i = 0; i < cases.size(); ++i)
     bs.indentors.push_back({cases[i].theirs, cases[i].ours.apex, cases[i].ours.load / ps, lo[i], hi[i]});
+  if (body) {
+    // The oracle's offset z raises the profile f + z (Gamma H + delta = f + z on a contact), so z
+    // is minus rhabel's height; its delta is minus rhabel's approach + height (w = Gamma H, the
+    // same Psi).
+    bs.one_body = true;
+    bs.total_load = body->load_g;
+    for (std::size_t i = 0; i < cases.size(); ++i) bs.indentors[i].offset = -body->heights[i];
+  }
   const auto oracle = punch_test::bem::solve(bs, punch_test::bem::test_options(punch_test::bem::options{}.levels));
   REQUIRE(oracle.converged);
   for (std::size_t i = 0; i < cases.size(); ++i) {
@@ -87,6 +106,10 @@ void compare(double alpha, double beta, const std::vector<shape_case>& cases) {
     CHECK(std::abs(ours.b - theirs.b.value) <= bar_factor * theirs.b.error + rhabel_edge_tol * L);
     CHECK(std::abs(ours.load / ps - theirs.load.value) <= bar_factor * theirs.load.error + 1e-10 * theirs.load.value);
     CHECK(std::abs(ours.hysteretic_friction - theirs.friction.value) <= bar_factor * theirs.friction.error + 1e-10);
+    // The rigid approach w - f on the contact (both with the kernel Psi of docs/theory.md); on a
+    // body the oracle's delta is the body's (approach + height, the same for every indentor).
+    const double level = ours.approach + s.indentors[i].height;
+    CHECK(std::abs(level + theirs.approach.value) <= bar_factor * theirs.approach.error + 1e-10 * std::abs(level));
     // The oracle's bars are at most ~5e-4 L on the edges: the comparison is not vacuous.
     CHECK(theirs.a.error < 2e-3 * L);
     CHECK(theirs.b.error < 2e-3 * L);
@@ -114,6 +137,19 @@ TEST_CASE("two parabolas against the boundary-element oracle, gaps ~1 and ~0.1 o
     compare(c.alpha, c.beta, {parabola(1.0, 0.0, 0.3, ps), parabola(1.0, c.D, 0.3, ps)});
     if (!all_cases) break;
   }
+}
+
+TEST_CASE("indentors on one rigid body against the boundary-element oracle: the loads' split and the approach") {
+  // Two parabolas at different heights on one body (the lower one carries more), and a
+  // parabola-wedge pair; alpha 0 and 0.25, gaps about one contact length.
+  const double ps0 = pressure_scale(0.0), ps = pressure_scale(0.25);
+  const body_case unequal{0.6, {0.0, 0.05}};
+  compare(0.0, 0.0, {parabola(1.0, 0.0, 0.3, ps0), parabola(1.0, 2.0, 0.3, ps0)}, &unequal);
+  if (!all_cases) return;
+  const body_case lowered{0.6, {0.0, -0.05}};
+  compare(0.25, 0.3, {parabola(1.0, 0.0, 0.3, ps), parabola(1.0, 2.0, 0.3, ps)}, &lowered);
+  const body_case mixed{0.4, {0.0, 0.02}};
+  compare(0.25, 0.0, {parabola(1.0, 0.0, 0.3, ps), wedge(0.4, 0.4, 1.8, 0.1, ps)}, &mixed);
 }
 
 TEST_CASE("three indentors of each shape against the boundary-element oracle") {

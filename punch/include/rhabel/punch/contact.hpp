@@ -91,7 +91,10 @@
 //     at once (d_j = 0, or a vanishing near-edge intensity for a split wedge, and int g_j = P_j),
 //     forward-difference Jacobian at the base point's degree (banded by Curtis-Powell-Reid colouring
 //     above 5 contacts) then Broyden updates, steps limited to keep every contact at least half and
-//     every gap at least a fifth of its size. Started from the isolated contacts, or, when those
+//     every gap at least a fifth of its size. Parabolas and general profiles without corners
+//     below the boundary are iterated with their loads imposed (the class singular at both edges,
+//     conditions: both intensity factors vanish; then re-solved in the bounded class), which
+//     keeps the banded Jacobian of many contacts accurate. Started from the isolated contacts, or, when those
 //     overlap (or Newton from them fails), by continuation in the load (all loads times t, contacts shrinking
 //     about their apexes, t raised to 1). The contacts' order along x is found, not assumed (above
 //     alpha = 1/2 a blunt indentor's contact can lie ahead of a sharper one's). A gap below
@@ -102,7 +105,16 @@
 //     error ~1e-5 L) within twice its error bar for two parabolas at alpha 0, 0.25, 0.7, beta 0,
 //     0.3 and for parabola-wedge-parabola and flat-flat-parabola rows (test_coupled_bem.cpp);
 //     mirror symmetry of identical elastic frictionless indentors to 1e-9; the coupling decaying
-//     like distance^(alpha - 1). Cost: see "Cost" below.
+//     like distance^(alpha - 1); the rigid approaches (indentor_result::approach) against the
+//     oracle's. Cost: see "Cost" below.
+//   * Rigid body (scene::body): the loads are unknowns; each contact's load condition is replaced
+//     by the total load (one contact) or equal levels approach + height (the others), solved by
+//     the same Newton iteration (full Jacobian), from an equal split of the load, with a
+//     continuation in the height differences when that fails. Against the boundary-element
+//     oracle (one_body mode): the loads' split, edges, C_f and the approach within twice its
+//     error bar (test_coupled_bem.cpp). An indentor lifted off by the others is reported as
+//     status_code::contact_lost (it is not removed from the scene); flat punches on a body are
+//     refused (their load would be an unknown without an edge).
 //   * residual (computed unless solve_options::residual is false; NaN then): max over check points
 //     of |A g - F| relative to the data's scale (max |F| there, and mean(g) (L/2)^alpha, the size of
 //     the density's own action, which is all a flat face has), with the two one-sided integrals
@@ -161,6 +173,7 @@
 
 #include <cstddef>
 #include <functional>
+#include <limits>
 #include <optional>
 #include <string>
 #include <variant>
@@ -209,14 +222,26 @@ struct general_profile {
 
 struct indentor {
   std::variant<parabolic, wedge, flat, general_profile> shape;
-  double load = 1;  ///< load per unit length lambda > 0 [N/m]
+  double load = 1;  ///< load per unit length lambda > 0 [N/m] (not used with scene::body)
   double apex = 0;  ///< position of the apex (face centre for the flat punch) [m]
+  /// scene::body only: height of the apex above the body's reference level [m] (upward positive:
+  /// a higher indentor reaches the surface later). The profile on the body is f(x) + height.
+  double height = 0;
+};
+
+/// Several indentors mounted on one rigid body pressed with a total load (paper, end of section
+/// 3; docs/theory.md section 7): the indentors' loads are unknowns, split so that all share one
+/// rigid approach. Parabolic, wedge and general profiles; every indentor must touch (an indentor
+/// that would carry no load is reported, not dropped: see status_code::contact_lost).
+struct rigid_body {
+  double load = 1;  ///< total load per unit length > 0 [N/m]
 };
 
 struct scene {
   punch::material material;
   double speed = 1;  ///< sliding speed U > 0 towards -x [m/s]
   std::vector<indentor> indentors;
+  std::optional<rigid_body> body{};  ///< all indentors on one rigid body (their `load` fields unused)
 };
 
 struct solve_options {
@@ -257,9 +282,11 @@ enum class status_code {
   contacts_merge,  ///< two contacts meet (their gap closed during the coupled solve)
   penetration,     ///< several indentors: the surface crosses an indentor's profile next to its
                    ///< contact (checked at 14 points L/64 .. L from its edges)
+  contact_lost,    ///< rigid body: an indentor's contact shrinks to nothing (it would carry no
+                   ///< load at this total load and these heights)
 };
 
-/// "ok", "not_converged", "tension", "load_mismatch", "contacts_merge", "penetration".
+/// "ok", "not_converged", "tension", "load_mismatch", "contacts_merge", "penetration", "contact_lost".
 const char* to_string(status_code code);
 
 enum class edge_side { leading, trailing };
@@ -293,6 +320,12 @@ struct indentor_result {
   std::vector<double> displacement_x;  ///< displacement abscissae, [a - L, b + L] (empty unless asked)
   std::vector<double> displacement;    ///< downward surface displacement relative to its value at
                                        ///< the leading edge a: equals f(x) - f(a) in contact [m]
+  /// Several indentors: the rigid approach of the indentor, approach = w(x) - f(x) on its contact
+  /// [m], w the downward surface displacement of docs/theory.md section 8 (the kernel Psi fixes its
+  /// constant: a plane-strain half-space has no displacement datum at infinity, so approaches are
+  /// meaningful as differences between indentors and as responses to loads; paper, end of section
+  /// 3). f is the profile with f(apex) = 0. NaN for a single indentor (not computed).
+  double approach = std::numeric_limits<double>::quiet_NaN();
   double residual = 0;              ///< max |LHS - RHS of (8)| / max |F| at check points
                                     ///< (NaN if solve_options::residual is false)
   double error_estimate = 0;        ///< estimated relative error of the density (an estimate)
@@ -302,6 +335,9 @@ struct indentor_result {
 };
 
 struct scene_result {
+  /// scene::body: the body's approach, approach_i + height_i (equal for all indentors to the
+  /// acceptance, relative to the largest f' L; the evidence is in diagnostics.status otherwise).
+  std::optional<double> body_approach;
   double beta = 0;
   double kappa = 0;
   std::string regime;  ///< "below", "boundary" or "above": sign of alpha + beta/2 - 1/2 (see top)
