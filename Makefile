@@ -5,7 +5,7 @@
 MAKEFLAGS += --no-print-directory
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: demo test deps deps-mpi build build-mpi sanitize test-sanitize studies bench friction-map clean
+.PHONY: demo test deps deps-mpi build build-mpi sanitize test-sanitize test-fuzz studies bench friction-map clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -40,6 +40,13 @@ test-sanitize: deps
 	@cmake --preset sanitize >/dev/null
 	@cmake --build --preset sanitize -j $(JOBS)
 	@ctest --preset sanitize -j $(JOBS)
+
+# The libFuzzer target of the scene parser and the solve entry (tests/fuzz/README.md): clang,
+# only the sources it needs; a 60 s run on the committed corpus (CI runs this too).
+test-fuzz: deps
+	@cmake --preset fuzz >/dev/null
+	@cmake --build --preset fuzz -j $(JOBS)
+	@bash tests/fuzz/run.sh build-fuzz/bin/fuzz_scene
 
 studies: build
 	@bash scripts/run-studies.sh

@@ -17,6 +17,8 @@
 #include <rhabel/punch/contact.hpp>
 
 #include <cmath>
+#include <random>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -97,6 +99,22 @@ void require_finite(const ordered_json& value, const std::string& path) {
   }
 }
 
+// The same for a sampled array (kept out of the document, see run_outcome).
+void require_finite(const std::vector<double>& values, const std::string& path) {
+  for (std::size_t k = 0; k < values.size(); ++k)
+    if (!std::isfinite(values[k]))
+      throw std::runtime_error("solve: the solver produced a non-finite value at " + path + "[" + std::to_string(k) + "]");
+}
+
+// A placeholder prefix no scene text can contain by chance: a control character (escaped as
+// \u001f in the dump, as it would be in any string of the scene) and 64 random bits.
+std::string make_grid_token() {
+  std::random_device device;
+  std::ostringstream os;
+  os << '\x1f' << "rhabel-grid-" << std::hex << device() << device() << ':';
+  return os.str();
+}
+
 ordered_json edge_json(const punch::edge_report& e) {
   return {{"side", e.side == punch::edge_side::leading ? "leading" : "trailing"},
           {"at", e.position},
@@ -121,6 +139,10 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
 
   run_outcome out;
   auto& doc = out.result;
+  if (request.grid > 0) out.grid_token = make_grid_token();
+  // Placeholder of sampled array k of the run (pressure x, p, displacement x, w of each indentor).
+  std::size_t arrays = 0;
+  auto placeholder = [&] { return out.grid_token + std::to_string(arrays++); };
   doc["beta"] = r.beta;
   doc["kappa"] = r.kappa;
   doc["regime"] = r.regime;
@@ -130,7 +152,7 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   out.pressure.columns = {"indentor", "x", "pressure"};
   out.displacement.columns = {"indentor", "x", "displacement"};
   for (std::size_t i = 0; i < r.indentors.size(); ++i) {
-    const auto& ir = r.indentors[i];
+    auto& ir = r.indentors[i];
     const auto& spec_i = spec.indentors.at(i);
     ordered_json item;
     item["shape"] = shape_name(spec_i.shape);
@@ -161,14 +183,15 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
       if (ir.grid_x.size() != ir.pressure.size() || ir.displacement_x.size() != ir.displacement.size()) {
         throw std::runtime_error("solve: the solver returned grids of mismatched sizes");
       }
-      item["pressure"] = {{"x", ir.grid_x}, {"p", ir.pressure}};
-      item["displacement"] = {{"x", ir.displacement_x}, {"w", ir.displacement}};
-      for (std::size_t k = 0; k < ir.grid_x.size(); ++k) {
-        out.pressure.rows.push_back({static_cast<double>(i), ir.grid_x[k], ir.pressure[k]});
-      }
-      for (std::size_t k = 0; k < ir.displacement_x.size(); ++k) {
-        out.displacement.rows.push_back({static_cast<double>(i), ir.displacement_x[k], ir.displacement[k]});
-      }
+      const std::string where = "result.indentors[" + std::to_string(i) + "].";
+      require_finite(ir.grid_x, where + "pressure.x");
+      require_finite(ir.pressure, where + "pressure.p");
+      require_finite(ir.displacement_x, where + "displacement.x");
+      require_finite(ir.displacement, where + "displacement.w");
+      item["pressure"] = {{"x", placeholder()}, {"p", placeholder()}};
+      item["displacement"] = {{"x", placeholder()}, {"w", placeholder()}};
+      out.pressure.fields.push_back({i, std::move(ir.grid_x), std::move(ir.pressure)});
+      out.displacement.fields.push_back({i, std::move(ir.displacement_x), std::move(ir.displacement)});
     }
     indentors.push_back(std::move(item));
   }
@@ -182,6 +205,53 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   doc["scene"] = echo_scene(spec);
   require_finite(doc, "result");
   return out;
+}
+
+void write_document(const run_outcome& outcome, bool compact, const std::function<void(std::string_view)>& write) {
+  const std::string text = compact ? outcome.result.dump() : outcome.result.dump(2);
+  if (outcome.grid_token.empty()) {
+    write(text);
+    return;
+  }
+  // The arrays in the order of their placeholders (run_scene numbers them in this order).
+  std::vector<const std::vector<double>*> arrays;
+  for (std::size_t f = 0; f < outcome.pressure.fields.size(); ++f) {
+    arrays.push_back(&outcome.pressure.fields[f].x);
+    arrays.push_back(&outcome.pressure.fields[f].value);
+    arrays.push_back(&outcome.displacement.fields[f].x);
+    arrays.push_back(&outcome.displacement.fields[f].value);
+  }
+  const std::string dumped = ordered_json(outcome.grid_token).dump();  // "\u001frhabel-grid-...:"
+  const std::string marker = dumped.substr(0, dumped.size() - 1);      // without the closing quote
+  std::string buffer;
+  std::size_t done = 0;
+  for (std::size_t at = text.find(marker); at != std::string::npos; at = text.find(marker, done)) {
+    const std::size_t close = text.find('"', at + marker.size());
+    const std::size_t index = std::stoul(text.substr(at + marker.size(), close - at - marker.size()));
+    buffer.assign(text, done, at - done);
+    // nlohmann's layout of a non-empty array: "[" then, indented, one element a line ("\n" +
+    // indent + 2 spaces before each), "\n" + indent + "]"; compact: "[a,b,...]".
+    const std::size_t line = text.rfind('\n', at) + 1;
+    const std::size_t indent = text.find_first_not_of(' ', line) - line;
+    const std::string separator = compact ? "," : ",\n" + std::string(indent + 2, ' ');
+    const std::vector<double>& values = *arrays.at(index);
+    buffer += '[';
+    if (!compact && !values.empty()) buffer += "\n" + std::string(indent + 2, ' ');
+    char number[64];
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      if (k) buffer += separator;
+      buffer.append(number, nlohmann::detail::to_chars(number, number + sizeof number, values[k]));
+      if (buffer.size() > (1u << 20)) {
+        write(buffer);
+        buffer.clear();
+      }
+    }
+    if (!compact && !values.empty()) buffer += "\n" + std::string(indent, ' ');
+    buffer += ']';
+    write(buffer);
+    done = close + 1;
+  }
+  write(std::string_view(text).substr(done));
 }
 
 }  // namespace rhabel::cli

@@ -8,7 +8,9 @@
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
+#include <functional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rhabel::cli {
@@ -18,19 +20,35 @@ struct run_request {
   std::size_t grid = 0;  ///< 0: no sampled fields; otherwise points per field (>= 2)
 };
 
-/// A table of sampled values, written as CSV with `columns` as header.
-struct sampled_table {
-  std::vector<std::string> columns;
-  std::vector<std::vector<double>> rows;
+/// One indentor's samples of a field: abscissae and values (finite), of equal sizes.
+struct sampled_field {
+  std::size_t indentor = 0;
+  std::vector<double> x, value;
 };
 
-/// Everything `rhabel solve` outputs, computed before anything is written.
+/// A table of sampled values, written as CSV with `columns` as header (indentor,x,value): the
+/// rows of each field in turn.
+struct sampled_table {
+  std::vector<std::string> columns;
+  std::vector<sampled_field> fields;
+};
+
+/// Everything `rhabel solve` outputs, computed before anything is written. The sampled arrays
+/// live once, in `pressure` and `displacement`: the document holds a placeholder string for each
+/// (an unguessable token, grid_token), which write_document replaces by the array itself, so that
+/// a 10^6-point grid is never copied into the JSON tree.
 struct run_outcome {
   nlohmann::ordered_json result;  ///< the result document (finite numbers only)
   sampled_table pressure;         ///< indentor,x,pressure (empty unless grid > 0)
   sampled_table displacement;     ///< indentor,x,displacement (empty unless grid > 0)
+  std::string grid_token;         ///< placeholder prefix of the arrays in `result`
   bool ok = true;                 ///< the result's status is "ok" (else `rhabel solve` exits 3)
 };
+
+/// The result document as text (indented by 2, or compact), the sampled arrays in their places:
+/// the same bytes as dumping a document that held the arrays. `write` receives consecutive
+/// pieces of it.
+void write_document(const run_outcome& outcome, bool compact, const std::function<void(std::string_view)>& write);
 
 /// Solves `scene`. Throws input_error if the solver rejects the scene (e.g. indentors whose
 /// contact intervals would overlap), std::runtime_error if it fails or produces a non-finite

@@ -17,6 +17,7 @@ packages=(
   pybind11-dev python3-dev    # the Python package rhabel (python/)
   python3-numpy python3-pytest  # its arrays and its tests (tests/python/)
   python3-nbclient python3-nbformat python3-nbconvert python3-ipykernel  # notebooks/, run by CTest (label notebooks)
+  clang-14 libclang-rt-14-dev  # libFuzzer and its sanitizers: make test-fuzz (tests/fuzz/)
 )
 
 # `make test` (scripts/install-deps.sh --mpi) also tests `rhabel sweep` under mpirun; the main

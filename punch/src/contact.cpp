@@ -39,6 +39,94 @@ namespace detail {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Limits of representable scenes (examples/README.md, the schema table). Each field may be
+// valid alone while the scene is not representable in double precision: the solve works in the
+// scene's units, so its contact lengths, strains and pressure scale must be numbers far from the
+// double range (its squares and powers 1/(1 - alpha) are formed on the way). The checks use the
+// scaling of the closed forms (docs/theory.md section 5) in logarithms, so that they never overflow:
+// with E_U the effective modulus (material::effective_modulus), a contact length and a strain
+//   parabola: L ~ (P R/E_U)^(1/(2 - alpha)), strain L/R;
+//   wedge:    L from P/pressure_scale = K L^(1 - alpha), K in closed form (validate_scales),
+//             strain S = (S1 + S2)/2;
+//   flat:     L = width,                       strain P/(E_U width^(1 - alpha)).
+// The parabola's constants (Beta functions of order 1, to the power 1/(2 - alpha) < 1) do not
+// matter at these margins.
+constexpr double max_decades_modulus = 250;  // E_U in [1e-250, 1e250]
+constexpr double max_decades_length = 100;   // contact lengths in [1e-100, 1e100]
+constexpr double max_decades_strain = 100;   // strains in [1e-100, 1e100]
+// 1 - beta = (2/pi) atan(1/q), q = coulomb (1 - 2 nu)/(2 (1 - nu)): beyond q = 1e12, beta is
+// within 7e-13 of 1, where the exponents of (8) (1 + beta)/2 and the kernel's factor
+// tan(beta pi/2) leave no digits to the solve (measured at nu = 0.3: q = 3e5 ok; q = 3e7 .. 3e11
+// not_converged, exit code 3; q = 3e299 gave beta = 1 exactly, an internal error).
+constexpr double max_friction_ratio = 1e12;
+// Below the boundary (alpha + beta/2 < 1/2), a wedge's leading slope at most 1e7 times its
+// trailing one: beyond, the contact starts within ~1e-14 L of the apex, the apex split of the
+// density and the residual's quadrature next to the apex fail (measured at alpha = 0, 0.1, 0.3:
+// 1e7 ok, 1e8 refused with internal messages). Above it the contact ends at the apex (C_f = S1), and
+// the other way (S2 >> S1) too: no limit there.
+constexpr double max_slope_ratio = 1e7;
+
+namespace {
+[[noreturn]] void not_representable(const std::string& fields, double decades, const char* what, double limit) {
+  std::ostringstream os;
+  os << std::fixed;
+  os.precision(0);
+  os << "rhabel::punch::solve: " << fields << " give " << what << " ~1e" << decades
+     << ", beyond the representable range [1e-" << limit << ", 1e" << limit << "] (examples/README.md, limits)";
+  throw std::invalid_argument(os.str());
+}
+}  // namespace
+
+// The scale limits above, for one indentor (after the fields' own ranges were checked).
+void validate_scales(const material& m, double speed, const indentor& ind, const std::string& p) {
+  const double ln10 = std::log(10.0);
+  const double alpha = m.alpha < alpha_zero ? 0.0 : m.alpha;
+  const double log_modulus = (std::log(m.E1) + std::lgamma(1 - alpha) + alpha * std::log(speed) -
+                              std::log1p(-m.poisson * m.poisson)) / ln10;
+  if (!(std::abs(log_modulus) <= max_decades_modulus))
+    not_representable("material.E1, material.alpha and speed", log_modulus, "the effective modulus E_U", max_decades_modulus);
+  const double log_load = std::log10(ind.load);
+  double log_length = 0, log_strain = 0;
+  std::string fields;
+  if (const auto* q = std::get_if<parabolic>(&ind.shape)) {
+    log_length = (log_load + std::log10(q->radius) - log_modulus) / (2 - alpha);
+    log_strain = log_length - std::log10(q->radius);
+    fields = p + "load, " + p + "radius and the material";
+  } else if (const auto* w = std::get_if<wedge>(&ind.shape)) {
+    // int g = K L^(1 - alpha) with the closed form of K (single_contact.cpp, solve_wedge): above
+    // the boundary K = S1 cos(beta pi/2) B(gam + 1, del + 1)/(pi Gamma(1 - alpha)), exactly, since
+    // its power 1/(1 - alpha) amplifies every factor as alpha -> 1 (Gamma(1 - alpha)^(1/(1 - alpha))
+    // is 1e200 at alpha = 0.99); below it (alpha < 1/2, a power < 2) the same with S = (S1 + S2)/2.
+    const double S = 0.5 * w->slope_leading + 0.5 * w->slope_trailing;
+    log_strain = std::log10(S);
+    const context cx = make_context(m, speed, solve_options{});
+    const bool above = cx.offset >= -boundary_width;
+    if (!above && w->slope_leading > max_slope_ratio * w->slope_trailing) {
+      std::ostringstream os;
+      os.precision(3);
+      os << "rhabel::punch::solve: " << p << "slope_leading / " << p << "slope_trailing = "
+         << w->slope_leading / w->slope_trailing << " must be <= " << max_slope_ratio
+         << " below the boundary alpha + beta/2 = 1/2 (the contact would start within rounding of the apex; "
+            "examples/README.md, limits)";
+      throw std::invalid_argument(os.str());
+    }
+    const edge_exponents e = cx.exponents(above ? 0 : -1);
+    const double log_beta = above ? (std::lgamma(e.gam + 1) + std::lgamma(e.del + 1) - std::lgamma(e.gam + e.del + 2)) / ln10 : 0.0;
+    const double log_K = std::log10(above ? w->slope_leading : S) + std::log10(std::cos(cx.beta * pi / 2)) + log_beta -
+                         std::log10(pi) - std::lgamma(1 - alpha) / ln10;
+    const double log_target = log_load - std::log10(pi / 2) - log_modulus;  // P / pressure_scale
+    log_length = (log_target - log_K) / (1 - alpha);
+    fields = p + "load, " + p + "slope_leading, " + p + "slope_trailing and the material";
+  } else if (const auto* f = std::get_if<flat>(&ind.shape)) {
+    log_length = std::log10(f->width);
+    log_strain = log_load - log_modulus - (1 - alpha) * log_length;
+    fields = p + "load, " + p + "width and the material";
+  } else {
+    return;  // a general profile: its scales are the caller's
+  }
+  if (!(std::abs(log_length) <= max_decades_length)) not_representable(fields, log_length, "a contact length", max_decades_length);
+  if (!(std::abs(log_strain) <= max_decades_strain)) not_representable(fields, log_strain, "a strain", max_decades_strain);
+}
 
 void validate(const scene& s) {
   const auto& m = s.material;
@@ -46,6 +134,14 @@ void validate(const scene& s) {
   if (!(m.E1 > 0) || !std::isfinite(m.E1)) bad_field("material.E1", m.E1, "finite and > 0");
   if (!(m.poisson > -1 && m.poisson <= 0.5)) bad_field("material.poisson", m.poisson, "in (-1, 0.5]");
   if (!(m.coulomb >= 0) || !std::isfinite(m.coulomb)) bad_field("material.coulomb", m.coulomb, "finite and >= 0");
+  if (m.coulomb * (1 - 2 * m.poisson) > max_friction_ratio * 2 * (1 - m.poisson)) {
+    std::ostringstream os;
+    os.precision(17);
+    os << "rhabel::punch::solve: material.coulomb = " << m.coulomb << " must be <= 1e12 x 2 (1 - nu)/(1 - 2 nu) = "
+       << max_friction_ratio * 2 * (1 - m.poisson) / (1 - 2 * m.poisson)
+       << " (beyond, beta is within rounding of 1; examples/README.md, limits)";
+    throw std::invalid_argument(os.str());
+  }
   if (!(s.speed > 0) || !std::isfinite(s.speed)) bad_field("speed", s.speed, "finite and > 0");
   if (s.indentors.empty()) throw std::invalid_argument("rhabel::punch::solve: indentors is empty; give at least one");
   for (std::size_t i = 0; i < s.indentors.size(); ++i) {
@@ -70,6 +166,7 @@ void validate(const scene& s) {
         if (!std::isfinite(g->corners[k]))
           bad_field(p + "corners[" + std::to_string(k) + "]", g->corners[k], "finite");
     }
+    validate_scales(m, s.speed, ind, p);
   }
 }
 

@@ -154,15 +154,8 @@ double rh_pressure(const riemann::abel_rh_solution<double>& unit, double lo, dou
     if (!(t > lo && t < hi) || (t >= covered_left && t <= covered_right)) continue;
     const auto it = std::upper_bound(panels.begin(), panels.end(), t, [](double x, const panel& p) { return x < p.v; });
     if (it == panels.end()) continue;
-    // sum_k c_k T_k(s) by Clenshaw's recurrence
     const double x = ((t - it->u) - (it->v - t)) / (it->v - it->u);
-    double b1 = 0, b2 = 0;
-    for (std::size_t n = it->c.size(); n-- > 1;) {
-      const double b0 = 2 * x * b1 - b2 + it->c[n];
-      b2 = b1;
-      b1 = b0;
-    }
-    r.pressure[k] = scale * weight(*it, t) * (x * b1 - b2 + it->c[0]);
+    r.pressure[k] = scale * weight(*it, t) * riemann::detail::chebyshev_fit<double>::clenshaw(it->c, x);
   }
   return largest > 0 ? estimate / largest : estimate;
 }

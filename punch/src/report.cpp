@@ -378,11 +378,9 @@ indentor_result report_contact(const std::vector<indentor_state>& st, std::size_
     r.displacement_x.resize(n);
     r.displacement.resize(n);
     const double lo = g.jacobi.lo - L, hi = g.jacobi.hi + L;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double x = n == 1 ? (lo + hi) / 2 : lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(n - 1);
-      r.displacement_x[k] = x;
-      r.displacement[k] = heights.height(i, x);
-    }
+    for (std::size_t k = 0; k < n; ++k)
+      r.displacement_x[k] = n == 1 ? (lo + hi) / 2 : lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(n - 1);
+    r.displacement = heights.heights(i, r.displacement_x);
   }
   return r;
 }

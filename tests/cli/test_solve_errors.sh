@@ -166,6 +166,55 @@ fi
 head -n 1 "$tmp/keep_pressure.csv" | grep -q '^indentor,x,pressure$' || fail "the CSV file was not replaced"
 [ "$(ls "$tmp" | grep -c 'keep_.*\.csv\.')" -eq 0 ] || fail "temporary files left: $(ls "$tmp")"
 
+# --- issue 14: extreme valid scenes solve, or exit 2 naming the scene fields (never exit 1 or an
+# internal parameter such as "abel_operator: lo = nan", "beta = 1", "no bracket"); the limits are
+# in examples/README.md. Each of these gave exit 1 or an internal parameter's name.
+W='{"shape": "wedge", "slope_leading": 0.02, "slope_trailing": 0.03'
+expect_bad extreme_E1 '{"material": {"alpha": 0.3, "E1": 1e-300, "nu": 0.5, "coulomb": 0}, "speed": 0.01, "indentors": [{"shape": "parabolic", "radius": 0.01, "load": 100}]}' "material.E1" "effective modulus" "1e-250"
+expect_bad extreme_coulomb '{"material": {"alpha": 0.3, "E1": 1e6, "nu": 0.3, "coulomb": 1e300}, "speed": 0.01, "indentors": [{"shape": "parabolic", "radius": 0.01, "load": 100}]}' "material.coulomb" "1e12"
+expect_bad extreme_wedge_alpha '{"material": {"alpha": 0.999, "E1": 1e6, "nu": 0.5, "coulomb": 0}, "speed": 0.01, "indentors": ['"$W"', "load": 100}]}' "indentors[0].load" "indentors[0].slope_leading" "contact length" "1e-100"
+expect_bad extreme_load '{"material": {"alpha": 0.3, "E1": 1e6, "nu": 0.5, "coulomb": 0}, "speed": 0.01, "indentors": [{"shape": "parabolic", "radius": 0.01, "load": 1.797e308}]}' "indentors[0].load" "indentors[0].radius" "contact length"
+expect_bad extreme_elastic_load '{"material": {"alpha": 0, "E1": 1e6, "nu": 0.5, "coulomb": 0}, "speed": 0.01, "indentors": [{"shape": "parabolic", "radius": 0.01, "load": 1e300}]}' "indentors[0].load" "contact length"
+expect_bad extreme_radius '{"material": {"alpha": 0.3, "E1": 1e6, "nu": 0.5, "coulomb": 0}, "speed": 0.01, "indentors": [{"shape": "parabolic", "radius": 1e300, "load": 100}]}' "indentors[0].radius" "contact length"
+expect_bad extreme_width '{"material": {"alpha": 0.3, "E1": 1e6, "nu": 0.5, "coulomb": 0}, "speed": 0.01, "indentors": [{"shape": "flat", "width": 1e-320, "load": 100}]}' "indentors[0].width" "contact length"
+expect_bad extreme_flat_load '{"material": {"alpha": 0.3, "E1": 1e6, "nu": 0.5, "coulomb": 0}, "speed": 0.01, "indentors": [{"shape": "flat", "width": 0.01, "load": 2e302}]}' "indentors[0].load" "indentors[0].width" "strain"
+expect_bad extreme_slope_ratio '{"material": {"alpha": 0.3, "E1": 1e6, "nu": 0.5, "coulomb": 0}, "speed": 0.01, "indentors": [{"shape": "wedge", "slope_leading": 1e6, "slope_trailing": 0.01, "load": 100}]}' "indentors[0].slope_leading / indentors[0].slope_trailing" "1e+07"
+
+# expect_solved NAME SCENE-TEXT STATUS ARGS...: exit 0 (STATUS ok) or 3, a JSON result with that
+# status, nothing on stderr.
+expect_solved() {
+  local name="$1" scene="$2" status="$3"; shift 3
+  printf '%s' "$scene" > "$tmp/scene.json"
+  "$rhabel" solve "$tmp/scene.json" "$@" > "$tmp/stdout" 2> "$tmp/stderr"; local rc=$?
+  local want=3; [ "$status" = ok ] && want=0
+  [ "$rc" -eq "$want" ] || fail "$name: exit code $rc, expected $want: $(cat "$tmp/stderr")"
+  [ -s "$tmp/stderr" ] && fail "$name: stderr: $(cat "$tmp/stderr")"
+  /usr/bin/python3 -c 'import json, sys; d = json.load(open(sys.argv[1])); assert d["diagnostics"]["status"] == sys.argv[2], d["diagnostics"]' \
+    "$tmp/stdout" "$status" 2> /dev/null || fail "$name: status is not $status"
+}
+# alpha + beta/2 - 1/2 = 1e-7: the displacement's Gauss-Jacobi rule (exponent -1e-7) failed
+expect_solved near_boundary_grid '{"material": {"alpha": 0.5000001, "E1": 1e6, "nu": 0.5, "coulomb": 0}, "speed": 0.01, "indentors": [{"shape": "parabolic", "radius": 0.01, "load": 100}]}' ok --grid 100
+expect_solved apex_1e15_grid '{"material": {"alpha": 0.3, "E1": 1e6, "nu": 0.5, "coulomb": 0}, "speed": 0.01, "indentors": [{"shape": "parabolic", "radius": 0.01, "load": 100, "apex": 1e15}]}' ok --grid 100
+# alpha = 0.999 with a load that gives a contact of ~0.5 (int g = K L^(1 - alpha))
+expect_solved wedge_alpha_0999 '{"material": {"alpha": 0.999, "E1": 1e6, "nu": 0.5, "coulomb": 0}, "speed": 1, "indentors": ['"$W"', "load": 4.18e4}]}' ok --grid 50
+expect_solved leading_slope_ratio_1e7 '{"material": {"alpha": 0.3, "E1": 1e6, "nu": 0.5, "coulomb": 0}, "speed": 0.01, "indentors": [{"shape": "wedge", "slope_leading": 1e7, "slope_trailing": 1, "load": 1e13}]}' ok --grid 50
+expect_solved leading_slope_ratio_above '{"material": {"alpha": 0.7, "E1": 1e6, "nu": 0.5, "coulomb": 0}, "speed": 0.01, "indentors": [{"shape": "wedge", "slope_leading": 1e15, "slope_trailing": 1, "load": 1e21}]}' ok --grid 50
+expect_solved trailing_slope_ratio '{"material": {"alpha": 0.3, "E1": 1e6, "nu": 0.5, "coulomb": 0}, "speed": 0.01, "indentors": [{"shape": "wedge", "slope_leading": 0.01, "slope_trailing": 1e6, "load": 100}]}' ok --grid 50
+
+# --- issue 14: fields cheap per sample. The solve's own clock (diagnostics.seconds: the solve and
+# the sampling, not the JSON) with 10^5 samples of each field against without: a quadrature per
+# displacement sample made this ratio ~70 (66-90 s for 10^6 samples of this ~0.1 s scene); sampling
+# from interpolants makes it ~3, in Release and under ASan alike (both sides slow down together).
+"$rhabel" solve "$2/examples/default_scene.json" --compact > "$tmp/plain.json" 2> "$tmp/stderr" || fail "default scene: $(cat "$tmp/stderr")"
+"$rhabel" solve "$2/examples/default_scene.json" --grid 100000 --compact > "$tmp/grid.json" 2> "$tmp/stderr" || fail "default scene --grid 100000: $(cat "$tmp/stderr")"
+/usr/bin/python3 - "$tmp/plain.json" "$tmp/grid.json" <<'PY' || fail "--grid 100000 costs more than 20 solves of the scene"
+import json, sys
+plain, grid = (json.load(open(f))["diagnostics"]["seconds"] for f in sys.argv[1:3])
+print(f"default scene: solve {plain:.3f} s, with 10^5 samples {grid:.3f} s")
+assert grid < 20 * plain + 0.05, (plain, grid)
+PY
+rm -f "$tmp/plain.json" "$tmp/grid.json"
+
 # --- the exit codes are documented in --help ---------------------------------------------------
 "$rhabel" solve --help > "$tmp/help" || fail "solve --help: exit code $?"
 for line in "^Exit codes:" "^  0  ok" "^  1  internal error" "^  2  bad input, a scene that cannot be solved, or an output that could not be written"; do

@@ -110,6 +110,15 @@ namespace punch_test::bem {
 
 inline constexpr double pi = 3.141592653589793238462643383279502884;
 
+/// True in the AddressSanitizer build (CI's second pass, where a scene of the oracle costs
+/// 10-30x its Release time): the oracle's tests then run one case each on a coarser refinement
+/// (sanitizer_options), for memory safety; the Release pass runs every case at full accuracy.
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool sanitizer_build = true;
+#else
+inline constexpr bool sanitizer_build = false;
+#endif
+
 // ---------------------------------------------------------------------------------------------
 // Scene description
 struct parabola {
@@ -748,6 +757,16 @@ struct result {
   double min_gap = 0;                 ///< min gap / max |f - delta| outside the contacts, finest level
   bool converged = false;             ///< every stage converged
 };
+
+/// Options with `levels` fitted levels, at most 4 in the sanitizer build (25 .. 200 panels per
+/// contact: the finest dense solve ~64x cheaper than at 800; test_coupled_bem's first cases 1.6 s
+/// instead of 48 s in Release, every check still passing). Three levels (25 .. 100) are not yet
+/// asymptotic: a bar there underestimated an edge's error 3x.
+inline options test_options(int levels) {
+  options o;
+  o.levels = sanitizer_build ? std::min(levels, 4) : levels;
+  return o;
+}
 
 /// Largest grid `solve` refines to when a contact spans under 16 grid panels.
 inline constexpr int max_grid_panels = 3200;

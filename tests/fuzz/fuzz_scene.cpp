@@ -1,0 +1,62 @@
+// libFuzzer target for the scene parser and the solve entry of `rhabel solve`
+// (tests/fuzz/README.md: how it is built, run and bounded).
+//
+// Each input is a scene text. It goes through the same parse_scene as `rhabel solve`; a scene
+// refused by the parser must be refused with an input_error (exit code 2 of the program). A scene
+// that parses is solved through run_scene (the punch layer plus the result document, with a
+// 7-point field grid), which may refuse it (input_error) or return a result of any status.
+// Anything else is a finding: a sanitizer report, an escaped exception, or a std::runtime_error
+// out of run_scene, which the program turns into exit code 1 "internal error" on a valid scene.
+//
+// The solve cost per input is bounded so that a 60 s run explores many inputs: each indentor is
+// solved alone (a one-indentor copy of the scene). A coupled solve of several contacts can take
+// seconds (closeness costs degree ~ sqrt(L/gap)), and its paths are covered by the punch tests; the
+// isolated path, where hostile numbers meet the solver, costs milliseconds. Master-curve materials
+// are parsed but not solved (they read a file).
+#include "scene_json.hpp"
+#include "scene_solve.hpp"
+#include "commands.hpp"
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <string_view>
+
+namespace {
+
+[[noreturn]] void finding(const char* what, const char* message) {
+  std::fprintf(stderr, "fuzz_scene: %s: %s\n", what, message);
+  std::abort();
+}
+
+constexpr std::size_t fuzz_grid = 7;  // samples per field: exercises the sampling, costs little
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  using namespace rhabel::cli;
+  const std::string_view text(reinterpret_cast<const char*>(data), size);
+  scene_spec scene;
+  try {
+    scene = parse_scene(text, "(fuzz)");
+  } catch (const input_error&) {
+    return 0;  // refused cleanly
+  } catch (const std::exception& e) {
+    finding("parse_scene threw something other than input_error", e.what());
+  }
+  if (scene.material.curve) return 0;
+  for (const auto& indentor : scene.indentors) {
+    scene_spec alone = scene;
+    alone.indentors = {indentor};
+    try {
+      (void)run_scene(alone, run_request{fuzz_grid});
+    } catch (const input_error&) {
+      // refused cleanly (exit code 2)
+    } catch (const std::exception& e) {
+      finding("run_scene: internal error on a valid scene", e.what());
+    }
+  }
+  return 0;
+}
