@@ -504,6 +504,30 @@ TEST_CASE("gauss_jacobi: regression issue 14, exponents beyond 30 are refused (w
   CHECK(gauss_jacobi<double>(3, 30.0, 30.0).size() == 3);
 }
 
+TEST_CASE("gauss_jacobi: regression, small negative exponents on the asymptotic path (Boost's Bessel zeros fail there)") {
+  // An exponent in (-1e-5, 0) made boost::math::cyl_bessel_j_zero throw "No change of sign" for
+  // the asymptotic path's boundary guesses (rhabel rule gauss-jacobi 96 0.5 -1e-7 exited 1). The
+  // rule must be exact for (1 +- x)^j, j <= 2n - 1 (Beta-function moments, tolerance as above).
+  for (std::size_t n : {96, 1000}) {
+    for (double tiny : {-1e-7, -3e-6, -2e-4}) {
+      for (const bool at_plus_one : {true, false}) {
+        const double p = at_plus_one ? tiny : 0.5, q = at_plus_one ? 0.5 : tiny;
+        const auto rule = gauss_jacobi<double>(n, p, q);
+        REQUIRE(rule.size() == n);
+        const double tolerance = 4.0 * static_cast<double>(2 * n + 8) * eps;
+        for (int j : {0, 1, 7, static_cast<int>(n)}) {
+          long double plus = 0;
+          for (std::size_t i = 0; i < n; ++i) plus += rule.weight[i] * std::pow(static_cast<long double>(rule.x_minus_lo[i]), j);
+          CAPTURE(n);
+          CAPTURE(tiny);
+          CAPTURE(j);
+          CHECK(static_cast<double>(std::fabs(plus / shifted_moment(j, p, q) - 1)) <= tolerance);
+        }
+      }
+    }
+  }
+}
+
 TEST_CASE("gauss_jacobi: regression issue 14, subnormal exponents are in range (the rule of exponent 0)") {
   // 1e-320 and -1e-320 are inside (-1, 30]; (1 +- x)^(1e-320) differs from 1 by far less than eps,
   // so the rule is that of exponent 0 to the contract (the paths may take the generic-exponent

@@ -289,7 +289,12 @@ inline double boundary_guess(std::size_t k, double a, double b, double rho) {
   // In double without Boost's default promotion to long double (a starting value only; the
   // promoted evaluation cost a third of the time of a rule at n = 100).
   using double_policy = boost::math::policies::policy<boost::math::policies::promote_double<false>>;
-  const double j = boost::math::cyl_bessel_j_zero(a, static_cast<int>(k), double_policy());
+  // Boost's zero finder has no bracket for orders in (-1e-5, 0) ("No change of sign": a rule with
+  // an exponent -1e-7 exited with an internal error); there the order-0 zero moved by its first-
+  // order shift a pi/2 (McMahon) is the starting value (off by O(a^2 + a/k), far below a spacing).
+  const double j = a < 0 && a > -1e-3 ? boost::math::cyl_bessel_j_zero(0.0, static_cast<int>(k), double_policy()) +
+                                            a * boost::math::constants::pi<double>() / 2
+                                      : boost::math::cyl_bessel_j_zero(a, static_cast<int>(k), double_policy());
   const double phi = j / rho;
   return phi + ((a * a - 0.25) * (1 - phi / std::tan(phi)) / (2 * phi) - (a * a - b * b) * std::tan(phi / 2) / 4) /
                    (rho * rho);
