@@ -159,8 +159,9 @@
 //     parabolas, all `ok`, edges and C_f to ~1e-12): gap ~ L 3-10 ms, 0.1 L 48-610 ms, 0.01 L
 //     0.6-2.4 s, 1e-3 L 3-18 s (the correction's degree grows like sqrt(L/gap) and each Newton
 //     evaluation is a dense solve); parabola + wedge 30 ms - 1 s; rows of N parabolas 1.5 L apart
-//     (alpha 0.3, tolerance 1e-10; loads imposed above 5 contacts): N = 5 38 ms (14 Newton
-//     iterations), 10 0.14 s (13), 20 0.62 s (16), 40 3.4 s (21), 100 1-1.5 min (16); each evaluation is a dense union
+//     (alpha 0.3, tolerance 1e-10; loads imposed above 5 contacts; studies/results/multi_contact.log):
+//     N = 5 68 ms (14 Newton iterations), 10 0.22 s (13), 20 1.1 s (16), 40 6 s (21), 100 82 s
+//     (16); each evaluation is a dense union
 //     solve with N^2 cross blocks, so the cost per evaluation grows like N^2 .. N^3 (no low-rank
 //     far field). Against the usual boundary-element
 //     method (the tests' oracle at 3200 uniform panels): edges to 3e-4 .. 1.2e-3 L and C_f to
