@@ -199,8 +199,8 @@ double psi_distance(double d, double alpha, double one_minus_kappa_over_alpha, d
   if (s < t) return -em(t - s);
   if (s > t) return -kappa * em(s - t) + one_minus_kappa_over_alpha;
   // d = 0: both sides tend to 1/alpha (a line load's own point; line loads exist only for
-  // alpha + beta/2 >= 1/2, so alpha > 0 there). It was 0: a line load's displacement samples were
-  // off by w/alpha against its documented reference point (found by notebooks/flat_punch.ipynb).
+  // alpha + beta/2 >= 1/2, so alpha > 0 there): the continuous value keeps a line load's
+  // displacement samples relative to its documented reference point, the load point.
   return alpha > 0 ? 1 / alpha : 0.0;
 }
 

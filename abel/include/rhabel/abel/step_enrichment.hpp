@@ -505,7 +505,7 @@ struct enriched_solution {
 /// solve_step uses the normalized enrichment (E - 1)/alpha below this alpha. Above it the plain
 /// enrichment E loses ~ eps/alpha^2 to cancellation (C = O(1/alpha), A[E] = O(1/alpha)): measured
 /// agreement of the two paths 1.3e-13 at alpha = 0.01, 5e-15 at 0.03 (int g, int_a^t0 g), at
-/// ~1-2 ms instead of 3-8 ms. (Formerly 0.05.)
+/// ~1-2 ms instead of 3-8 ms.
 template <class Real>
 Real normalized_enrichment_threshold() {
   return Real(1) / 100;
