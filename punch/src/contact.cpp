@@ -245,9 +245,7 @@ void report_body(const scene& s, const std::vector<indentor_state>& st, const co
     const auto& r = out.indentors[state.scene_index];
     total += r.load;
     spread = std::max(spread, std::abs(r.approach + state.height - level0));
-    double slope = 0;
-    for (int k = 0; k <= 8; ++k) slope = std::max(slope, std::abs(own_slope(state, state.g.a() + state.g.length() * k / 8.0)));
-    scale = std::max(scale, slope * state.g.length());
+    scale = std::max(scale, max_slope(state, state.g.a(), state.g.b()) * state.g.length());
   }
   out.body_approach = level0;
   const double load_defect = std::abs(total / s.body->load - 1), level_defect = spread / scale;

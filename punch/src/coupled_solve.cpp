@@ -32,8 +32,8 @@
 // singular at both edges, whose homogeneous solution carries int g_j = P_j, with the conditions
 // that both intensity factors vanish; once converged they are re-solved in the bounded class for
 // the report. Moving an edge then changes a contact's far field only by a dipole, and the
-// coloured Jacobian of many contacts stays accurate (rows of 10 / 20 / 40 parabolas: 13 / 16 / 19
-// Newton iterations instead of 25 / 39 / ~60).
+// coloured Jacobian of many contacts stays accurate (rows of 10 / 20 / 40 parabolas: 13 / 16 / 21
+// Newton iterations instead of 25 / 39 / 56).
 //
 // A RIGID BODY (scene::body). The loads are unknowns and the heights of the indentors are given:
 // every contact keeps its first condition (d_j = 0 or its split-form intensity), and its second
@@ -250,9 +250,7 @@ struct fixed_solution {
 
 /// Scale of the data on a contact: max |f'|/Gamma(1 - alpha) at 9 points (0 for a flat face).
 double data_scale(const indentor_state& st, const context& cx, double a, double b) {
-  double m = 0;
-  for (int k = 0; k <= 8; ++k) m = std::max(m, std::abs(own_slope(st, a + (b - a) * k / 8.0)));
-  return m / cx.gamma_factor;
+  return max_slope(st, a, b) / cx.gamma_factor;
 }
 
 struct problem {
@@ -440,8 +438,19 @@ std::vector<double> body_conditions(const problem& pb, const fixed_solution& sol
   return r;
 }
 
-/// The conditions, in the order of the unknowns: (h^alpha d_j / data scale, load/P - 1) for a
-/// smooth contact, (load/P - 1) for a wedge ending at its apex.
+/// Intensity factor of g at one edge (series and apex part) as K L^exponent relative to the mean
+/// density load/L: the condition of an edge that must be smooth in a class singular there.
+double relative_intensity(const contact_density& g, bool trailing, double load) {
+  const double L = g.length();
+  const double K = trailing ? g.jacobi.intensity_trailing() + (g.has_apex ? g.apex.intensity_trailing() : 0.0)
+                            : g.jacobi.intensity_leading() + (g.has_apex ? g.apex.intensity_leading() : 0.0);
+  return K * std::pow(L, trailing ? g.jacobi.del : g.jacobi.gam) / (load / L);
+}
+
+/// The conditions, in the order of the unknowns. A smooth contact: h^alpha d_j / data scale (or,
+/// in the split form, the relative intensity at the near edge) and load/P - 1; with the load
+/// imposed, the relative intensities at both edges; on a rigid body, its second condition is
+/// body_conditions'. A wedge ending at its apex: load/P - 1 (on a body: body_conditions').
 evaluation evaluate(const problem& pb, const unknowns& u, const std::vector<double>& a, const std::vector<double>& b) {
   evaluation ev{solve_fixed(pb, a, b), Eigen::VectorXd(static_cast<Eigen::Index>(u.state.size()))};
   const auto& st = *pb.st;
@@ -452,20 +461,10 @@ evaluation evaluate(const problem& pb, const unknowns& u, const std::vector<doub
     const double load = ev.sol.g[i].integral() / (pb.load_factor * st[i].target_load) - 1;
     if (pb.body_load && (u.trailing[k] || pb.roles[i] == role::apex_ended)) {
       ev.r[static_cast<Eigen::Index>(k)] = body_rows[i];
-    } else if (is_loaded(pb, i)) {
-      // Load imposed: both intensities vanish (K L^exponent relative to the mean g).
-      const auto& g = ev.sol.g[i].jacobi;
-      const double L = b[i] - a[i];
-      const double K = u.trailing[k] ? g.intensity_trailing() * std::pow(L, g.del) : g.intensity_leading() * std::pow(L, g.gam);
-      ev.r[static_cast<Eigen::Index>(k)] = K / (pb.load_factor * st[i].target_load / L);
-    } else if (pb.roles[i] == role::smooth_both && !u.trailing[k] && pb.split[i] != 0) {
-      // Split form: the intensity at the near edge vanishes (K L^exponent relative to the mean g).
-      const auto& g = ev.sol.g[i];
-      const double L = b[i] - a[i];
-      const double K = pb.split[i] > 0 ? g.jacobi.intensity_trailing() + g.apex.intensity_trailing()
-                                       : g.jacobi.intensity_leading() + g.apex.intensity_leading();
-      const double exponent = pb.split[i] > 0 ? g.jacobi.del : g.jacobi.gam;
-      ev.r[static_cast<Eigen::Index>(k)] = K * std::pow(L, exponent) / (pb.load_factor * st[i].target_load / L);
+    } else if (is_loaded(pb, i)) {  // load imposed: both intensities vanish
+      ev.r[static_cast<Eigen::Index>(k)] = relative_intensity(ev.sol.g[i], u.trailing[k], pb.load_factor * st[i].target_load);
+    } else if (pb.roles[i] == role::smooth_both && !u.trailing[k] && pb.split[i] != 0) {  // split: the near edge's
+      ev.r[static_cast<Eigen::Index>(k)] = relative_intensity(ev.sol.g[i], pb.split[i] > 0, pb.load_factor * st[i].target_load);
     } else if (pb.roles[i] == role::smooth_both && !u.trailing[k]) {
       const double scale = std::max(data_scale(st[i], cx, a[i], b[i]), std::numeric_limits<double>::min());
       ev.r[static_cast<Eigen::Index>(k)] = std::pow((b[i] - a[i]) / 2, cx.alpha) * ev.sol.defect[i] / scale;
@@ -857,15 +856,49 @@ newton_result height_continuation(problem& pb, const edges& isolated) {
   return r;
 }
 
+/// `pb` with every contact in the bounded class (no load imposed).
+problem bounded_form(problem pb) {
+  pb.loaded.assign(pb.loaded.size(), false);
+  return pb;
+}
+
+/// After `result` failed: `run` on `other` (a variant of pb); the variant and its result replace
+/// pb and result when better(second, first) says so. The iterations of both count.
+template <class Run, class Better>
+void retry(problem& pb, newton_result& result, problem other, Run run, Better better) {
+  auto second = run(other);
+  second.iterations += result.iterations;
+  if (better(second, result)) {
+    result = std::move(second);
+    pb = std::move(other);
+  }
+}
+
+/// scene::body, a contact vanished: which indentor would carry no load. The contact that shrank
+/// in the iteration need not be that indentor's (Newton from an equal split can wander), so it is
+/// named by the physical criterion: at the equal split (st's isolated contacts, their action on
+/// one another included) the indentor with the highest level approach + height is the one that
+/// must shed load (measured: alpha 0.6, a parabola ahead of a wedge on one body: the iteration
+/// shrank the parabola, the boundary-element oracle lifts the wedge off, which is the highest).
+std::string lost_contact_message(const std::vector<indentor_state>& st, const context& cx) {
+  std::vector<contact_density> start(st.size());
+  for (std::size_t k = 0; k < st.size(); ++k) start[k] = st[k].g;
+  const auto level = body_levels(st, start, cx, 1.0);
+  const std::size_t i = static_cast<std::size_t>(std::max_element(level.begin(), level.end()) - level.begin());
+  return "a contact vanishes in the iteration: at this body load and these heights an indentor would carry no "
+         "load, which is not solved; by the levels at an equal share of the load it is " +
+         indentor_name(st[i].scene_index, *st[i].source) + " (lower it, or remove it from the scene)";
+}
+
 /// Whether a contact is iterated with its load imposed: a smooth contact whose own data has no
 /// step (parabola, general profile without corners), below the boundary.
 /// WHY: in the bounded class the load of each contact is an output of its edges, so moving one
 /// edge changes that contact's load and thus its action on every other contact, which decays only
 /// like distance^(alpha - 1) (a monopole): the Jacobian is dense, and its banded (coloured)
 /// approximation converges linearly (rows of parabolas 1.5 L apart at alpha = 0.3: 25 Newton
-/// iterations for 10, 39 for 20, ~60 for 40). With the loads imposed, moving an edge changes a
+/// iterations for 10, 39 for 20, 56 for 40). With the loads imposed, moving an edge changes a
 /// contact's action only by a dipole, ~ distance^(alpha - 2), and the banded Jacobian is nearly
-/// exact: 13, 16 and 19 iterations. A wedge (its apex enrichment) and a split wedge keep the
+/// exact: 13, 16 and 21 iterations (studies/results/multi_contact.log). A wedge (its apex enrichment) and a split wedge keep the
 /// bounded class.
 bool loaded_form(const indentor_state& s, role r, const context& cx, bool body, std::size_t contacts) {
   if (body) return false;  // the loads are unknowns
@@ -908,48 +941,32 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   }
   for (std::size_t i = 0; i < st.size(); ++i) pb.start_length.push_back(isolated.b[i] - isolated.a[i]);
   coupled_outcome out;
+  auto any = [](const auto& flags) { return std::any_of(flags.begin(), flags.end(), [](auto v) { return v != 0; }); };
+  auto again = [&](problem& p) { return attempt(p, isolated); };
   newton_result result = attempt(pb, isolated);
-  if (!result.converged && std::any_of(pb.loaded.begin(), pb.loaded.end(), [](bool v) { return v; })) {
-    // The loads-imposed iteration failed (or saw contacts merge): again in the bounded class.
-    problem bounded = pb;
-    bounded.loaded.assign(bounded.loaded.size(), false);
-    auto second = attempt(bounded, isolated);
-    second.iterations += result.iterations;
-    if (second.converged || !result.merged) {
-      result = std::move(second);
-      pb = bounded;
-    }
-  }
+  // The loads-imposed iteration failed (or saw contacts merge): again in the bounded class.
+  if (!result.converged && any(pb.loaded))
+    retry(pb, result, bounded_form(pb), again,
+          [](const newton_result& second, const newton_result& first) { return second.converged || !first.merged; });
+  // A rigid body from an equal split failed: continuation in the heights (which finds a lost contact).
   const bool uneven = std::any_of(st.begin(), st.end(), [&](const indentor_state& s) { return s.height != st[0].height; });
-  if (pb.body_load && !result.converged && !result.merged && uneven) {
-    const std::size_t before = result.iterations;
-    problem continued = pb;
-    auto second = height_continuation(continued, isolated);
-    second.iterations += before;
-    if (second.converged || second.lost) {
-      result = std::move(second);
-      pb = continued;
-    }
-  }
-  if (!result.converged && !result.merged && std::any_of(pb.split.begin(), pb.split.end(), [](int v) { return v != 0; })) {
-    // A split wedge whose apex left its contact (its contact moved onto one face) or that did not
-    // converge: again with the plain forms, which take any position of the apex.
+  if (pb.body_load && !result.converged && !result.merged && uneven)
+    retry(pb, result, pb, [&](problem& p) { return height_continuation(p, isolated); },
+          [](const newton_result& second, const newton_result&) { return second.converged || second.lost.has_value(); });
+  // A split wedge whose apex left its contact (its contact moved onto one face) or that did not
+  // converge: again with the plain forms, which take any position of the apex.
+  if (!result.converged && !result.merged && any(pb.split)) {
     problem plain = pb;
     plain.split.assign(plain.split.size(), 0);
-    auto second = attempt(plain, isolated);
-    second.iterations += result.iterations;
-    if (second.converged || second.residual < result.residual) {
-      result = std::move(second);
-      pb = plain;
-    }
+    retry(pb, result, std::move(plain), again, [](const newton_result& second, const newton_result& first) {
+      return second.converged || second.residual < first.residual;
+    });
   }
-  if (std::any_of(pb.loaded.begin(), pb.loaded.end(), [](bool v) { return v; }) && !result.sol.g.empty()) {
+  if (any(pb.loaded) && !result.sol.g.empty()) {
     // The reported densities in the bounded class (the iteration's are bounded only to the
     // tolerance of its intensity conditions, and their edge exponents would be the singular ones).
-    problem bounded = pb;
-    bounded.loaded.assign(bounded.loaded.size(), false);
     try {
-      result.sol = solve_fixed(bounded, result.x.a, result.x.b);
+      result.sol = solve_fixed(bounded_form(pb), result.x.a, result.x.b);
     } catch (const std::exception& e) {
       if (result.converged) result.failure = e.what();
       result.converged = false;
@@ -958,24 +975,8 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   out.iterations = result.iterations;
   out.union_degree = result.sol.degree;
   if (!result.converged && result.lost) {
-    // An indentor would carry no load: the others lift it off at these heights and this load. The
-    // contact that shrank in the iteration need not be that indentor's (Newton from an equal split
-    // can wander), so it is named by the physical criterion: at the equal split (the isolated
-    // contacts, their action on one another included) the indentor with the highest level
-    // approach + height is the one that must shed load (measured: alpha 0.6, a parabola ahead of a
-    // wedge on one body: the iteration shrank the parabola, the boundary-element oracle lifts the
-    // wedge off, which is the highest).
-    std::vector<contact_density> start(st.size());
-    for (std::size_t k = 0; k < st.size(); ++k) start[k] = st[k].g;
-    const auto level = body_levels(st, start, cx, 1.0);
-    const std::size_t i = static_cast<std::size_t>(std::max_element(level.begin(), level.end()) - level.begin());
     out.code = status_code::contact_lost;
-    std::ostringstream os;
-    os.precision(3);
-    os << "a contact vanishes in the iteration: at this body load and these heights an indentor would carry no "
-          "load, which is not solved; by the levels at an equal share of the load it is "
-       << indentor_name(st[i].scene_index, *st[i].source) << " (lower it, or remove it from the scene)";
-    out.message = os.str();
+    out.message = lost_contact_message(st, cx);
   }
   if (!result.converged && out.code == status_code::ok) {
     std::ostringstream os;

@@ -105,6 +105,8 @@ contact_density density_from_image(double a, double b, const abel::abel_paramete
 
 /// f'(s) of the indentor at absolute s.
 double own_slope(const indentor_state& st, double s);
+/// max |f'| on [a, b] at 9 equally spaced points (0 for a flat face): the scale of a contact's data.
+double max_slope(const indentor_state& st, double a, double b);
 /// F = f'/Gamma(1 - alpha) of the own profile (smooth part + steps).
 forcing own_forcing(const indentor_state& st, const context& cx);
 /// Options and tail rule of the wedge's abel::solve_step calls.

@@ -161,6 +161,12 @@ double own_slope(const indentor_state& st, double s) {
   return 0;
 }
 
+double max_slope(const indentor_state& st, double a, double b) {
+  double m = 0;
+  for (int k = 0; k <= 8; ++k) m = std::max(m, std::abs(own_slope(st, a + (b - a) * k / 8.0)));
+  return m;
+}
+
 // C_f = int f' g / int g for a density without apex part (abel::jacobi_density::integrate, split at the corners).
 double mean_slope(const indentor_state& st, const contact_density& g) {
   std::vector<double> corners;

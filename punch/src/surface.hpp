@@ -32,68 +32,45 @@ class surface {
   surface(const std::vector<indentor_state>& st, const context& cx)
       : st_(st), cx_(cx), omk_(cx.par.one_minus_kappa_over_alpha()), edge_(st.size()), nodes_(st.size()) {}
 
-  /// f_k(x) - f_k(a_k): the rigid profile of indentor k relative to its leading edge.
-  double profile(std::size_t k, double x) const {
+  /// f_k(to) - f_k(from): the rise of indentor k's rigid profile (each shape's closed form; a
+  /// general profile's int_from^to f' by Gauss-Legendre, f' smooth there).
+  double rise(std::size_t k, double from, double to) const {
     const auto& s = st_[k];
-    const double a = s.g.jacobi.lo;
     switch (s.k) {
       case kind::parabola: {
         const double R = std::get<parabolic>(s.source->shape).radius;
-        return -((x - s.apex) * (x - s.apex) - (a - s.apex) * (a - s.apex)) / (2 * R);
+        return -((to - s.apex) * (to - s.apex) - (from - s.apex) * (from - s.apex)) / (2 * R);
       }
       case kind::wedge: {
         const auto& w = std::get<wedge>(s.source->shape);
         auto f = [&](double y) { return y < s.apex ? w.slope_leading * (y - s.apex) : -w.slope_trailing * (y - s.apex); };
-        return f(x) - f(a);
+        return f(to) - f(from);
       }
       case kind::flat: return 0.0;
       case kind::general: {
-        // int_a^x f' by Gauss-Legendre (f' smooth on the contact).
         const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(32, 0.0, 0.0);
         const auto& rule = *rule_ptr;
         double sum = 0;
         for (std::size_t q = 0; q < rule.size(); ++q)
-          sum += rule.weight[q] * own_slope(s, a + (x - a) * (1 + rule.x[q]) / 2);
-        return sum * (x - a) / 2;
+          sum += rule.weight[q] * own_slope(s, from + (to - from) * (1 + rule.x[q]) / 2);
+        return sum * (to - from) / 2;
       }
     }
     return 0.0;
   }
 
+  /// f_k(x) - f_k(a_k): the rigid profile of indentor k relative to its leading edge.
+  double profile(std::size_t k, double x) const { return rise(k, st_[k].g.jacobi.lo, x); }
+
   /// The rigid approach of indentor i: w - f_i on its contact, w = Gamma sum_o int g_o Psi(t, x) dt
   /// (the absolute displacement of this Psi), f_i the profile with f_i(apex) = 0.
   double approach(std::size_t i) const {
-    const auto& s = st_[i];
-    const double a = s.g.jacobi.lo;
-    double f_a = 0;  // f_i(a_i)
-    switch (s.k) {
-      case kind::parabola: f_a = -(a - s.apex) * (a - s.apex) / (2 * std::get<parabolic>(s.source->shape).radius); break;
-      case kind::wedge: {
-        const auto& w = std::get<wedge>(s.source->shape);
-        f_a = a < s.apex ? w.slope_leading * (a - s.apex) : -w.slope_trailing * (a - s.apex);
-        break;
-      }
-      case kind::flat: break;
-      case kind::general: {
-        const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(32, 0.0, 0.0);
-        const auto& rule = *rule_ptr;
-        for (std::size_t q = 0; q < rule.size(); ++q)
-          f_a += rule.weight[q] * own_slope(s, s.apex + (a - s.apex) * (1 + rule.x[q]) / 2);
-        f_a *= (a - s.apex) / 2;
-        break;
-      }
-    }
-    return cx_.gamma_factor * datum(i) - f_a;
+    return cx_.gamma_factor * datum(i) - rise(i, st_[i].apex, st_[i].g.jacobi.lo);
   }
 
   /// Surface displacement at x relative to its value at a_i (see the class comment).
   double height(std::size_t i, double x) const {
-    for (std::size_t j = 0; j < st_.size(); ++j) {
-      const auto& g = st_[j].g;
-      if (g.line_load || !(x >= g.jacobi.lo && x <= g.jacobi.hi)) continue;
-      if (j == i) return profile(i, x);
-      return profile(j, x) + cx_.gamma_factor * (datum(j) - datum(i));
-    }
+    if (const auto in = in_contact(i, x)) return *in;
     double h = 0;
     for (std::size_t o = 0; o < st_.size(); ++o) h += moment(o, x);
     return cx_.gamma_factor * (h - datum(i));
@@ -107,16 +84,10 @@ class surface {
     std::vector<double> off;  // the samples outside every contact
     std::vector<std::size_t> where;
     for (std::size_t k = 0; k < xs.size(); ++k) {
-      const double x = xs[k];
-      bool inside = false;
-      for (std::size_t j = 0; j < st_.size() && !inside; ++j) {
-        const auto& g = st_[j].g;
-        if (g.line_load || !(x >= g.jacobi.lo && x <= g.jacobi.hi)) continue;
-        inside = true;
-        out[k] = j == i ? profile(i, x) : profile(j, x) + cx_.gamma_factor * (datum(j) - datum(i));
-      }
-      if (!inside) {
-        off.push_back(x);
+      if (const auto in = in_contact(i, xs[k])) {
+        out[k] = *in;
+      } else {
+        off.push_back(xs[k]);
         where.push_back(k);
       }
     }
@@ -132,6 +103,16 @@ class surface {
 
 
  private:
+  // height(i, x) for x in some contact j (the rigid profile there, from j's datum), else nothing.
+  std::optional<double> in_contact(std::size_t i, double x) const {
+    for (std::size_t j = 0; j < st_.size(); ++j) {
+      const auto& g = st_[j].g;
+      if (g.line_load || !(x >= g.jacobi.lo && x <= g.jacobi.hi)) continue;
+      return j == i ? profile(i, x) : profile(j, x) + cx_.gamma_factor * (datum(j) - datum(i));
+    }
+    return std::nullopt;
+  }
+
   // The regular part of contact o's density as weights on nodes: sum_q w_q Psi(t_q, x) is its
   // moment, by Gauss-Jacobi with the density's own end exponents (so the series alone is
   // integrated: exact for polynomials, and psi is smooth in t when x is off the interval). Built
