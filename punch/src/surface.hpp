@@ -123,14 +123,8 @@ class surface {
   const weighted_nodes& regular_nodes(std::size_t o) const {
     if (!nodes_[o].t.empty() || st_[o].g.line_load) return nodes_[o];
     const contact_density& d = st_[o].g;
-    // A weight exponent in (-1e-5, 0) (alpha + beta/2 within 1e-5 of 1/2) is integrated by the
-    // rule of exponent 0, its factor (1 -+ x)^e in the integrand: gauss_jacobi's asymptotic
-    // nodes fail there (a Bessel-zero bracket). The factor's log-like end behaviour e log(1 + x)
-    // costs this rule (>= 96 nodes) a relative error ~1e-4 |e| < 1e-9 of the moment.
-    auto folded = [](double e) { return e < 0 && e > -1e-5 ? 0.0 : e; };
-    const double del = folded(d.jacobi.del), gam = folded(d.jacobi.gam);
     const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(
-        std::max<std::size_t>(d.jacobi.coefficients.size() + 64, 96), del, gam);
+        std::max<std::size_t>(d.jacobi.coefficients.size() + 64, 96), d.jacobi.del, d.jacobi.gam);
     const auto& rule = *rule_ptr;
     weighted_nodes& out = nodes_[o];
     out.t.resize(rule.size());
@@ -138,10 +132,7 @@ class surface {
     for (std::size_t q = 0; q < rule.size(); ++q) {
       out.t[q] = rule.x_minus_lo[q] <= rule.hi_minus_x[q] ? d.jacobi.lo + d.length() * rule.x_minus_lo[q] / 2
                                                           : d.jacobi.hi - d.length() * rule.hi_minus_x[q] / 2;
-      double w = rule.weight[q] * d.jacobi.series(rule.x[q]) * d.length() / 2;
-      if (del != d.jacobi.del) w *= std::pow(rule.hi_minus_x[q], d.jacobi.del);
-      if (gam != d.jacobi.gam) w *= std::pow(rule.x_minus_lo[q], d.jacobi.gam);
-      out.w[q] = w;
+      out.w[q] = rule.weight[q] * d.jacobi.series(rule.x[q]) * d.length() / 2;
     }
     return out;
   }
