@@ -31,10 +31,11 @@ namespace rhabel::punch {
 
 namespace detail {
 
-[[noreturn]] void bad_field(const std::string& field, double value, const char* requirement) {
+[[noreturn]] void bad_field(const std::string& field, double value, const char* requirement,
+                            const char* function = "rhabel::punch::solve") {
   std::ostringstream os;
   os.precision(17);
-  os << "rhabel::punch::solve: " << field << " = " << value << " must be " << requirement;
+  os << function << ": " << field << " = " << value << " must be " << requirement;
   throw std::invalid_argument(os.str());
 }
 
@@ -67,24 +68,30 @@ constexpr double max_friction_ratio = 1e12;
 constexpr double max_slope_ratio = 1e7;
 
 namespace {
-[[noreturn]] void not_representable(const std::string& fields, double decades, const char* what, double limit) {
+[[noreturn]] void not_representable(const std::string& fields, double decades, const char* what, double limit,
+                                    const char* function = "rhabel::punch::solve") {
   std::ostringstream os;
   os << std::fixed;
   os.precision(0);
-  os << "rhabel::punch::solve: " << fields << " give " << what << " ~1e" << decades
+  os << function << ": " << fields << " give " << what << " ~1e" << decades
      << ", beyond the representable range [1e-" << limit << ", 1e" << limit << "] (examples/README.md, limits)";
   throw std::invalid_argument(os.str());
 }
+
+// log10 E_U, formed in logarithms (never overflows).
+double log10_modulus(const material& m, double speed) {
+  const double alpha = m.alpha < alpha_zero ? 0.0 : m.alpha;
+  return (std::log(m.E1) + std::lgamma(1 - alpha) + alpha * std::log(speed) - std::log1p(-m.poisson * m.poisson)) /
+         std::log(10.0);
+}
 }  // namespace
 
-// The scale limits above, for one indentor (after the fields' own ranges were checked).
+// The scale limits above, for one indentor (after the fields' own ranges and E_U were checked by
+// validate_material).
 void validate_scales(const material& m, double speed, const indentor& ind, const std::string& p) {
   const double ln10 = std::log(10.0);
   const double alpha = m.alpha < alpha_zero ? 0.0 : m.alpha;
-  const double log_modulus = (std::log(m.E1) + std::lgamma(1 - alpha) + alpha * std::log(speed) -
-                              std::log1p(-m.poisson * m.poisson)) / ln10;
-  if (!(std::abs(log_modulus) <= max_decades_modulus))
-    not_representable("material.E1, material.alpha and speed", log_modulus, "the effective modulus E_U", max_decades_modulus);
+  const double log_modulus = log10_modulus(m, speed);
   const double log_load = std::log10(ind.load);
   double log_length = 0, log_strain = 0;
   std::string fields;
@@ -128,21 +135,29 @@ void validate_scales(const material& m, double speed, const indentor& ind, const
   if (!(std::abs(log_strain) <= max_decades_strain)) not_representable(fields, log_strain, "a strain", max_decades_strain);
 }
 
-void validate(const scene& s) {
-  const auto& m = s.material;
-  if (!(m.alpha >= 0 && m.alpha < 1)) bad_field("material.alpha", m.alpha, "in [0, 1)");
-  if (!(m.E1 > 0) || !std::isfinite(m.E1)) bad_field("material.E1", m.E1, "finite and > 0");
-  if (!(m.poisson > -1 && m.poisson <= 0.5)) bad_field("material.poisson", m.poisson, "in (-1, 0.5]");
-  if (!(m.coulomb >= 0) || !std::isfinite(m.coulomb)) bad_field("material.coulomb", m.coulomb, "finite and >= 0");
+void validate_material(const material& m, double speed, const char* function) {
+  if (!(m.alpha >= 0 && m.alpha < 1)) bad_field("material.alpha", m.alpha, "in [0, 1)", function);
+  if (!(m.E1 > 0) || !std::isfinite(m.E1)) bad_field("material.E1", m.E1, "finite and > 0", function);
+  if (!(m.poisson > -1 && m.poisson <= 0.5)) bad_field("material.poisson", m.poisson, "in (-1, 0.5]", function);
+  if (!(m.coulomb >= 0) || !std::isfinite(m.coulomb)) bad_field("material.coulomb", m.coulomb, "finite and >= 0", function);
   if (m.coulomb * (1 - 2 * m.poisson) > max_friction_ratio * 2 * (1 - m.poisson)) {
     std::ostringstream os;
     os.precision(17);
-    os << "rhabel::punch::solve: material.coulomb = " << m.coulomb << " must be <= 1e12 x 2 (1 - nu)/(1 - 2 nu) = "
+    os << function << ": material.coulomb = " << m.coulomb << " must be <= 1e12 x 2 (1 - nu)/(1 - 2 nu) = "
        << max_friction_ratio * 2 * (1 - m.poisson) / (1 - 2 * m.poisson)
        << " (beyond, beta is within rounding of 1; examples/README.md, limits)";
     throw std::invalid_argument(os.str());
   }
-  if (!(s.speed > 0) || !std::isfinite(s.speed)) bad_field("speed", s.speed, "finite and > 0");
+  if (!(speed > 0) || !std::isfinite(speed)) bad_field("speed", speed, "finite and > 0", function);
+  const double log_modulus = log10_modulus(m, speed);
+  if (!(std::abs(log_modulus) <= max_decades_modulus))
+    not_representable("material.E1, material.alpha and speed", log_modulus, "the effective modulus E_U",
+                      max_decades_modulus, function);
+}
+
+void validate(const scene& s) {
+  validate_material(s.material, s.speed, "rhabel::punch::solve");
+  const auto& m = s.material;
   if (s.indentors.empty()) throw std::invalid_argument("rhabel::punch::solve: indentors is empty; give at least one");
   for (std::size_t i = 0; i < s.indentors.size(); ++i) {
     const auto& ind = s.indentors[i];
@@ -263,46 +278,48 @@ void report_body(const scene& s, const std::vector<indentor_state>& st, const co
   out.diagnostics.status = os.str();
 }
 
-}  // namespace detail
 
-scene_result solve(const scene& s, const solve_options& options) {
-  const auto start = std::chrono::steady_clock::now();
-  validate(s);
-  validate_body(s);
-  if (!(options.tolerance > 0) || !(options.tolerance < 1))
-    throw std::invalid_argument("rhabel::punch::solve: options.tolerance must be in (0, 1)");
-  const context cx = make_context(s.material, s.speed, options);
-
+scene_states prepare_states(const scene& s, const context& cx) {
   // Indentors sorted by apex (st order; the contacts' order along x is the coupled solve's concern).
   std::vector<std::size_t> order(s.indentors.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t i, std::size_t j) { return s.indentors[i].apex < s.indentors[j].apex; });
-  std::vector<indentor_state> st(s.indentors.size());
-  const double origin = s.indentors[order[0]].apex;
-  for (std::size_t i = 0; i < st.size(); ++i) {
+  scene_states out;
+  out.st.resize(s.indentors.size());
+  out.origin = s.indentors[order[0]].apex;
+  for (std::size_t i = 0; i < out.st.size(); ++i) {
+    auto& state = out.st[i];
     const auto& ind = s.indentors[order[i]];
-    st[i].source = &ind;
-    st[i].scene_index = order[i];
-    st[i].k = static_cast<kind>(ind.shape.index());
+    state.source = &ind;
+    state.scene_index = order[i];
+    state.k = static_cast<kind>(ind.shape.index());
     // Coordinates relative to the first apex (shifted back in the report): a contact far from
     // the origin keeps its digits (a wedge of L = 5e-13 at apex 1e6 was an internal error).
-    st[i].apex = ind.apex - origin;
+    state.apex = ind.apex - out.origin;
     // On a rigid body the loads are unknowns: an equal share is the start.
-    st[i].target_load = (s.body ? s.body->load / static_cast<double>(st.size()) : ind.load) / cx.pressure_scale;
-    st[i].height = ind.height;
+    state.target_load = (s.body ? s.body->load / static_cast<double>(out.st.size()) : ind.load) / cx.pressure_scale;
+    state.height = ind.height;
   }
+  return out;
+}
+
+coupled_outcome solve_states(const scene& s, scene_states& ss, const context& cx) {
+  auto& st = ss.st;
+  if (st.size() > 1)
+    return solve_coupled(st, cx, s.body ? std::optional<double>(s.body->load / cx.pressure_scale) : std::nullopt);
+  try {
+    solve_isolated(st[0], cx);
+  } catch (const std::domain_error& err) {
+    throw std::domain_error("rhabel::punch::solve: " + indentor_name(st[0].scene_index, *st[0].source) +
+                            " failed: " + err.what());
+  }
+  return {};
+}
+
+scene_result report_scene(const scene& s, const scene_states& ss, const context& cx, const coupled_outcome& coupled) {
+  const auto& st = ss.st;
   const bool isolated = st.size() == 1;
-  coupled_outcome coupled;
-  if (isolated) {
-    try {
-      solve_isolated(st[0], cx);
-    } catch (const std::domain_error& err) {
-      throw std::domain_error("rhabel::punch::solve: " + indentor_name(order[0], *st[0].source) + " failed: " + err.what());
-    }
-  } else {
-    coupled = solve_coupled(st, cx, s.body ? std::optional<double>(s.body->load / cx.pressure_scale) : std::nullopt);
-  }
   scene_result out;
   out.beta = cx.beta;
   out.kappa = cx.kappa;
@@ -313,10 +330,10 @@ scene_result solve(const scene& s, const solve_options& options) {
   for (std::size_t i = 0; i < st.size(); ++i) {
     indentor_result r = report_contact(st, i, cx, heights, s.material.coulomb, !isolated);
     if (!isolated || s.body) r.approach = heights.approach(i);
-    if (!options.residual) worst_residual = r.residual;
+    if (!cx.options.residual) worst_residual = r.residual;
     else if (!std::isnan(worst_residual)) worst_residual = std::max(worst_residual, r.residual);
-    shift(r, origin);
-    out.indentors[order[i]] = std::move(r);
+    shift(r, ss.origin);
+    out.indentors[st[i].scene_index] = std::move(r);
   }
   out.diagnostics.residual = worst_residual;
   out.diagnostics.code = coupled.code;
@@ -328,6 +345,25 @@ scene_result solve(const scene& s, const solve_options& options) {
       out.diagnostics.status = "see indentors[" + std::to_string(i) + "].status";
     }
   if (s.body) report_body(s, st, cx, out);
+  return out;
+}
+
+void validate_options(const solve_options& options, const char* function) {
+  if (!(options.tolerance > 0) || !(options.tolerance < 1))
+    throw std::invalid_argument(std::string(function) + ": options.tolerance must be in (0, 1)");
+}
+
+}  // namespace detail
+
+scene_result solve(const scene& s, const solve_options& options) {
+  const auto start = std::chrono::steady_clock::now();
+  validate(s);
+  validate_body(s);
+  validate_options(options, "rhabel::punch::solve");
+  const context cx = make_context(s.material, s.speed, options);
+  scene_states states = prepare_states(s, cx);
+  const coupled_outcome coupled = solve_states(s, states, cx);
+  scene_result out = report_scene(s, states, cx, coupled);
   out.diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -880,11 +880,11 @@ void retry(problem& pb, newton_result& result, problem other, Run run, Better be
 /// one another included) the indentor with the highest level approach + height is the one that
 /// must shed load (measured: alpha 0.6, a parabola ahead of a wedge on one body: the iteration
 /// shrank the parabola, the boundary-element oracle lifts the wedge off, which is the highest).
-std::string lost_contact_message(const std::vector<indentor_state>& st, const context& cx) {
+std::string lost_contact_message(const std::vector<indentor_state>& st, const context& cx, std::size_t& i) {
   std::vector<contact_density> start(st.size());
   for (std::size_t k = 0; k < st.size(); ++k) start[k] = st[k].g;
   const auto level = body_levels(st, start, cx, 1.0);
-  const std::size_t i = static_cast<std::size_t>(std::max_element(level.begin(), level.end()) - level.begin());
+  i = static_cast<std::size_t>(std::max_element(level.begin(), level.end()) - level.begin());
   return "a contact vanishes in the iteration: at this body load and these heights an indentor would carry no "
          "load, which is not solved; by the levels at an equal share of the load it is " +
          indentor_name(st[i].scene_index, *st[i].source) + " (lower it, or remove it from the scene)";
@@ -976,13 +976,16 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   out.union_degree = result.sol.degree;
   if (!result.converged && result.lost) {
     out.code = status_code::contact_lost;
-    out.message = lost_contact_message(st, cx);
+    std::size_t named = 0;
+    out.message = lost_contact_message(st, cx, named);
+    out.lost = named;
   }
   if (!result.converged && out.code == status_code::ok) {
     std::ostringstream os;
     os.precision(3);
     if (result.merged) {
       out.code = status_code::contacts_merge;
+      out.merged = result.merged;
       os << result.failure;
     } else {
       out.code = status_code::not_converged;

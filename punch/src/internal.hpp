@@ -180,6 +180,8 @@ struct coupled_outcome {
   std::string message;      // empty when ok
   std::size_t iterations = 0;
   std::size_t union_degree = 0;  // collocation points per contact of the last linear solve
+  std::optional<std::size_t> lost;  // contact_lost: the st index of the indentor named
+  std::optional<std::pair<std::size_t, std::size_t>> merged;  // contacts_merge: the two st indices
 };
 
 /// Solves several indentors together (paper system 41): fills every st[i].g (and epsilon for
@@ -188,5 +190,24 @@ struct coupled_outcome {
 /// target_load is then only the starting split, and is set to the solved load on return.
 coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx,
                               std::optional<double> body_load = std::nullopt);
+
+// ---- contact.cpp
+/// A scene's indentors as the solver holds them: sorted by apex, abscissae relative to `origin`
+/// (the first apex; the report shifts them back). st[i].source points into the scene, which
+/// must outlive the states.
+struct scene_states {
+  std::vector<indentor_state> st;
+  double origin = 0;
+};
+/// The states of a validated scene (equal load shares on a rigid body: the start).
+scene_states prepare_states(const scene& s, const context& cx);
+/// One contact alone (solve_isolated) or several coupled (solve_coupled).
+coupled_outcome solve_states(const scene& s, scene_states& ss, const context& cx);
+/// The scene's result with every contact's evidence (report_contact, report_body).
+scene_result report_scene(const scene& s, const scene_states& ss, const context& cx, const coupled_outcome& coupled);
+/// The material's fields and the speed (std::invalid_argument naming the field, from `function`).
+void validate_material(const material& m, double speed, const char* function);
+/// options.tolerance in (0, 1), else std::invalid_argument naming `function`.
+void validate_options(const solve_options& options, const char* function);
 
 }  // namespace rhabel::punch::detail

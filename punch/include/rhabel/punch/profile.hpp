@@ -1,0 +1,118 @@
+// rhabel/punch/profile.hpp: a measured (sampled) rigid profile pressed with a total load onto a
+// power-law viscoelastic half-space, with the set of contacts unknown (issue: rough surfaces,
+// asperity arrays given as data).
+//
+// WHAT IS COMPUTED
+//   One rigid body whose lower surface is given by samples (x_i, z_i), z in the sign convention of
+//   the profile f of contact.hpp (z grows towards the half-space: samples of a parabola with its
+//   vertex at c are z = -(x - c)^2 / (2R)), slides at speed U towards -x over the half-space of
+//   contact.hpp's material and is pressed with the load P per unit length. The contacts are not
+//   given: the solver finds them, and for each reports what contact.hpp reports for an indentor
+//   (edges, load, pressure, C_f, edge exponents, evidence), plus the body's approach and the
+//   clearance of the surface outside the contacts.
+//
+// THE INTERPOLANT (docs/theory.md section 9)
+//   The profile between samples is the natural cubic spline of the samples (GSL's cspline),
+//   separately on each piece between declared corners:
+//     * C2 between corners, so the forcing F = z'/Gamma(1 - alpha) of (8) is C1 and the density,
+//       expanded in Jacobi polynomials on each contact, converges algebraically (like degree^-3)
+//       where a polynomial fit would converge spectrally: a contact that covers m samples of a
+//       smooth surface is resolved to roughly the spline's slope error, ~(h/L)^3 of the slope
+//       (h the sample spacing): measured 8e-8 at 7 samples per contact length... see
+//       docs/accuracy.md. The status reports the residual of (8) against the spline; set
+//       solve_options::acceptance to what the data is worth (a measured profile rarely to better
+//       than 1e-4; the examples use 1e-6).
+//     * a declared corner (sampled_profile::corners, a sample abscissa) is kept exactly: the slope
+//       jumps there, the two sides are separate splines with natural ends (zero curvature at the
+//       corner, exact for the flanks of a wedge), and the solver's projections split there.
+//       Corners are not detected: in measured data a detector turns noise into corners.
+//     * the natural end conditions make the spline of a parabola exact only away from the ends
+//       and the corners: the end's error decays by 2 - sqrt(3) = 0.27 per sample, below 1e-14 of
+//       the curvature 25 samples in. Keep the data 25 samples wider than the contacts.
+//   Outside [x_0, x_n] the profile is not defined; a contact must lie inside the samples (else
+//   status not_converged naming it).
+//
+// THE CONTACT SET (an active set on the profile's bumps; punch/src/contact_set.cpp)
+//   The bumps are the local maxima of the samples (tips), each with its basin between the lowest
+//   samples towards its neighbours. A contact covers one basin, or a run of adjacent basins when
+//   contacts merged. Starting from the highest tip alone, repeat:
+//     1. solve the current contacts on one rigid body (contact.hpp's coupled solve: every contact a
+//        general profile with smooth edges, loads unknown, total load P, equal rigid levels);
+//     2. a contact that vanishes in that solve (status contact_lost) is dropped; two contacts that
+//        meet (contacts_merge) become one contact over both basins;
+//     3. otherwise the surface displacement is evaluated at every sample outside the contacts (not
+//        within 1/64 of a contact's length of its edges, where the surface's quadrature is not
+//        resolved and the edge conditions hold anyway): where the profile penetrates the surface
+//        by more than acceptance x (max z - min z), the basins of the deepest penetrations (within
+//        a factor 4 of the deepest) are added as new contacts;
+//   until no sample penetrates. A basin dropped once is not added again (the iteration could
+//   cycle between a contact too small to keep and a penetration too deep to ignore): its
+//   penetration is then reported as status penetration with the numbers.
+//   So `ok` means: every contact passes contact.hpp's checks (residual of (8) against the
+//   spline, non-negative pressure, loads adding up to P, equal levels), and the surface clears
+//   the profile at every checked sample to acceptance x (max z - min z).
+//
+// LIMITS
+//   Below and above the boundary alpha + beta/2 = 1/2 alike, any beta; contacts with smooth
+//   edges only (a contact edge on a declared corner is not modelled; it shows as tension or
+//   not_converged). Cost: one coupled solve of the current contacts per round, so it grows like
+//   the coupled solve's (contact.hpp, "Cost"), times the number of rounds (measured: see
+//   docs/accuracy.md and studies).
+#pragma once
+
+#include "rhabel/punch/contact.hpp"
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace rhabel::punch {
+
+/// A rigid profile given by samples: x strictly increasing, z(x) in the sign convention of f
+/// (towards the half-space), at least 4 samples per piece between corners.
+struct sampled_profile {
+  std::vector<double> x;        ///< abscissae [m], finite, strictly increasing
+  std::vector<double> z;        ///< heights [m], finite, z.size() == x.size()
+  std::vector<double> corners;  ///< abscissae of slope jumps: each one of x[1] .. x[n-2]
+};
+
+/// The scene of a sampled profile: one rigid body with a total load, the contacts unknown.
+struct profile_scene {
+  punch::material material;
+  double speed = 1;  ///< sliding speed U > 0 towards -x [m/s]
+  sampled_profile profile;
+  double load = 1;   ///< total load per unit length > 0 [N/m]
+};
+
+struct profile_result {
+  double beta = 0;
+  double kappa = 0;
+  std::string regime;
+  /// The contacts found, in the order of x. Each reports contact.hpp's fields; its `approach` is
+  /// the rigid approach of the profile's point at its tip.
+  std::vector<indentor_result> contacts;
+  std::vector<double> tips;  ///< abscissa of the highest tip inside each contact [m]
+  /// The body's approach: the rigid approach of the profile's highest sample (approach of a
+  /// contact + max z - z(tip)); in the Psi datum of contact.hpp (differences are meaningful).
+  double body_approach = 0;
+  /// Smallest clearance w - z + const found at the checked samples outside the contacts,
+  /// relative to max z - min z (negative: the profile penetrates the surface there).
+  double clearance = 0;
+  double clearance_at = 0;  ///< where that clearance is [m]
+  struct diagnostics_t {
+    double residual = 0;     ///< max over contacts of indentor_result::residual
+    double seconds = 0;      ///< wall-clock time [s]
+    status_code code = status_code::ok;
+    std::string status;      ///< "ok" or what failed, with the numbers
+    std::size_t rounds = 0;  ///< coupled solves of the active set
+    std::size_t iterations = 0;  ///< Newton iterations, summed over the rounds
+  } diagnostics;
+};
+
+/// Solves a sampled profile on one rigid body with the contact set unknown (see the top of this
+/// header). Validates every field first and throws std::invalid_argument naming it (e.g.
+/// "rhabel::punch::solve_profile: profile.x[3] = 0.2 must be > profile.x[2] = 0.2"). The result
+/// is always returned with its evidence; anything not verified is a status other than ok.
+profile_result solve_profile(const profile_scene& s, const solve_options& options = {});
+
+}  // namespace rhabel::punch

@@ -1,0 +1,442 @@
+// punch/src/contact_set.cpp: a sampled profile on one rigid body, its set of contacts unknown
+// (rhabel/punch/profile.hpp; docs/theory.md section 9).
+//
+// The active set lives on the profile's bumps (profile_curve.hpp, find_bumps): a contact is a run
+// of adjacent bumps (one bump, or several after contacts merged), solved as a general profile
+// whose edges are sought inside the run's basins, all contacts on one rigid body (contact.cpp's
+// prepare_states / solve_states: the coupled solve with the loads unknown). Each round changes the
+// set by the evidence of the last solve: a contact that vanished is dropped, contacts that met
+// are merged, bumps whose samples penetrate the deformed surface are added. The last round's
+// solve is reported with contact.cpp's checks plus the clearance at every sample.
+#include "internal.hpp"
+#include "profile_curve.hpp"
+#include "surface.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+namespace rhabel::punch {
+
+namespace detail {
+namespace {
+
+constexpr const char* who = "rhabel::punch::solve_profile";
+
+// Bumps penetrating within this factor of the deepest are added in one round. WHY: adding a bump
+// moves the body up (the load is shared by more contacts), so a barely penetrating bump is
+// often clear once the deeper ones carry load; adding it anyway costs a round to drop it again.
+constexpr double add_fraction = 0.25;
+// Samples within this fraction of a contact's length of its edges are not checked: there the
+// surface's moments (surface.hpp) are not resolved (report.cpp, worst_gap), and the edge
+// conditions with a non-negative pressure already give the clearance.
+constexpr double edge_margin = 1.0 / 64;
+// Load continuation (solve_profile): when the highest tip alone cannot carry the fraction t of
+// the load inside its basin, t is divided by shrink_factor (at most max_shrinks times: 16^-12 ~
+// 3e-15); once the set settles at t, t is multiplied by load_step. A contact's length grows like
+// load^(1/(2 - alpha)): a step of 4 moves the edges by a factor 2 at most, close enough for the
+// last set to be the next start.
+constexpr double shrink_factor = 16;
+constexpr std::size_t max_shrinks = 12;
+constexpr double load_step = 4;
+// The first fraction: 4^-4. WHY: the contact set grows with the load; a set found at t is nearly
+// the set at 4 t, so few bumps are added at each step and almost none is lost again (a bump added
+// and then lifted costs a failed coupled solve: measured 3-8 s for 9 contacts, against 0.4 s for a
+// solve that converges). 4^-4: the contacts of ten equal cosine bumps at 1/4 of their period shrink
+// to ~ 1/16 of their basin.
+constexpr double start_fraction = 1.0 / 256;
+// A coupled solve that fails right after a load step is tried again at the geometric mean of the
+// settled fraction and the new one, at most this many times (4 -> 2 -> 1.41 -> 1.19).
+constexpr std::size_t max_halvings = 3;
+
+[[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(std::string(who) + ": " + what); }
+
+std::string num(double v) {
+  std::ostringstream os;
+  os.precision(17);
+  os << v;
+  return os.str();
+}
+
+// "field[i]" (formed in a stream: GCC 12 warns falsely on "literal" + std::string&& under -O2).
+std::string element(const char* field, std::size_t i) {
+  std::ostringstream os;
+  os << field << '[' << i << ']';
+  return os.str();
+}
+
+void validate_profile(const profile_scene& s) {
+  validate_material(s.material, s.speed, who);
+  if (!(s.load > 0) || !std::isfinite(s.load)) bad("load = " + num(s.load) + " must be finite and > 0");
+  const auto& p = s.profile;
+  if (p.x.size() != p.z.size())
+    bad("profile.x has " + std::to_string(p.x.size()) + " samples and profile.z " + std::to_string(p.z.size()) +
+        "; give one z per x");
+  if (p.x.size() < 4) bad("profile.x has " + std::to_string(p.x.size()) + " samples; give at least 4");
+  for (std::size_t i = 0; i < p.x.size(); ++i) {
+    if (!std::isfinite(p.x[i])) bad(element("profile.x", i) + " = " + num(p.x[i]) + " must be finite");
+    if (!std::isfinite(p.z[i])) bad(element("profile.z", i) + " = " + num(p.z[i]) + " must be finite");
+    if (i > 0 && !(p.x[i] > p.x[i - 1]))
+      bad(element("profile.x", i) + " = " + num(p.x[i]) + " must be > " + element("profile.x", i - 1) + " = " + num(p.x[i - 1]));
+  }
+  // Spacing and heights far from the double range: the spline forms differences and their
+  // squares (the relative spacing 1e-12 leaves 4 digits to a slope).
+  const double span_x = p.x.back() - p.x.front();
+  for (std::size_t i = 1; i < p.x.size(); ++i)
+    if (!((p.x[i] - p.x[i - 1]) >= 1e-12 * span_x) || !(std::abs(p.x[i]) < 1e100 && span_x > 1e-100))
+      bad(element("profile.x", i) + " - " + element("profile.x", i - 1) + " = " +
+          num(p.x[i] - p.x[i - 1]) + " must be >= 1e-12 of the profile's length " + num(span_x) +
+          " and the abscissae within (1e-100, 1e100)");
+  const auto [lo, hi] = std::minmax_element(p.z.begin(), p.z.end());
+  if (!(*hi - *lo > 0)) bad("profile.z is constant; a flat profile has no contact with smooth edges");
+  if (!(*hi - *lo > 1e-100 * span_x) || !(std::max(std::abs(*hi), std::abs(*lo)) < 1e100))
+    bad("profile.z spans " + num(*hi - *lo) + " over a length " + num(span_x) +
+        ": the slopes must be within (1e-100, 1e100) and the heights below 1e100");
+  std::vector<double> corners = p.corners;
+  std::sort(corners.begin(), corners.end());
+  std::size_t previous = 0;
+  for (std::size_t k = 0; k < p.corners.size(); ++k) {
+    const double c = corners[k];
+    const auto it = std::lower_bound(p.x.begin() + 1, p.x.end() - 1, c);
+    const std::string name = "profile.corners (" + num(c) + ")";
+    if (it == p.x.end() - 1 || *it != c) bad(name + " must each be one of profile.x[1] .. profile.x[n-2]");
+    const std::size_t at = static_cast<std::size_t>(it - p.x.begin());
+    if (at - previous < 3) bad(name + ": give at least 4 samples between corners and from the ends");
+    previous = at;
+  }
+  if (p.x.size() - 1 - previous < 3) bad("profile.corners: give at least 4 samples between the last corner and the end");
+}
+
+/// A contact candidate: a run of adjacent bumps [first, last] (indices into the bumps).
+struct run {
+  std::size_t first = 0, last = 0;
+};
+
+/// Everything one round needs: the curve, its bumps and the reference height.
+struct profile_model {
+  const profile_scene* source = nullptr;
+  profile_curve curve;
+  std::vector<bump> bumps;
+  double top = 0, span = 0;  // max z and max z - min z
+
+  explicit profile_model(const profile_scene& s) : source(&s), curve(s.profile), bumps(find_bumps(s.profile.z)) {
+    const auto [lo, hi] = std::minmax_element(s.profile.z.begin(), s.profile.z.end());
+    top = *hi;
+    span = *hi - *lo;
+  }
+  /// The highest tip of a run (the contact's apex).
+  std::size_t tip(const run& r) const {
+    std::size_t best = bumps[r.first].tip;
+    for (std::size_t k = r.first; k <= r.last; ++k)
+      if (curve.z()[bumps[k].tip] > curve.z()[best]) best = bumps[k].tip;
+    return best;
+  }
+};
+
+/// The scene of the current runs: one general profile per run on one rigid body. Its slope reads
+/// the curve, which outlives the scene (both are solve_profile's).
+scene make_scene(const profile_model& m, const std::vector<run>& runs, double load) {
+  scene s;
+  s.material = m.source->material;
+  s.speed = m.source->speed;
+  s.body = rigid_body{load};
+  const auto& x = m.curve.x();
+  for (const run& r : runs) {
+    const std::size_t t = m.tip(r);
+    const double apex = x[t];
+    general_profile gp;
+    const profile_curve* curve = &m.curve;
+    gp.slope = [curve, apex](double u) { return curve->slope(apex + u); };
+    gp.search_lo = x[m.bumps[r.first].first] - apex;
+    gp.search_hi = x[m.bumps[r.last].last] - apex;
+    for (const double c : m.curve.corners())
+      if (c > apex + gp.search_lo && c < apex + gp.search_hi) gp.corners.push_back(c - apex);
+    indentor ind;
+    ind.shape = std::move(gp);
+    ind.apex = apex;
+    // Equal levels approach + height on the body: on a contact w = z + const, so approach_k =
+    // const + z(apex_k) and height_k = top - z(apex_k) (the highest sample at height 0).
+    ind.height = m.top - m.curve.z()[t];
+    s.indentors.push_back(std::move(ind));
+  }
+  return s;
+}
+
+/// The start of the body's coupled solve: the loads of the last solved set (shares, per unit of
+/// the load fraction, keyed by tip) where a contact has one, a quarter of the smallest of them for
+/// a new contact, scaled to the body's load. Without any (the first round), the equal split of
+/// prepare_states stays. WHY: the coupled solve starts from the isolated contacts at this split,
+/// and an equal split of contacts whose loads differ by a factor 10 stalled its Newton iteration.
+void start_split(const profile_model& m, const std::vector<run>& runs, const std::map<std::size_t, double>& shares,
+                 scene_states& ss) {
+  if (shares.empty()) return;
+  double smallest = std::numeric_limits<double>::infinity(), total = 0, sum = 0;
+  for (const auto& [tip, load] : shares) smallest = std::min(smallest, load);
+  for (auto& state : ss.st) {
+    total += state.target_load;  // the equal split adds up to the body's load
+    const auto it = shares.find(m.tip(runs[state.scene_index]));
+    state.target_load = it != shares.end() ? it->second : smallest / 4;
+    sum += state.target_load;
+  }
+  for (auto& state : ss.st) state.target_load *= total / sum;
+}
+
+/// Runs i .. j (in the order of x) become one.
+void merge_runs(std::vector<run>& runs, std::size_t i, std::size_t j) {
+  runs[i].last = runs[j].last;
+  runs.erase(runs.begin() + static_cast<std::ptrdiff_t>(i) + 1, runs.begin() + static_cast<std::ptrdiff_t>(j) + 1);
+}
+
+/// A contact that reaches beyond its run's basins covers the valley to the next bump: the run
+/// takes that bump in (merging with its run if it has one). Returns whether a run changed.
+bool widen(const profile_model& m, std::vector<run>& runs, const scene_states& ss) {
+  const auto& x = m.curve.x();
+  for (const auto& state : ss.st) {
+    const std::size_t k = state.scene_index;
+    const double a = state.g.a() + ss.origin, b = state.g.b() + ss.origin;
+    run& r = runs[k];
+    if (a < x[m.bumps[r.first].first] && r.first > 0) {
+      --r.first;
+      if (k > 0 && runs[k - 1].last >= r.first) merge_runs(runs, k - 1, k);
+      return true;
+    }
+    if (b > x[m.bumps[r.last].last] && r.last + 1 < m.bumps.size()) {
+      ++r.last;
+      if (k + 1 < runs.size() && runs[k + 1].first <= r.last) merge_runs(runs, k, k + 1);
+      return true;
+    }
+  }
+  return false;
+}
+
+/// The clearance of the surface at the samples outside the contacts: per bump the deepest
+/// penetration (relative to the profile's span; 0 when clear), and the smallest clearance overall.
+struct clearance_check {
+  std::vector<double> depth;  // per bump
+  double worst = std::numeric_limits<double>::infinity();
+  double worst_at = 0;
+};
+
+clearance_check check_clearance(const profile_model& m, const scene_states& ss, const context& cx) {
+  const auto& st = ss.st;
+  const auto& x = m.curve.x();
+  clearance_check out;
+  out.depth.assign(m.bumps.size(), 0.0);
+  // The samples off the contacts, each with the nearest contact as its reference (its datum).
+  std::vector<std::vector<double>> xs(st.size());
+  std::vector<std::vector<std::size_t>> index(st.size());
+  for (std::size_t q = 0; q < x.size(); ++q) {
+    const double s = x[q] - ss.origin;
+    std::size_t nearest = 0;
+    double distance = std::numeric_limits<double>::infinity();
+    bool skip = false;
+    for (std::size_t i = 0; i < st.size(); ++i) {
+      const double a = st[i].g.a(), b = st[i].g.b(), margin = edge_margin * (b - a);
+      if (s > a - margin && s < b + margin) skip = true;
+      const double d = s < a ? a - s : s - b;
+      if (d < distance) distance = d, nearest = i;
+    }
+    if (skip) continue;
+    xs[nearest].push_back(s);
+    index[nearest].push_back(q);
+  }
+  std::vector<std::size_t> bump_of(x.size(), 0);
+  for (std::size_t b = 0; b < m.bumps.size(); ++b)
+    for (std::size_t q = m.bumps[b].first; q <= m.bumps[b].last; ++q) bump_of[q] = b;
+  const surface heights(st, cx);
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    if (xs[i].empty()) continue;
+    const auto w = heights.heights(i, xs[i]);
+    const double a_abs = st[i].g.a() + ss.origin, z_a = m.curve.value(a_abs);
+    for (std::size_t k = 0; k < xs[i].size(); ++k) {
+      const std::size_t q = index[i][k];
+      // w - w(a_i) >= z - z(a_i) where the surface clears the profile.
+      const double gap = (w[k] - (m.curve.z()[q] - z_a)) / m.span;
+      if (gap < out.worst) out.worst = gap, out.worst_at = x[q];
+      out.depth[bump_of[q]] = std::max(out.depth[bump_of[q]], -gap);
+    }
+  }
+  return out;
+}
+
+/// "indentors[k] (general_profile)" of the coupled solve's messages -> "the contact at x = tip".
+std::string rename(std::string text, const profile_model& m, const std::vector<run>& runs) {
+  for (std::size_t k = 0; k < runs.size(); ++k) {
+    const std::string from = "indentors[" + std::to_string(k) + "] (general_profile)";
+    std::ostringstream to;
+    to.precision(6);
+    to << "the contact at the tip x = " << m.curve.x()[m.tip(runs[k])];
+    for (auto at = text.find(from); at != std::string::npos; at = text.find(from, at))
+      text.replace(at, from.size(), to.str());
+    const std::string see = "see indentors[" + std::to_string(k) + "]";
+    for (auto at = text.find(see); at != std::string::npos; at = text.find(see, at))
+      text.replace(at, see.size(), "see contacts[" + std::to_string(k) + "]");
+  }
+  return text;
+}
+
+/// The runs of the last round, solved: what solve_profile reports.
+struct round_state {
+  scene sc;
+  scene_states states;
+  coupled_outcome outcome;
+};
+
+}  // namespace
+}  // namespace detail
+
+profile_result solve_profile(const profile_scene& s, const solve_options& options) {
+  using namespace detail;
+  const auto start = std::chrono::steady_clock::now();
+  validate_profile(s);
+  validate_options(options, who);
+  const profile_model m(s);
+  if (m.bumps.empty())
+    bad("profile.z has no local maximum inside the data (its highest samples are at an end): extend the samples "
+        "beyond the contact");
+  if (std::none_of(m.bumps.begin(), m.bumps.end(), [&](const bump& b) { return s.profile.z[b.tip] == m.top; }))
+    bad("profile.z is highest at an end of the data (x = " +
+        num(s.profile.z.front() == m.top ? s.profile.x.front() : s.profile.x.back()) +
+        "): the first contact would leave the samples; extend them");
+  const context cx = make_context(s.material, s.speed, options);
+  const double tol = options.acceptance;
+
+  std::vector<run> runs;
+  for (std::size_t k = 0; k < m.bumps.size(); ++k)
+    if (s.profile.z[m.bumps[k].tip] == m.top) {
+      runs.push_back({k, k});
+      break;
+    }
+  std::vector<bool> dropped(m.bumps.size(), false);
+  std::map<std::size_t, double> shares;  // tip sample -> its load at the last solved set, per unit t
+  profile_result out;
+  round_state last;
+  clearance_check clear;
+  std::string set_failure;  // why the active set stopped short of a verified set ("" if it did not)
+  // Load continuation: the rounds run at the fraction t of the load, from the highest tip alone
+  // at a t small enough for its contact to fit its basin, then t times load_step up to 1, the set
+  // of the last t as the start of the next.
+  double t = start_fraction, settled = 0;
+  std::size_t halvings = 0;
+  std::size_t shrinks = 0;
+  const std::size_t max_rounds = 2 * m.bumps.size() + 40;
+  for (std::size_t round = 0;; ++round) {
+    if (round == max_rounds) {
+      set_failure = "the contact set did not settle in " + std::to_string(max_rounds) + " rounds";
+      break;
+    }
+    last.sc = make_scene(m, runs, t * s.load);
+    last.states = prepare_states(last.sc, cx);
+    start_split(m, runs, shares, last.states);
+    ++out.diagnostics.rounds;
+    try {
+      last.outcome = solve_states(last.sc, last.states, cx);
+    } catch (const std::domain_error& e) {
+      // One contact whose edges are not found inside its basin (its contact would be larger):
+      // a smaller fraction of the load first.
+      if (runs.size() == 1 && shrinks < max_shrinks) {
+        t /= shrink_factor;
+        ++shrinks;
+        continue;
+      }
+      set_failure = rename(e.what(), m, runs);
+      break;
+    }
+    out.diagnostics.iterations += last.outcome.iterations;
+    const auto& co = last.outcome;
+    if (co.code == status_code::contact_lost && co.lost && runs.size() > 1) {
+      const std::size_t k = last.states.st[*co.lost].scene_index;
+      for (std::size_t b = runs[k].first; b <= runs[k].last; ++b) dropped[b] = true;
+      runs.erase(runs.begin() + static_cast<std::ptrdiff_t>(k));
+      continue;
+    }
+    if (co.code == status_code::contacts_merge && co.merged) {
+      std::size_t i = last.states.st[co.merged->first].scene_index, j = last.states.st[co.merged->second].scene_index;
+      if (i > j) std::swap(i, j);
+      merge_runs(runs, i, j);
+      continue;
+    }
+    if (co.code != status_code::ok) {
+      // Failed right after a load step: half the step (in log t), at most max_halvings times.
+      if (t > settled * 1.01 && halvings < max_halvings) {
+        t = std::sqrt(t * settled);
+        ++halvings;
+        continue;
+      }
+      break;  // reported as it is
+    }
+    shares.clear();
+    for (const auto& state : last.states.st) shares[m.tip(runs[state.scene_index])] = state.target_load / t;
+    if (widen(m, runs, last.states)) continue;
+    clear = check_clearance(m, last.states, cx);
+    double deepest = 0;
+    std::vector<bool> active(m.bumps.size(), false);
+    for (const run& r : runs)
+      for (std::size_t b = r.first; b <= r.last; ++b) active[b] = true;
+    for (std::size_t b = 0; b < m.bumps.size(); ++b)
+      if (!active[b] && !dropped[b]) deepest = std::max(deepest, clear.depth[b]);
+    if (deepest > tol) {
+      for (std::size_t b = 0; b < m.bumps.size(); ++b)
+        if (!active[b] && !dropped[b] && clear.depth[b] >= add_fraction * deepest) runs.push_back({b, b});
+      std::sort(runs.begin(), runs.end(), [](const run& p, const run& q) { return p.first < q.first; });
+      continue;
+    }
+    if (t == 1) break;  // settled at the full load
+    settled = t;
+    halvings = 0;
+    t = std::min(1.0, t * load_step);
+    // A bump dropped at a smaller load may carry load at a larger one.
+    dropped.assign(dropped.size(), false);
+  }
+
+  // The report of the last round, with contact.cpp's evidence, and the clearance.
+  const scene_result r = report_scene(last.sc, last.states, cx, last.outcome);
+  out.beta = r.beta;
+  out.kappa = r.kappa;
+  out.regime = r.regime;
+  out.contacts = r.indentors;
+  for (auto& c : out.contacts) c.status = rename(c.status, m, runs);
+  for (const run& rn : runs) out.tips.push_back(s.profile.x[m.tip(rn)]);
+  out.body_approach = r.body_approach.value_or(std::numeric_limits<double>::quiet_NaN());
+  out.diagnostics.residual = r.diagnostics.residual;
+  out.diagnostics.code = r.diagnostics.code;
+  out.diagnostics.status = rename(r.diagnostics.status, m, runs);
+  if (last.outcome.code == status_code::ok) {
+    if (clear.depth.empty()) clear = check_clearance(m, last.states, cx);
+    out.clearance = clear.worst == std::numeric_limits<double>::infinity() ? 0.0 : clear.worst;
+    out.clearance_at = clear.worst_at;
+  } else {
+    out.clearance = std::numeric_limits<double>::quiet_NaN();
+    out.clearance_at = std::numeric_limits<double>::quiet_NaN();
+  }
+  for (std::size_t k = 0; k < out.contacts.size(); ++k) {
+    const auto& c = out.contacts[k];
+    if (out.diagnostics.code == status_code::ok && (c.a < s.profile.x.front() || c.b > s.profile.x.back())) {
+      out.diagnostics.code = status_code::not_converged;
+      out.diagnostics.status = "contacts[" + std::to_string(k) + "] [" + num(c.a) + ", " + num(c.b) +
+                               "] leaves the samples [" + num(s.profile.x.front()) + ", " + num(s.profile.x.back()) +
+                               "]: extend the profile";
+    }
+  }
+  if (out.diagnostics.code == status_code::ok && !set_failure.empty()) {
+    out.diagnostics.code = status_code::not_converged;
+    out.diagnostics.status = set_failure;
+  }
+  if (out.diagnostics.code == status_code::ok && out.clearance < -tol) {
+    std::ostringstream os;
+    os.precision(3);
+    os << "the profile penetrates the surface by " << -out.clearance << " of max z - min z at x = " << out.clearance_at
+       << " (outside the contacts found: a contact there vanished in an earlier round, or lies inside a merged "
+          "contact's basins)";
+    out.diagnostics.code = status_code::penetration;
+    out.diagnostics.status = os.str();
+  }
+  out.diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace rhabel::punch

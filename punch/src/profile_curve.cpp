@@ -1,0 +1,75 @@
+// punch/src/profile_curve.cpp: the natural cubic spline of a sampled profile and its bumps.
+#include "profile_curve.hpp"
+
+#include <gsl/gsl_spline.h>
+
+#include <algorithm>
+#include <iterator>
+
+namespace rhabel::punch::detail {
+
+profile_curve::profile_curve(const sampled_profile& p) : x_(p.x), z_(p.z), corners_(p.corners) {
+  std::sort(corners_.begin(), corners_.end());
+  // Piece boundaries: the ends and the corners (each a sample abscissa, validated).
+  std::vector<std::size_t> cuts{0};
+  for (const double c : corners_)
+    cuts.push_back(static_cast<std::size_t>(std::lower_bound(x_.begin(), x_.end(), c) - x_.begin()));
+  cuts.push_back(x_.size() - 1);
+  for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+    const std::size_t i0 = cuts[k], n = cuts[k + 1] - i0 + 1;
+    piece pc;
+    pc.lo = x_[i0];
+    pc.hi = x_[cuts[k + 1]];
+    pc.spline.reset(gsl_spline_alloc(gsl_interp_cspline, n), gsl_spline_free);
+    if (!pc.spline) throw std::bad_alloc();
+    gsl_spline_init(pc.spline.get(), x_.data() + i0, z_.data() + i0, n);
+    pieces_.push_back(std::move(pc));
+  }
+}
+
+const profile_curve::piece& profile_curve::piece_at(double x) const {
+  // The piece whose upper end is the first >= x (a corner belongs to the piece on its left for the
+  // value, which both pieces share; the slope there is one-sided either way).
+  for (const auto& pc : pieces_)
+    if (x <= pc.hi) return pc;
+  return pieces_.back();
+}
+
+double profile_curve::value(double x) const {
+  const piece& pc = piece_at(x);
+  // Linear continuation beyond the data with the end slope (gsl_spline_eval refuses x outside).
+  const double at = std::clamp(x, pc.lo, pc.hi);
+  const double v = gsl_spline_eval(pc.spline.get(), at, nullptr);
+  return at == x ? v : v + (x - at) * gsl_spline_eval_deriv(pc.spline.get(), at, nullptr);
+}
+
+double profile_curve::slope(double x) const {
+  const piece& pc = piece_at(x);
+  return gsl_spline_eval_deriv(pc.spline.get(), std::clamp(x, pc.lo, pc.hi), nullptr);
+}
+
+std::vector<bump> find_bumps(const std::vector<double>& z) {
+  std::vector<std::size_t> tips;
+  for (std::size_t i = 1; i + 1 < z.size(); ++i) {
+    if (!(z[i] > z[i - 1])) continue;
+    // Past a plateau: the top is a tip only if the samples fall after it.
+    std::size_t j = i + 1;
+    while (j < z.size() && z[j] == z[i]) ++j;
+    if (j < z.size() && z[j] < z[i]) tips.push_back(i);
+  }
+  std::vector<bump> out(tips.size());
+  for (std::size_t k = 0; k < tips.size(); ++k) {
+    out[k].tip = tips[k];
+    out[k].first = k == 0 ? 0 : out[k - 1].last;
+    if (k + 1 == tips.size()) {
+      out[k].last = z.size() - 1;
+    } else {
+      const auto from = z.begin() + static_cast<std::ptrdiff_t>(tips[k]);
+      const auto to = z.begin() + static_cast<std::ptrdiff_t>(tips[k + 1]);
+      out[k].last = static_cast<std::size_t>(std::min_element(from, to) - z.begin());
+    }
+  }
+  return out;
+}
+
+}  // namespace rhabel::punch::detail

@@ -1,0 +1,54 @@
+// punch/src/profile_curve.hpp: the interpolant of a sampled profile and its bumps (internal to
+// punch/src: used by contact_set.cpp).
+//
+// The profile is the natural cubic spline of the samples (GSL cspline), one spline per piece
+// between declared corners (rhabel/punch/profile.hpp, "THE INTERPOLANT" for why). Outside the
+// samples it is continued linearly with the end slope, so that a quadrature point that strays
+// beyond the data gets a finite value (a contact must not reach there: contact_set.cpp checks).
+#pragma once
+
+#include "rhabel/punch/profile.hpp"
+
+#include <gsl/gsl_spline.h>
+
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+namespace rhabel::punch::detail {
+
+class profile_curve {
+ public:
+  /// p validated (solve_profile's validate_profile).
+  explicit profile_curve(const sampled_profile& p);
+  double value(double x) const;
+  double slope(double x) const;
+  double lo() const { return x_.front(); }
+  double hi() const { return x_.back(); }
+  const std::vector<double>& x() const { return x_; }
+  const std::vector<double>& z() const { return z_; }
+  const std::vector<double>& corners() const { return corners_; }
+
+ private:
+  struct piece {
+    double lo = 0, hi = 0;
+    std::shared_ptr<gsl_spline> spline;
+  };
+  const piece& piece_at(double x) const;
+  std::vector<double> x_, z_, corners_;
+  std::vector<piece> pieces_;
+};
+
+/// A bump of the profile: its tip (a sample that is a local maximum of z) and its basin, the
+/// samples between the lowest samples towards the neighbouring tips (the data's ends for the
+/// first and the last bump).
+struct bump {
+  std::size_t tip = 0;              // sample index
+  std::size_t first = 0, last = 0;  // sample indices of the basin's ends
+};
+
+/// The bumps of the samples in the order of x. A tip at the data's end is not a bump (a contact
+/// there would leave the data). Plateaus: the first sample of a flat top is the tip.
+std::vector<bump> find_bumps(const std::vector<double>& z);
+
+}  // namespace rhabel::punch::detail
