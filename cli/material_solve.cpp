@@ -55,6 +55,9 @@ materials::master_curve load_master_curve(const master_curve_spec& spec, const s
 run_outcome run_scene_with_material(const scene_spec& scene, const run_request& request, std::string* warning) {
   if (warning) warning->clear();
   if (!scene.material.curve) return run_scene(scene, request);
+  if (scene.profile)
+    throw input_error("solve: material.master_curve with a profile is not supported (the fit uses the indentors' "
+                      "contact lengths): give material.alpha and material.E1");
   const auto& spec = *scene.material.curve;
   const auto curve = load_master_curve(spec, "solve");
   scene_spec trial = scene;

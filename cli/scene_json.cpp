@@ -8,7 +8,10 @@
 #include <cmath>
 #include <cstddef>
 #include <initializer_list>
+#include <filesystem>
+#include <fstream>
 #include <set>
+#include <system_error>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -306,6 +309,64 @@ indentor_spec parse_indentor(const json& value, const std::string& path, bool bo
   return d;
 }
 
+std::vector<double> number_array(const json& value, const std::string& path, const std::string& what) {
+  if (!value.is_array()) fail(path + " must be an array of numbers (" + what + "), got " + type_of(value) + " " + show(value));
+  std::vector<double> out;
+  out.reserve(value.size());
+  for (std::size_t i = 0; i < value.size(); ++i)
+    out.push_back(number(value[i], path + "[" + std::to_string(i) + "]", any_finite, what));
+  return out;
+}
+
+// The two-column CSV of a profile: x,z per line (comma, semicolon, tab or blanks between them);
+// an optional first line that is not numeric (a header) and lines starting with # are skipped.
+void read_profile_csv(const std::string& path, const std::string& shown, profile_spec& p) {
+  // Only a regular file: a device (/dev/zero) or a pipe would be read forever.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    fail("profile.file = \"" + shown + "\" is not a readable regular file (" + path + ")");
+  std::ifstream in(path);
+  if (!in) fail("profile.file = \"" + shown + "\" cannot be read (" + path + ")");
+  std::string line;
+  std::size_t number_of_line = 0;
+  while (std::getline(in, line)) {
+    ++number_of_line;
+    const auto first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    for (char& c : line)
+      if (c == ',' || c == ';' || c == '\t' || c == '\r') c = ' ';
+    std::istringstream fields(line);
+    double x = 0, z = 0;
+    std::string rest;
+    const bool numeric = static_cast<bool>(fields >> x >> z);
+    if (!numeric && p.x.empty() && number_of_line == 1) continue;  // a header
+    if (!numeric || (fields >> rest) || !std::isfinite(x) || !std::isfinite(z))
+      fail("profile.file = \"" + shown + "\" line " + std::to_string(number_of_line) +
+           ": expected two finite numbers x,z, got \"" + line.substr(0, 80) + "\"");
+    p.x.push_back(x);
+    p.z.push_back(z);
+  }
+}
+
+profile_spec parse_profile(const json& value, const std::string& base_dir) {
+  require_object(value, "profile");
+  profile_spec p;
+  if (value.contains("file")) {
+    only_keys(value, "profile", {"file", "corners"}, " with a file");
+    p.file = optional_string(value, "profile", "file");
+    const std::filesystem::path path(p.file);
+    read_profile_csv(path.is_absolute() || base_dir.empty() ? p.file : (std::filesystem::path(base_dir) / path).string(),
+                     p.file, p);
+  } else {
+    only_keys(value, "profile", {"x", "z", "corners"});
+    p.x = number_array(require(value, "profile", "x", "the sample abscissae (or \"file\")"), "profile.x", "sample abscissa");
+    p.z = number_array(require(value, "profile", "z", "the sample heights"), "profile.z", "sample height");
+  }
+  if (const auto it = value.find("corners"); it != value.end())
+    p.corners = number_array(*it, "profile.corners", "abscissa of a slope jump");
+  return p;
+}
+
 }  // namespace
 
 scene_spec parse_scene(std::string_view text, const std::string& source, const std::string& base_dir) {
@@ -332,7 +393,7 @@ scene_spec parse_scene(std::string_view text, const std::string& source, const s
     fail(guard.path() + " is out of range: " + what + " (numbers must be finite doubles)");
   }
   if (!root.is_object()) fail("scene " + source + ": the top level must be a JSON object {...}, got " + type_of(root));
-  only_keys(root, "", {"description", "material", "speed", "body", "indentors"});
+  only_keys(root, "", {"description", "material", "speed", "body", "indentors", "profile"});
 
   scene_spec scene;
   scene.description = optional_string(root, "", "description");
@@ -342,6 +403,12 @@ scene_spec parse_scene(std::string_view text, const std::string& source, const s
     require_object(*it, "body");
     only_keys(*it, "body", {"load"});
     scene.body_load = required_number(*it, "body", "load", positive, "total normal force per unit length");
+  }
+  if (const auto it = root.find("profile"); it != root.end()) {
+    if (root.contains("indentors")) fail("indentors and profile are exclusive: give one of them");
+    if (!scene.body_load) fail("profile needs a rigid body with its total load: add \"body\": {\"load\": ...}");
+    scene.profile = parse_profile(*it, base_dir);
+    return scene;
   }
   const auto& list = require(root, "", "indentors", "a non-empty array of indentors is required");
   if (!list.is_array()) fail("indentors must be a non-empty array [...], got " + type_of(list) + " " + show(list));

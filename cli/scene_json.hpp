@@ -34,6 +34,9 @@
 // body             object, optional   {"load": P}: all indentors on one rigid body pressed with the
 //                                     total load P in (0, inf); the indentors then have no `load`
 //                                     (the split is solved) and may have a `height`
+// profile          object, optional   instead of indentors (with a body): a sampled rigid profile
+//                                     whose contacts are found, {"x": [..], "z": [..]} or
+//                                     {"file": "FILE.csv"}, optional "corners": [..] (profile_spec)
 //
 // Policy (decided deliberately, each one is tested in tests/cli/test_solve_errors.sh):
 // - Every field listed is required except `apex`, `name`, `description` (and `material.name`),
@@ -108,13 +111,23 @@ struct indentor_spec {
   std::string name;           ///< optional label ("" if absent)
 };
 
+/// A sampled rigid profile (rhabel::punch::solve_profile): "profile": {"x": [...], "z": [...]}
+/// or {"file": "FILE.csv"} (two columns x,z; a header line and lines starting with # are
+/// skipped; the path relative to the scene file's directory), with optional "corners": [...].
+/// The samples' own rules (increasing x, corners on samples) are the solver's, named by it.
+struct profile_spec {
+  std::vector<double> x, z, corners;
+  std::string file;  ///< as written in the scene ("" for inline samples)
+};
+
 /// A validated scene: every number finite and inside its documented range.
 struct scene_spec {
   std::string description;
   material_spec material;
   double speed = 0;
-  std::optional<double> body_load;  ///< "body": {"load": P}: all indentors on one rigid body
-  std::vector<indentor_spec> indentors;
+  std::optional<double> body_load;  ///< "body": {"load": P}: all indentors (or the profile) on one rigid body
+  std::vector<indentor_spec> indentors;  ///< empty when `profile` is given
+  std::optional<profile_spec> profile;   ///< a sampled profile instead of indentors (needs the body)
 };
 
 /// Parses and validates a scene. `source` names the input in messages (a file name or "stdin").

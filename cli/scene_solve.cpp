@@ -15,6 +15,7 @@
 #include "commands.hpp"
 
 #include <rhabel/punch/contact.hpp>
+#include <rhabel/punch/profile.hpp>
 
 #include <cmath>
 #include <random>
@@ -28,12 +29,18 @@ namespace {
 
 using ordered_json = nlohmann::ordered_json;
 
+punch::material to_punch(const material_spec& m) {
+  punch::material out;
+  out.alpha = m.alpha;
+  out.E1 = m.E1;
+  out.poisson = m.nu;
+  out.coulomb = m.coulomb;
+  return out;
+}
+
 punch::scene to_punch(const scene_spec& spec) {
   punch::scene s;
-  s.material.alpha = spec.material.alpha;
-  s.material.E1 = spec.material.E1;
-  s.material.poisson = spec.material.nu;
-  s.material.coulomb = spec.material.coulomb;
+  s.material = to_punch(spec.material);
   s.speed = spec.speed;
   if (spec.body_load) s.body = punch::rigid_body{*spec.body_load};
   for (const auto& d : spec.indentors) {
@@ -82,7 +89,18 @@ ordered_json echo_scene(const scene_spec& spec) {
   out["material"] = std::move(material);
   out["speed"] = spec.speed;
   if (spec.body_load) out["body"] = {{"load", *spec.body_load}};
-  out["indentors"] = std::move(indentors);
+  if (spec.profile) {
+    // The samples themselves are the input's (a measured profile has thousands): their count,
+    // range and file stand for them.
+    ordered_json profile;
+    if (!spec.profile->file.empty()) profile["file"] = spec.profile->file;
+    profile["samples"] = spec.profile->x.size();
+    if (!spec.profile->x.empty()) profile["x_range"] = {spec.profile->x.front(), spec.profile->x.back()};
+    profile["corners"] = spec.profile->corners;
+    out["profile"] = std::move(profile);
+  } else {
+    out["indentors"] = std::move(indentors);
+  }
   return out;
 }
 
@@ -123,11 +141,105 @@ ordered_json edge_json(const punch::edge_report& e) {
           {"intensity_factor", e.intensity_factor}};
 }
 
+// The fields of one contact's result (an indentor's, or a contact of a profile); its sampled
+// arrays go to out's tables as field `index`, with placeholders numbered by `arrays`.
+ordered_json contact_item(punch::indentor_result& ir, std::size_t index, const std::string& where, const run_request& request,
+                          run_outcome& out, std::size_t& arrays) {
+  auto placeholder = [&] { return out.grid_token + std::to_string(arrays++); };
+  ordered_json item;
+  item["contact"] = {ir.a, ir.b};
+  item["contact_length"] = ir.contact_length;
+  if (ir.epsilon) item["epsilon"] = *ir.epsilon;
+  item["load"] = ir.load;
+  if (!std::isnan(ir.approach)) item["approach"] = ir.approach;
+  item["hysteretic_friction"] = ir.hysteretic_friction;
+  item["total_friction"] = ir.total_friction;
+  const bool singular_peak = !std::isfinite(ir.peak_pressure);
+  if (singular_peak && !(ir.peak_pressure > 0))
+    throw std::runtime_error("solve: the solver produced a NaN peak pressure for " + where);
+  item["peak_pressure"] = singular_peak ? ordered_json(nullptr) : ordered_json(ir.peak_pressure);
+  item["peak_pressure_singular"] = singular_peak;
+  item["peak_pressure_at"] = ir.peak_pressure_at;
+  ordered_json edges = ordered_json::array();
+  for (const auto& e : ir.edges) edges.push_back(edge_json(e));
+  item["edges"] = std::move(edges);
+  item["residual"] = ir.residual;
+  item["error_estimate"] = ir.error_estimate;
+  item["degree"] = ir.degree;
+  item["status"] = punch::to_string(ir.code);
+  item["status_message"] = ir.status;
+  if (request.grid > 0) {
+    if (ir.grid_x.size() != ir.pressure.size() || ir.displacement_x.size() != ir.displacement.size()) {
+      throw std::runtime_error("solve: the solver returned grids of mismatched sizes");
+    }
+    const std::string prefix = "result." + where + ".";
+    require_finite(ir.grid_x, prefix + "pressure.x");
+    require_finite(ir.pressure, prefix + "pressure.p");
+    require_finite(ir.displacement_x, prefix + "displacement.x");
+    require_finite(ir.displacement, prefix + "displacement.w");
+    item["pressure"] = {{"x", placeholder()}, {"p", placeholder()}};
+    item["displacement"] = {{"x", placeholder()}, {"w", placeholder()}};
+    out.pressure.fields.push_back({index, std::move(ir.grid_x), std::move(ir.pressure)});
+    out.displacement.fields.push_back({index, std::move(ir.displacement_x), std::move(ir.displacement)});
+  }
+  return item;
+}
+
+
+// A sampled profile: its contacts as found by punch::solve_profile.
+run_outcome run_profile(const scene_spec& spec, const run_request& request, const punch::solve_options& options) {
+  punch::profile_scene ps;
+  ps.material = to_punch(spec.material);
+  ps.speed = spec.speed;
+  ps.load = *spec.body_load;
+  ps.profile = {spec.profile->x, spec.profile->z, spec.profile->corners};
+  punch::profile_result r;
+  try {
+    r = punch::solve_profile(ps, options);
+  } catch (const std::invalid_argument& e) {
+    throw input_error(std::string("solve: the scene was rejected: ") + e.what());
+  } catch (const std::domain_error& e) {
+    throw input_error(std::string("solve: the scene has no solution: ") + e.what());
+  }
+  run_outcome out;
+  auto& doc = out.result;
+  if (request.grid > 0) out.grid_token = make_grid_token();
+  std::size_t arrays = 0;
+  doc["beta"] = r.beta;
+  doc["kappa"] = r.kappa;
+  doc["regime"] = r.regime;
+  doc["effective_modulus"] = ps.material.effective_modulus(spec.speed);
+  if (!std::isnan(r.body_approach)) doc["body_approach"] = r.body_approach;
+  out.pressure.columns = {"contact", "x", "pressure"};
+  out.displacement.columns = {"contact", "x", "displacement"};
+  ordered_json contacts = ordered_json::array();
+  for (std::size_t i = 0; i < r.contacts.size(); ++i) {
+    ordered_json item;
+    item["tip"] = r.tips[i];
+    item.update(contact_item(r.contacts[i], i, "contacts[" + std::to_string(i) + "]", request, out, arrays));
+    contacts.push_back(std::move(item));
+  }
+  doc["contacts"] = std::move(contacts);
+  if (!std::isnan(r.clearance)) doc["clearance"] = {{"min", r.clearance}, {"at", r.clearance_at}};
+  doc["diagnostics"] = {{"residual", r.diagnostics.residual},
+                        {"seconds", r.diagnostics.seconds},
+                        {"rounds", r.diagnostics.rounds},
+                        {"iterations", r.diagnostics.iterations},
+                        {"status", punch::to_string(r.diagnostics.code)},
+                        {"status_message", r.diagnostics.status}};
+  out.ok = r.diagnostics.code == punch::status_code::ok;
+  doc["scene"] = echo_scene(spec);
+  require_finite(doc, "result");
+  return out;
+}
+
 }  // namespace
 
 run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   punch::solve_options options;
   options.grid_points = request.grid;
+  options.acceptance = request.acceptance;
+  if (spec.profile) return run_profile(spec, request, options);
   punch::scene_result r;
   try {
     r = punch::solve(to_punch(spec), options);
@@ -140,9 +252,8 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   run_outcome out;
   auto& doc = out.result;
   if (request.grid > 0) out.grid_token = make_grid_token();
-  // Placeholder of sampled array k of the run (pressure x, p, displacement x, w of each indentor).
+  // Placeholder k of the run: pressure x, p, displacement x, w of each indentor in turn.
   std::size_t arrays = 0;
-  auto placeholder = [&] { return out.grid_token + std::to_string(arrays++); };
   doc["beta"] = r.beta;
   doc["kappa"] = r.kappa;
   doc["regime"] = r.regime;
@@ -152,47 +263,11 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   out.pressure.columns = {"indentor", "x", "pressure"};
   out.displacement.columns = {"indentor", "x", "displacement"};
   for (std::size_t i = 0; i < r.indentors.size(); ++i) {
-    auto& ir = r.indentors[i];
     const auto& spec_i = spec.indentors.at(i);
     ordered_json item;
     item["shape"] = shape_name(spec_i.shape);
     if (!spec_i.name.empty()) item["name"] = spec_i.name;
-    item["contact"] = {ir.a, ir.b};
-    item["contact_length"] = ir.contact_length;
-    if (spec_i.shape == shape_kind::wedge && ir.epsilon) item["epsilon"] = *ir.epsilon;
-    item["load"] = ir.load;
-    if (!std::isnan(ir.approach)) item["approach"] = ir.approach;
-    item["hysteretic_friction"] = ir.hysteretic_friction;
-    item["total_friction"] = ir.total_friction;
-    const bool singular_peak = !std::isfinite(ir.peak_pressure);
-    if (singular_peak && !(ir.peak_pressure > 0)) {
-      throw std::runtime_error("solve: the solver produced a NaN peak pressure for indentors[" + std::to_string(i) + "]");
-    }
-    item["peak_pressure"] = singular_peak ? ordered_json(nullptr) : ordered_json(ir.peak_pressure);
-    item["peak_pressure_singular"] = singular_peak;
-    item["peak_pressure_at"] = ir.peak_pressure_at;
-    ordered_json edges = ordered_json::array();
-    for (const auto& e : ir.edges) edges.push_back(edge_json(e));
-    item["edges"] = std::move(edges);
-    item["residual"] = ir.residual;
-    item["error_estimate"] = ir.error_estimate;
-    item["degree"] = ir.degree;
-    item["status"] = punch::to_string(ir.code);
-    item["status_message"] = ir.status;
-    if (request.grid > 0) {
-      if (ir.grid_x.size() != ir.pressure.size() || ir.displacement_x.size() != ir.displacement.size()) {
-        throw std::runtime_error("solve: the solver returned grids of mismatched sizes");
-      }
-      const std::string where = "result.indentors[" + std::to_string(i) + "].";
-      require_finite(ir.grid_x, where + "pressure.x");
-      require_finite(ir.pressure, where + "pressure.p");
-      require_finite(ir.displacement_x, where + "displacement.x");
-      require_finite(ir.displacement, where + "displacement.w");
-      item["pressure"] = {{"x", placeholder()}, {"p", placeholder()}};
-      item["displacement"] = {{"x", placeholder()}, {"w", placeholder()}};
-      out.pressure.fields.push_back({i, std::move(ir.grid_x), std::move(ir.pressure)});
-      out.displacement.fields.push_back({i, std::move(ir.displacement_x), std::move(ir.displacement)});
-    }
+    item.update(contact_item(r.indentors[i], i, "indentors[" + std::to_string(i) + "]", request, out, arrays));
     indentors.push_back(std::move(item));
   }
   doc["indentors"] = std::move(indentors);

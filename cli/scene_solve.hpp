@@ -18,6 +18,7 @@ namespace rhabel::cli {
 /// What `rhabel solve` was asked to add to the summary.
 struct run_request {
   std::size_t grid = 0;  ///< 0: no sampled fields; otherwise points per field (>= 2)
+  double acceptance = 1e-9;  ///< punch::solve_options::acceptance: the bar of status "ok"
 };
 
 /// One indentor's samples of a field: abscissae and values (finite), of equal sizes.

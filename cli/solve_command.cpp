@@ -1,4 +1,4 @@
-// rhabel solve SCENE.json [--grid N] [--csv PREFIX] [--compact]
+// rhabel solve SCENE.json [--grid N] [--csv PREFIX] [--acceptance TOL] [--compact]
 //
 // Reads a scene (a JSON file, or stdin for "-"), validates all of it, solves it with the punch
 // layer and prints the result as JSON on stdout. Schemas: cli/scene_json.hpp (scene) and
@@ -9,6 +9,7 @@
 //   --csv PREFIX   also writes PREFIX_pressure.csv (indentor,x,pressure) and
 //                  PREFIX_displacement.csv (indentor,x,displacement): all indentors in one file
 //                  each, `indentor` is the index in the scene; implies --grid 201 unless given.
+//   --acceptance TOL  the bar of status "ok" (punch::solve_options::acceptance, default 1e-9).
 //   --compact      one-line JSON instead of the indented form.
 //
 // Output discipline: everything is computed in memory first; on any error nothing is written to
@@ -53,6 +54,7 @@ struct solve_arguments {
   std::string csv_prefix;
   bool csv = false;  // --csv given (an empty prefix is an error, not "no CSV")
   bool compact = false;
+  double acceptance = 1e-9;
 };
 
 std::string read_scene(const std::string& path) {
@@ -203,6 +205,7 @@ int run(const solve_arguments& args) {
 
   run_request request;
   request.grid = args.grid;
+  request.acceptance = args.acceptance;
   if (request.grid == 0 && args.csv) request.grid = default_csv_grid;
   std::string warning;
   const run_outcome outcome = run_scene_with_material(scene, request, &warning);
@@ -242,6 +245,11 @@ void add_solve_command(CLI::App& app, command_action& action) {
   auto* csv = solve->add_option("--csv", args->csv_prefix,
                     "also write PREFIX_pressure.csv (indentor,x,pressure) and PREFIX_displacement.csv "
                     "(indentor,x,displacement); implies --grid 201");
+  solve
+      ->add_option("--acceptance", args->acceptance,
+                   "the bar of status \"ok\": relative residual of (8), negative pressure, load defect and error "
+                   "estimate (default 1e-9; a sampled profile is worth ~1e-6)")
+      ->check(CLI::Range(1e-15, 0.1));
   solve->add_flag("--compact", args->compact, "print the JSON on one line");
   solve->callback([&action, args, csv] {
     args->csv = csv->count() > 0;

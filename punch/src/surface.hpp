@@ -33,7 +33,7 @@ class surface {
       : st_(st), cx_(cx), omk_(cx.par.one_minus_kappa_over_alpha()), edge_(st.size()), nodes_(st.size()) {}
 
   /// f_k(to) - f_k(from): the rise of indentor k's rigid profile (each shape's closed form; a
-  /// general profile's int_from^to f' by Gauss-Legendre, f' smooth there).
+  /// general profile's int_from^to f' by Gauss-Legendre between its corners).
   double rise(std::size_t k, double from, double to) const {
     const auto& s = st_[k];
     switch (s.k) {
@@ -48,12 +48,23 @@ class surface {
       }
       case kind::flat: return 0.0;
       case kind::general: {
+        // Piecewise between the corners inside (f' jumps there: one rule across a jump would be
+        // first-order accurate, measured 1e-2 of the span on a sampled profile's valley).
         const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(32, 0.0, 0.0);
         const auto& rule = *rule_ptr;
-        double sum = 0;
-        for (std::size_t q = 0; q < rule.size(); ++q)
-          sum += rule.weight[q] * own_slope(s, from + (to - from) * (1 + rule.x[q]) / 2);
-        return sum * (to - from) / 2;
+        std::vector<double> cuts{from};
+        for (const double c : std::get<general_profile>(s.source->shape).corners)
+          if ((c + s.apex - from) * (c + s.apex - to) < 0) cuts.push_back(c + s.apex);
+        cuts.push_back(to);
+        std::sort(cuts.begin(), cuts.end(), [&](double p, double q) { return from < to ? p < q : p > q; });
+        double total = 0;
+        for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
+          const double lo = cuts[k], hi = cuts[k + 1];
+          double sum = 0;
+          for (std::size_t q = 0; q < rule.size(); ++q) sum += rule.weight[q] * own_slope(s, lo + (hi - lo) * (1 + rule.x[q]) / 2);
+          total += sum * (hi - lo) / 2;
+        }
+        return total;
       }
     }
     return 0.0;

@@ -37,7 +37,7 @@ __all__ = ["solve", "trial_interval", "load_scene", "validate_scene", "Record", 
            "abel", "riemann", "__version__"]
 
 
-def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True):
+def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acceptance=1e-9):
     """Solve a scene: rigid indentors sliding together at speed U towards -x over a power-law
     viscoelastic half-space E(t) = E1 t^-alpha (plane strain, steady state). Same schema, same
     validation and same numbers as ``rhabel solve SCENE.json`` (examples/README.md).
@@ -75,6 +75,11 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True):
         indentors[i].width          (0, inf)        flat only: width of the face
         ==========================  ==============  ============================================
 
+        Instead of ``indentors``, with a ``body``: ``"profile": {"x": [...], "z": [...]}`` (or
+        ``{"file": "FILE.csv"}``, two columns x,z, relative to the working directory, or to the
+        scene file's directory with load_scene) and optional ``"corners"``: a sampled rigid
+        profile whose contacts are found (examples/README.md, "A sampled (measured) profile").
+
         Every field is required except ``apex``, ``name``, ``description``, ``body`` and
         ``height`` (with a body an indentor has no ``load``; flat punches on a body are not
         supported); unknown fields are
@@ -90,6 +95,9 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True):
     residual : bool
         Compute the independent residual of the Abel equation (the evidence that the density
         solves it). False skips it (a quarter to a third of a wedge solve); residuals are NaN.
+    acceptance : float in [1e-15, 0.1]
+        The bar of status "ok" (residual, negative pressure, load defect, error estimate;
+        default 1e-9). A sampled profile is worth ~1e-6 (its spline limits the residual).
 
     Returns
     -------
@@ -121,6 +129,10 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True):
           solve), ``iterations`` (Newton iterations of the coupled solve), ``status`` (the
           worst of the indentors' and the coupled solve's), ``status_message``.
         - ``scene``: the validated scene, defaults filled in.
+        - With a profile: ``contacts`` instead of ``indentors`` (each with its ``tip``, the
+          highest sample inside it, and the fields above but ``shape``/``name``), ``clearance``
+          {``min``, ``at``} (the smallest gap between surface and profile at the samples outside
+          the contacts, relative to max z - min z) and ``diagnostics.rounds``.
 
         ``result.to_plain()`` / ``result.to_json()`` give the command line's document.
 
@@ -142,7 +154,20 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True):
     """
     spec = _validate(scene)
     grid = _grid(grid)
-    result = _rhabel._solve(spec, grid, bool(displacement), float(tolerance), bool(residual))
+    acceptance = float(acceptance)
+    if not 1e-15 <= acceptance <= 0.1:
+        raise ValueError(f"acceptance = {acceptance!r} is outside the valid range [1e-15, 0.1]")
+    if "profile" in spec:
+        result = _rhabel._solve_profile(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance)
+        # The command line's echo of a profile: the samples stand as their count and range.
+        profile = spec["profile"]
+        echo = Record({k: v for k, v in spec.items() if k != "profile"})
+        echo["profile"] = Record({**({"file": profile["file"]} if "file" in profile else {}),
+                                  "samples": len(profile["x"]), "x_range": [profile["x"][0], profile["x"][-1]],
+                                  "corners": profile["corners"]})
+        result["scene"] = echo
+        return result
+    result = _rhabel._solve(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance)
     result["scene"] = spec
     return result
 
@@ -240,7 +265,14 @@ def load_scene(path):
     if hasattr(path, "read"):
         return _json.load(path, object_pairs_hook=pairs)
     with open(path, encoding="utf-8") as f:
-        return _json.load(f, object_pairs_hook=pairs)
+        scene = _json.load(f, object_pairs_hook=pairs)
+    # A profile's CSV is relative to the scene file, as for the command line.
+    profile = scene.get("profile") if isinstance(scene, dict) else None
+    if isinstance(profile, dict) and isinstance(profile.get("file"), str):
+        import os
+        if not os.path.isabs(profile["file"]):
+            profile["file"] = os.path.join(os.path.dirname(os.fspath(path)), profile["file"])
+    return scene
 
 
 GaussJacobiRule = _namedtuple("GaussJacobiRule", ["x", "hi_minus_x", "x_minus_lo", "weight"])

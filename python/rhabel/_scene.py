@@ -203,13 +203,71 @@ def _indentor(value, path, body):
     return d
 
 
+def _number_array(value, path, what):
+    if isinstance(value, np.ndarray):
+        value = value.tolist()
+    if not isinstance(value, (list, tuple)):
+        _fail(f"{path} must be an array of numbers ({what}), got {_type_of(value)} {_show(value)}")
+    return [_number(v, f"{path}[{i}]", _ANY_FINITE, what) for i, v in enumerate(value)]
+
+
+def _read_profile_csv(path, shown):
+    """The two-column CSV of a profile, as the command line reads it (cli/scene_json.cpp)."""
+    import os
+    if not os.path.isfile(path):  # only a regular file: a device or a pipe would be read forever
+        _fail(f'profile.file = "{shown}" is not a readable regular file ({path})')
+    try:
+        with open(path, encoding="utf-8") as f:
+            lines = f.read().split("\n")
+    except OSError:
+        _fail(f'profile.file = "{shown}" cannot be read ({path})')
+    x, z = [], []
+    for number, line in enumerate(lines, start=1):
+        stripped = line.strip(" \t\r")
+        if not stripped or stripped.startswith("#"):
+            continue
+        fields = line
+        for c in ",;\t\r":
+            fields = fields.replace(c, " ")
+        parts = fields.split()
+        try:
+            values = [float(v) for v in parts[:2]]
+            numeric = len(values) == 2
+        except ValueError:
+            numeric = False
+        if not numeric and not x and number == 1:
+            continue  # a header
+        if not numeric or len(parts) != 2 or not all(math.isfinite(v) for v in values):
+            _fail(f'profile.file = "{shown}" line {number}: expected two finite numbers x,z, got "{line[:80]}"')
+        x.append(values[0])
+        z.append(values[1])
+    return x, z
+
+
+def _profile(value):
+    _require_object(value, "profile")
+    out = Record()
+    if "file" in value:
+        _only_keys(value, "profile", ("file", "corners"), " with a file")
+        out["file"] = _optional_string(value, "profile", "file")
+        out["x"], out["z"] = _read_profile_csv(out["file"], out["file"])
+    else:
+        _only_keys(value, "profile", ("x", "z", "corners"))
+        out["x"] = _number_array(_require(value, "profile", "x", 'the sample abscissae (or "file")'), "profile.x",
+                                 "sample abscissa")
+        out["z"] = _number_array(_require(value, "profile", "z", "the sample heights"), "profile.z", "sample height")
+    out["corners"] = (_number_array(value["corners"], "profile.corners", "abscissa of a slope jump")
+                      if "corners" in value else [])
+    return out
+
+
 def validate(scene):
     """The validated scene: a new Record (dict) with every number a float in range, ``apex`` filled in,
     the optional strings kept when non-empty (the command line's echo of the scene). Raises
     ValueError with one line naming the field."""
     if not isinstance(scene, Mapping):
         _fail(f"scene: the top level must be a JSON object {{...}} (a dict), got {_type_of(scene)}")
-    _only_keys(scene, "", ("description", "material", "speed", "body", "indentors"))
+    _only_keys(scene, "", ("description", "material", "speed", "body", "indentors", "profile"))
     out = Record()
     description = _optional_string(scene, "", "description")
     if description:
@@ -222,6 +280,13 @@ def validate(scene):
         _require_object(value, "body")
         _only_keys(value, "body", ("load",))
         out["body"] = Record(load=_required_number(value, "body", "load", _POSITIVE, "total normal force per unit length"))
+    if "profile" in scene:
+        if "indentors" in scene:
+            _fail("indentors and profile are exclusive: give one of them")
+        if not body:
+            _fail('profile needs a rigid body with its total load: add "body": {"load": ...}')
+        out["profile"] = _profile(scene["profile"])
+        return out
     items = _require(scene, "", "indentors", "a non-empty array of indentors is required")
     if not isinstance(items, (list, tuple)):
         _fail(f"indentors must be a non-empty array [...], got {_type_of(items)} {_show(items)}")

@@ -5,16 +5,17 @@
 // examples/README.md: every required field present, no unknown field, numbers in range) and is
 // mapped to rhabel::punch::scene here; the result goes back as nested Records (dicts with
 // attribute access, python/rhabel/_record.py) whose keys are those of the command line's JSON
-// result (cli/scene_solve.cpp). The conversion of a result is written
-// once, in the two to_python overloads below: a new field of punch's indentor_result or
-// scene_result is added there and nowhere else.
+// result (cli/scene_solve.cpp). The conversion of a contact's result is written once, in
+// add_contact: a new field of punch's indentor_result is added there and nowhere else.
 #include "bindings.hpp"
 
 #include <rhabel/punch/contact.hpp>
+#include <rhabel/punch/profile.hpp>
 
 #include <cmath>
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace rhabel::python {
 namespace {
@@ -69,12 +70,8 @@ py::dict record() {
   return (*type)();
 }
 
-/// One indentor's result, keys as in the JSON result (examples/README.md); shape and name are
-/// the scene's (`spec`: the validated indentor dict).
-py::dict to_python(punch::indentor_result&& r, const py::dict& spec) {
-  py::dict out = record();
-  out["shape"] = spec["shape"];
-  if (spec.contains("name")) out["name"] = spec["name"];
+/// One contact's result into `out`, keys as in the JSON result (examples/README.md).
+void add_contact(py::dict& out, punch::indentor_result&& r) {
   out["contact"] = py::make_tuple(r.a, r.b);
   out["contact_length"] = r.contact_length;
   if (r.epsilon) out["epsilon"] = *r.epsilon;
@@ -115,6 +112,14 @@ py::dict to_python(punch::indentor_result&& r, const py::dict& spec) {
     displacement["w"] = to_numpy(std::move(r.displacement));
     out["displacement"] = std::move(displacement);
   }
+}
+
+/// One indentor's result; shape and name are the scene's (`spec`: the validated indentor dict).
+py::dict to_python(punch::indentor_result&& r, const py::dict& spec) {
+  py::dict out = record();
+  out["shape"] = spec["shape"];
+  if (spec.contains("name")) out["name"] = spec["name"];
+  add_contact(out, std::move(r));
   return out;
 }
 
@@ -142,19 +147,75 @@ py::dict to_python(punch::scene_result&& r, const py::dict& spec, double effecti
   return out;
 }
 
-py::dict solve(const py::dict& spec, std::size_t grid, bool displacement, double tolerance, bool residual) {
-  const punch::scene s = to_scene(spec);
+punch::solve_options make_options(std::size_t grid, bool displacement, double tolerance, bool residual,
+                                  double acceptance) {
   punch::solve_options options;
   options.grid_points = grid;
   options.displacement = displacement;
   options.tolerance = tolerance;
   options.residual = residual;
+  options.acceptance = acceptance;
+  return options;
+}
+
+py::dict solve(const py::dict& spec, std::size_t grid, bool displacement, double tolerance, bool residual,
+               double acceptance) {
+  const punch::scene s = to_scene(spec);
+  const punch::solve_options options = make_options(grid, displacement, tolerance, residual, acceptance);
   punch::scene_result result;
   {
     py::gil_scoped_release nogil;  // threads may solve other scenes meanwhile
     result = punch::solve(s, options);
   }
   return to_python(std::move(result), spec, s.material.effective_modulus(s.speed));
+}
+
+/// punch::solve_profile for a validated scene with a "profile"; keys as in the JSON result.
+py::dict solve_profile(const py::dict& spec, std::size_t grid, bool displacement, double tolerance, bool residual,
+                       double acceptance) {
+  punch::profile_scene ps;
+  ps.material = to_material(spec["material"]);
+  ps.speed = number(spec, "speed");
+  ps.load = number(spec["body"], "load");
+  const py::dict profile = spec["profile"];
+  ps.profile.x = profile["x"].cast<std::vector<double>>();
+  ps.profile.z = profile["z"].cast<std::vector<double>>();
+  ps.profile.corners = profile["corners"].cast<std::vector<double>>();
+  const punch::solve_options options = make_options(grid, displacement, tolerance, residual, acceptance);
+  punch::profile_result r;
+  {
+    py::gil_scoped_release nogil;
+    r = punch::solve_profile(ps, options);
+  }
+  py::dict out = record();
+  out["beta"] = r.beta;
+  out["kappa"] = r.kappa;
+  out["regime"] = r.regime;
+  out["effective_modulus"] = ps.material.effective_modulus(ps.speed);
+  if (!std::isnan(r.body_approach)) out["body_approach"] = r.body_approach;
+  py::list contacts;
+  for (std::size_t i = 0; i < r.contacts.size(); ++i) {
+    py::dict item = record();
+    item["tip"] = r.tips[i];
+    add_contact(item, std::move(r.contacts[i]));
+    contacts.append(std::move(item));
+  }
+  out["contacts"] = std::move(contacts);
+  if (!std::isnan(r.clearance)) {
+    py::dict clearance = record();
+    clearance["min"] = r.clearance;
+    clearance["at"] = r.clearance_at;
+    out["clearance"] = std::move(clearance);
+  }
+  py::dict diagnostics = record();
+  diagnostics["residual"] = r.diagnostics.residual;
+  diagnostics["seconds"] = r.diagnostics.seconds;
+  diagnostics["rounds"] = r.diagnostics.rounds;
+  diagnostics["iterations"] = r.diagnostics.iterations;
+  diagnostics["status"] = punch::to_string(r.diagnostics.code);
+  diagnostics["status_message"] = r.diagnostics.status;
+  out["diagnostics"] = std::move(diagnostics);
+  return out;
 }
 
 /// punch::trial_interval for the scene's single indentor on [a, b]; a Record {load,
@@ -179,8 +240,11 @@ py::dict trial_interval(const py::dict& spec, double a, double b, double toleran
 
 void bind_punch(py::module_& m) {
   m.def("_solve", &solve, py::arg("scene"), py::arg("grid"), py::arg("displacement"), py::arg("tolerance"),
-        py::arg("residual"),
+        py::arg("residual"), py::arg("acceptance"),
         "Solves a VALIDATED scene dict (rhabel.solve validates first). Returns nested Records.");
+  m.def("_solve_profile", &solve_profile, py::arg("scene"), py::arg("grid"), py::arg("displacement"),
+        py::arg("tolerance"), py::arg("residual"), py::arg("acceptance"),
+        "Solves a VALIDATED scene dict with a sampled profile (rhabel.solve validates first).");
   m.def("_trial_interval", &trial_interval, py::arg("scene"), py::arg("a"), py::arg("b"), py::arg("tolerance"),
         "punch::trial_interval for a VALIDATED one-indentor scene dict (rhabel.trial_interval validates "
         "first). Returns a Record {load, hysteretic_friction, error_estimate}.");

@@ -32,6 +32,7 @@ namespace {
 }
 
 constexpr std::size_t fuzz_grid = 7;  // samples per field: exercises the sampling, costs little
+constexpr std::size_t max_fuzz_samples = 48;  // profile samples solved per input
 
 }  // namespace
 
@@ -47,6 +48,18 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     finding("parse_scene threw something other than input_error", e.what());
   }
   if (scene.material.curve) return 0;
+  if (scene.profile) {
+    // A sampled profile: small ones only (the contact search runs one coupled solve per round).
+    if (scene.profile->x.size() > max_fuzz_samples) return 0;
+    try {
+      (void)run_scene(scene, run_request{fuzz_grid});
+    } catch (const input_error&) {
+      // refused cleanly (exit code 2)
+    } catch (const std::exception& e) {
+      finding("run_scene: internal error on a valid profile scene", e.what());
+    }
+    return 0;
+  }
   for (const auto& indentor : scene.indentors) {
     scene_spec alone = scene;
     alone.indentors = {indentor};

@@ -71,6 +71,19 @@ BAD_SCENES = [
     ("body_negative_load",
      {**edited(("body",), {"load": -1.0}), "indentors": [{"shape": "parabolic", "radius": 0.02}]},
      ["body.load = -1", "(0, inf)"]),
+    ("profile_and_indentors", {**GOOD, "body": {"load": 1.0}, "profile": {"x": [0, 1, 2, 3], "z": [0, 1, 0, -1]}},
+     ["indentors and profile are exclusive"]),
+    ("profile_without_body", {**{k: v for k, v in GOOD.items() if k != "indentors"},
+                              "profile": {"x": [0, 1, 2, 3], "z": [0, 1, 0, -1]}}, ["profile needs a rigid body"]),
+    ("profile_x_string", {**{k: v for k, v in GOOD.items() if k != "indentors"}, "body": {"load": 1.0},
+                          "profile": {"x": [0, "a", 2, 3], "z": [0, 1, 0, -1]}}, ["profile.x[1]", "must be a number"]),
+    ("profile_unknown_field", {**{k: v for k, v in GOOD.items() if k != "indentors"}, "body": {"load": 1.0},
+                               "profile": {"x": [0, 1, 2, 3], "z": [0, 1, 0, -1], "y": 1}},
+     ["profile.y", "not a known field"]),
+    ("profile_file_and_x", {**{k: v for k, v in GOOD.items() if k != "indentors"}, "body": {"load": 1.0},
+                            "profile": {"file": "p.csv", "x": [0, 1]}}, ["profile.x", "not a known field with a file"]),
+    ("profile_missing_z", {**{k: v for k, v in GOOD.items() if k != "indentors"}, "body": {"load": 1.0},
+                           "profile": {"x": [0, 1, 2, 3]}}, ["profile.z", "missing"]),
 ]
 
 

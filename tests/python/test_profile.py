@@ -1,0 +1,66 @@
+"""rhabel.solve with a sampled profile: the same contacts and numbers as the command line, the
+contacts of a profile sampled from parabolic caps against rhabel.solve of those caps on one body
+(their closed-form-started indentor path, not the profile's spline and active set), validation."""
+
+import json
+import math
+import subprocess
+
+import numpy as np
+import pytest
+
+import rhabel
+from conftest import SOURCE_DIR
+
+EXAMPLE = SOURCE_DIR / "examples" / "rough_profile.json"
+
+
+def test_example_equals_the_command_line(cli):
+    run = subprocess.run([str(cli), "solve", str(EXAMPLE), "--acceptance", "1e-6", "--compact"],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    expected = json.loads(run.stdout)
+    ours = rhabel.solve(rhabel.load_scene(EXAMPLE), acceptance=1e-6).to_plain()
+    for doc in (expected, ours):
+        del doc["diagnostics"]["seconds"]
+        doc["scene"]["profile"].pop("file")  # load_scene resolves it against the scene's directory
+    assert ours == expected
+
+
+def test_caps_on_one_body_equal_the_indentors_on_one_body():
+    # Two parabolic caps of radius 1, tips 2 apart, the second 0.01 lower: sampled on pieces
+    # between the envelope's corner (declared), both touch at this load. The same scene as two
+    # parabolic indentors on one body (height 0.01 for the second) must give the same contacts:
+    # the spline is the caps exactly 25+ samples from the ends and the corner (profile.hpp).
+    alpha, R, D, dh = 0.3, 1.0, 2.0, 0.01
+    corner = D / 2 - dh * R / D  # -(x)^2/2 = -dh - (x - D)^2/2  =>  x = D/2 - dh R / D
+    x = np.concatenate([np.linspace(-2, corner, 301), np.linspace(corner, D + 2, 301)[1:]])
+    z = np.where(x <= corner, -x ** 2 / (2 * R), -dh - (x - D) ** 2 / (2 * R))
+    material = {"alpha": alpha, "E1": 1.0, "nu": 0.0, "coulomb": 0.0}
+    load = 0.4 * math.pi / 2 * math.gamma(1 - alpha)
+    profile = rhabel.solve({"material": material, "speed": 1.0, "body": {"load": load},
+                            "profile": {"x": x, "z": z, "corners": [corner]}}, tolerance=1e-10, acceptance=1e-6)
+    assert profile.diagnostics.status == "ok", profile.diagnostics.status_message
+    indentors = rhabel.solve({"material": material, "speed": 1.0, "body": {"load": load},
+                              "indentors": [{"shape": "parabolic", "radius": R},
+                                            {"shape": "parabolic", "radius": R, "apex": D, "height": dh}]},
+                             tolerance=1e-10)
+    assert indentors.diagnostics.status == "ok"
+    assert len(profile.contacts) == 2
+    for ours, theirs in zip(profile.contacts, indentors.indentors):
+        L = theirs.contact_length
+        # Both paths converge their edges to the root tolerance 1e-10: 1e-8 L leaves the
+        # general-profile path's degree-128 series of a linear forcing room.
+        assert abs(ours.contact[0] - theirs.contact[0]) < 1e-8 * L
+        assert abs(ours.contact[1] - theirs.contact[1]) < 1e-8 * L
+        assert abs(ours.load - theirs.load) < 1e-8 * load
+
+
+def test_python_profile_inputs():
+    base = {"material": {"alpha": 0.3, "E1": 1.0, "nu": 0.0, "coulomb": 0.0}, "speed": 1.0, "body": {"load": 1.0}}
+    with pytest.raises(ValueError, match=r"profile.x\[2\] = 1 must be > profile.x\[1\] = 1"):
+        rhabel.solve({**base, "profile": {"x": [0, 1, 1, 3], "z": [0, 1, 0, -1]}})
+    with pytest.raises(ValueError, match="acceptance"):
+        rhabel.solve({**base, "profile": {"x": [0, 1, 2, 3], "z": [0, 1, 0, -1]}}, acceptance=1.0)
+    with pytest.raises(ValueError, match=r'profile.file = "no-such.csv" is not a readable regular file'):
+        rhabel.solve({**base, "profile": {"file": "no-such.csv"}})
