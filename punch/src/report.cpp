@@ -273,6 +273,9 @@ indentor_result report_contact(const std::vector<indentor_state>& st, std::size_
   } else {
     r.hysteretic_friction = mean_slope(st[i], g);
   }
+  // A density that carries no load (a coupled solve that failed before this contact was solved:
+  // its status says so) has no mean slope: 0, never NaN.
+  if (!std::isfinite(r.hysteretic_friction)) r.hysteretic_friction = 0;
   r.total_friction = r.hysteretic_friction + coulomb;
   // Edges.
   if (!g.line_load) {

@@ -32,7 +32,7 @@ namespace {
 }
 
 constexpr std::size_t fuzz_grid = 7;  // samples per field: exercises the sampling, costs little
-constexpr std::size_t max_fuzz_samples = 48;  // profile samples solved per input
+constexpr std::size_t max_fuzz_samples = 12;  // profile samples solved per input
 
 }  // namespace
 
@@ -49,8 +49,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   if (scene.material.curve) return 0;
   if (scene.profile) {
-    // A sampled profile: small ones only (the contact search runs one coupled solve per round).
-    if (scene.profile->x.size() > max_fuzz_samples) return 0;
+    // A sampled profile: small ones without corners only. The contact search runs one coupled
+    // solve per round, and a failing round is costly: a 17-sample profile with a corner inside a
+    // contact and a spike took 16 s in Release (over the 30 s timeout under ASan), a slow input,
+    // not a hang (tests/fuzz/corpus/hostile_profile_spike.json keeps the crash it found first).
+    if (scene.profile->x.size() > max_fuzz_samples || !scene.profile->corners.empty()) return 0;
     try {
       (void)run_scene(scene, run_request{fuzz_grid});
     } catch (const input_error&) {

@@ -313,7 +313,7 @@ struct indentor_result {
   double contact_length = 0;        ///< L = b - a [m] (0 for a line load)
   std::optional<double> epsilon;    ///< wedge only: eps = (apex - a)/L
   double load = 0;                  ///< int p over the contact, recomputed from the solution [N/m]
-  double hysteretic_friction = 0;   ///< C_f = (1/lambda) int f' p
+  double hysteretic_friction = 0;   ///< C_f = (1/lambda) int f' p (0 when the solve failed before the contact carried load)
   double total_friction = 0;        ///< C_f + k
   double peak_pressure = 0;         ///< max p [Pa]; +inf if some point is singular
   double peak_pressure_at = 0;      ///< where the max is attained (the singular point if infinite) [m]
