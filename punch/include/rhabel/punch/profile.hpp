@@ -36,20 +36,23 @@
 // THE CONTACT SET (an active set on the profile's bumps; punch/src/contact_set.cpp)
 //   The bumps are the local maxima of the samples (tips), each with its basin between the lowest
 //   samples towards its neighbours. A contact covers one basin, or a run of adjacent basins when
-//   contacts merged. Starting from the highest tip alone at 1/256 of the load, repeat (and once
-//   the set settles, raise the load by a factor 4, up to P):
+//   contacts merged. Load continuation: the rounds run at the fraction t of P, from the highest
+//   tip alone at t = 1/256, t raised by 4 after each round below P (the set grows with the load,
+//   so the set grown at t is the start at 4 t), then rounds at P until the set settles. A round:
 //     1. solve the current contacts on one rigid body (contact.hpp's coupled solve: every contact a
-//        general profile with smooth edges, loads unknown, total load P, equal rigid levels);
+//        general profile with smooth edges, loads unknown, total load t P, equal rigid levels),
+//        started from the last round's loads;
 //     2. a contact that vanishes in that solve (status contact_lost) is dropped; two contacts that
-//        meet (contacts_merge) become one contact over both basins;
+//        meet (contacts_merge) become one contact over both basins; a contact that reaches beyond
+//        its basins takes the next basin in;
 //     3. otherwise the surface displacement is evaluated at every sample outside the contacts (not
 //        within 1/64 of a contact's length of its edges, where the surface's quadrature is not
 //        resolved and the edge conditions hold anyway): where the profile penetrates the surface
 //        by more than acceptance x (max z - min z), the basins of the deepest penetrations (within
-//        a factor 4 of the deepest) are added as new contacts;
-//   until no sample penetrates. A basin dropped once is not added again (the iteration could
-//   cycle between a contact too small to keep and a penetration too deep to ignore): its
-//   penetration is then reported as status penetration with the numbers.
+//        a factor 4 of the deepest) are added as new contacts.
+//   A bump dropped twice at the same load is not added again (the iteration could cycle between
+//   a contact too small to keep and a penetration too deep to ignore): its penetration is then
+//   reported as status penetration with the numbers.
 //   So `ok` means: every contact passes contact.hpp's checks (residual of (8) against the
 //   spline, non-negative pressure, loads adding up to P, equal levels), and the surface clears
 //   the profile at every checked sample to acceptance x (max z - min z).
