@@ -43,7 +43,7 @@
 //                       (default 6 s, --quick 1 s).
 // PART rows: N parabolas (R = 1, load_g 0.3, alpha 0.3, beta 0) with apexes 1.5 isolated contact
 //   lengths apart, N = 2, 5, 10, 20, 40 (--quick: up to 10); 100 in the default run only if N = 40
-//   took under 10 s; larger N are not run. seconds = one solve at tolerance 1e-10 (minimum of 3 where a solve takes
+//   took under 10 s, 200 only with --rows-only (minutes); larger N are not run. seconds = one solve at tolerance 1e-10 (minimum of 3 where a solve takes
 //   under 1 s), iterations = scene_result::diagnostics.iterations, peak_rss_mb = the process's peak
 //   resident set after the solve (getrusage ru_maxrss: monotone over the run, so an upper bound
 //   for this N).
@@ -58,8 +58,9 @@
 //   part,alpha,beta,N,shape,target_gap,gap_over_L,apex_distance,method,setting,seconds,
 //   seconds_no_residual,status,residual,iterations,err_edges,err_Cf,ref_err_edges,ref_err_Cf,
 //   bar_edges,bar_Cf,peak_rss_mb
-// Markdown summary tables on stderr. Options: --quick (under 60 s), --budget-ms X (timing budget
-// per rhabel measurement).
+// Markdown summary tables on stderr. Options: --quick (under 60 s), --rows-only (PART rows only,
+// with N = 200),
+// --budget-ms X (timing budget per rhabel measurement).
 #include "support/study_support.hpp"
 
 #include "bem_oracle.hpp"
@@ -94,6 +95,7 @@ constexpr double slow_solve_seconds = 1.0;
 
 struct config {
   bool quick = false;
+  bool rows_only = false;         // --rows-only: only PART rows
   double budget_seconds = 0.1;    // per rhabel timing
   double grid_budget = 6.0;       // per scene, BEM grid sweep
 };
@@ -493,13 +495,17 @@ void rows_part(const config& cfg, output& out) {
   std::cerr << "\n### Rows of N parabolas (alpha 0.3, R = 1, load_g 0.3, apexes 1.5 L apart; tolerance 1e-10)\n\n"
             << "| N | time | Newton it. | status | residual | peak RSS so far |\n| ---: | ---: | ---: | --- | ---: | ---: |\n";
   double last = 0;
-  for (std::size_t N : {2, 5, 10, 20, 40, 100}) {
+  for (std::size_t N : {2, 5, 10, 20, 40, 100, 200}) {
     if (cfg.quick && N > 10) {
       std::cerr << "| " << N << " | not run (--quick) | | | | |\n";
       continue;
     }
     if (N == 100 && !(last < 10)) {
       std::cerr << "| 100 | not run (N = 40 took " << format_duration(last) << ") | | | | |\n";
+      break;
+    }
+    if (N == 200 && !cfg.rows_only) {
+      std::cerr << "| 200 | not run (only with --rows-only) | | | | |\n";
       break;
     }
     pu::scene s{material_of(alpha, 0), 1.0, {}};
@@ -571,15 +577,16 @@ int main(int argc, char** argv) {
       "two-contact scenes: rhabel's coupled solve against its reference and the BEM oracle, the usual BEM side by side, "
       "cost against N, mixed shapes (CSV on stdout, markdown on stderr)",
       {rhabel_study::switch_option("--quick", "fewer scenes and shorter budgets (under 60 s)", [&] { cfg.quick = true; }),
+       rhabel_study::switch_option("--rows-only", "only the rows of N parabolas (cost against N)", [&] { cfg.rows_only = true; }),
        rhabel_study::budget_ms_option(cfg.budget_seconds, "timing budget per rhabel measurement in ms")});
   if (code >= 0) return code;
   if (cfg.quick) cfg.budget_seconds = std::min(cfg.budget_seconds, 0.02), cfg.grid_budget = 1.0;
   const rhabel_study::run_record run;
   std::cerr << "## study_multi_contact" << (cfg.quick ? " --quick" : "") << "\n\n" << rhabel_study::run_record::machine_and_load() << "\n";
   output out;
-  two_parabola_part(cfg, out);
+  if (!cfg.rows_only) two_parabola_part(cfg, out);
   rows_part(cfg, out);
-  mixed_part(cfg, out);
+  if (!cfg.rows_only) mixed_part(cfg, out);
   std::cerr << "\n" << run.totals() << "\n";
   return 0;
 }

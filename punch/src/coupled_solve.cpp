@@ -14,7 +14,8 @@
 //   * the coupling correction c_j with SMOOTH data D_j = -sum_{i != j} A_i p_i (the others'
 //     particular solutions seen from I_j, smooth on I_j because the intervals are disjoint), by
 //     abel::solve_union: one dense collocation solve on the union with the cross blocks by graded
-//     quadrature (diagonal blocks diagonal in the Jacobi bases), adaptive in the degree until its
+//     quadrature (diagonal blocks diagonal in the Jacobi bases; from 6 contacts on solved by GMRES
+//     with the block-diagonal preconditioner instead of LU), adaptive in the degree until its
 //     independent residual is within the tolerance (relative to the original data's scale).
 //   g_j = p_j + c_j, d_j = d^p_j + d^c_j.
 //
@@ -208,9 +209,15 @@ class cross_field {
       : g_(&g), par_(par), right_of_(g.a() > hi) {
     if (g.line_load) return;
     const double gap = right_of_ ? g.a() - hi : lo - g.b();
-    // abel's cross-term nodes, graded toward the end facing [lo, hi] at the TRUE gap (no floor).
-    nodes_ = abel::detail::make_cross_nodes(g.jacobi, gap, right_of_,
-                                            std::max<std::size_t>(g.jacobi.coefficients.size() / 2 + 24, 32));
+    // abel's cross-term nodes, graded toward the end facing [lo, hi] at the TRUE gap (no floor);
+    // [lo, hi] at least a half-length of g away (gap >= h): one panel, whose node count
+    // abel::detail::separated_cross_nodes takes from the separation (the kernel's analyticity
+    // ellipse; eps/100 relative), n/2 + 20 for neighbours one half-length apart, n/2 + 7 far away.
+    const std::size_t n = g.jacobi.coefficients.size();
+    std::size_t count = std::max<std::size_t>(n / 2 + 24, 32);
+    if (const std::size_t separated = abel::detail::separated_cross_nodes(gap / g.jacobi.half_length(), n); separated > 0)
+      count = std::min(count, separated);
+    nodes_ = abel::detail::make_cross_nodes(g.jacobi, gap, right_of_, count);
     const auto series = g.jacobi.series_evaluator();
     weighted_.resize(nodes_.x.size());
     for (std::size_t q = 0; q < nodes_.x.size(); ++q) weighted_[q] = nodes_.weight[q] * series(nodes_.x[q]);
@@ -364,6 +371,11 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
   const std::size_t K = intervals.size();
   o.max_degree = pb.fixed_degree > 0 ? 0 : std::max<std::size_t>(o.degree, std::min<std::size_t>(600, abel::detail::union_degree_limit<double>(K, std::size_t(1) << 30)));
   o.max_memory_bytes = std::size_t(1) << 30;
+  o.homogeneous = false;  // the loads are imposed through o.loads; the homogeneous solutions are not used
+  // From 6 contacts the union's collocation system by block-preconditioned GMRES
+  // (abel/detail/block_gmres.hpp): 13-18 products of the matrix for rows of 10-40 parabolas
+  // 1.5 L apart, O((K M)^2) each, against the LU's O((K M)^3) (equal cost at 6).
+  o.iterative_from = 6;
   const auto sol = abel::solve_union(cx.par, intervals, data, o);
   out.degree = sol.degree;
   out.correction_residual = sol.residual * std::max(worst_ratio, 0.0);

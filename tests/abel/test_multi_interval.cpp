@@ -461,3 +461,110 @@ TEST_CASE("cross nodes: degree_graded_cross_nodes integrate w P_n exactly up to 
       CHECK(worst <= 1e-11);
     }
 }
+
+// The iterative route (multi_solve_options::iterative_from; detail/block_gmres.hpp) solves the
+// same collocation system as the LU: six intervals of all three classes (bounded/bounded nu = -1,
+// bounded/unbounded nu = 0, unbounded/unbounded nu = +1 with a load), gaps from 0.2 to 2 of a
+// length, so that the preconditioned coupling is not small. GMRES stops at |b - A x| <= 1e-14
+// |b|; the coefficients then differ from the LU's by at most ~ condition x 1e-14 of their size.
+TEST_CASE("iterative_from: block-preconditioned GMRES gives the LU's coefficients, defects and homogeneous solutions") {
+  // condition (measured 2.0e2 at alpha 0, 1.5e3 at 0.3) x GMRES's 1e-14, with a margin; measured
+  // differences 2.5e-15 and 4.2e-15 of the largest coefficient.
+  const double coefficient_tolerance = 1e-11;
+  for (double alpha : {0.0, 0.3}) {
+    const abel_parameters<double> par(alpha, 0.2);
+    const std::vector<interval_spec<double>> intervals{{-4.0, -3.0, edge::bounded, edge::bounded},
+                                                       {-2.8, -2.0, edge::unbounded, edge::unbounded},
+                                                       {-1.0, 0.0, edge::bounded, edge::unbounded},
+                                                       {1.5, 2.0, edge::bounded, edge::bounded},
+                                                       {2.1, 3.2, edge::unbounded, edge::unbounded},
+                                                       {5.0, 5.7, edge::bounded, edge::bounded}};
+    std::vector<std::function<double(double)>> F;
+    for (std::size_t j = 0; j < intervals.size(); ++j)
+      F.push_back([j](double s) { return std::cos(s + 0.3 * static_cast<double>(j)) - 0.1 * s; });
+    multi_solve_options<double> direct;
+    direct.degree = 24;
+    direct.loads = {std::nullopt, 0.4, std::nullopt, std::nullopt, 0.9, std::nullopt};
+    multi_solve_options<double> iterative = direct;
+    iterative.iterative_from = 2;
+    const auto a = solve_union(par, intervals, F, direct);
+    const auto b = solve_union(par, intervals, F, iterative);
+    INFO("alpha " << alpha << ": residual " << a.residual);
+    CHECK(std::abs(b.residual - a.residual) <= 1e-12);
+    CHECK(std::isnan(b.condition));
+    double size = 0, worst = 0;
+    for (std::size_t j = 0; j < intervals.size(); ++j)
+      for (std::size_t n = 0; n < a.densities[j].coefficients.size(); ++n) {
+        size = std::max(size, std::abs(a.densities[j].coefficients[n]));
+        worst = std::max(worst, std::abs(a.densities[j].coefficients[n] - b.densities[j].coefficients[n]));
+      }
+    CHECK(worst <= coefficient_tolerance * size);
+    for (std::size_t j = 0; j < intervals.size(); ++j)
+      CHECK(std::abs(a.solvability_defects[j] - b.solvability_defects[j]) <= coefficient_tolerance * size);
+    for (std::size_t k : {std::size_t(1), std::size_t(4)}) {
+      REQUIRE(b.homogeneous[k].size() == intervals.size());
+      for (std::size_t j = 0; j < intervals.size(); ++j)
+        for (std::size_t n = 0; n < a.homogeneous[k][j].coefficients.size(); ++n)
+          CHECK(std::abs(a.homogeneous[k][j].coefficients[n] - b.homogeneous[k][j].coefficients[n]) <=
+                coefficient_tolerance * size);
+    }
+  }
+}
+
+// multi_solve_options::homogeneous = false leaves the homogeneous solutions out and changes
+// nothing else (the particular solve is the same solve, bit for bit).
+TEST_CASE("homogeneous = false: no homogeneous solutions, the same densities") {
+  const abel_parameters<double> par(0.3, 0.2);
+  const std::vector<interval_spec<double>> intervals{{-1.0, 0.0, edge::unbounded, edge::unbounded},
+                                                     {0.5, 1.5, edge::unbounded, edge::unbounded}};
+  multi_solve_options<double> options;
+  options.degree = 16;
+  options.loads = {0.5, 0.7};
+  auto without = options;
+  without.homogeneous = false;
+  const auto a = solve_union(par, intervals, minus_s(2), options);
+  const auto b = solve_union(par, intervals, minus_s(2), without);
+  CHECK(b.homogeneous[0].empty());
+  CHECK(b.homogeneous[1].empty());
+  CHECK(a.densities[0].coefficients == b.densities[0].coefficients);
+  CHECK(a.densities[1].coefficients == b.densities[1].coefficients);
+}
+
+// Separated pairs (gap >= the source's half-length h): the cross block's single-panel rule of
+// detail::separated_cross_nodes (n/2 + ~20 nodes at gap = h, fewer farther away) against the
+// graded rule at 4x the resolution (make_cross_nodes, 4 degree + 64 nodes per panel), for both
+// classes of the source, both sides, gaps 1, 2.5 and 40 half-lengths.
+TEST_CASE("cross nodes: separated pairs reach rounding with separated_cross_nodes") {
+  // relative to the block's largest entry: a few roundings (measured 3.7e-16 .. 1.7e-15 with 40,
+  // 36, 28 nodes at gap/h 1, 2.5, 40, degree 40; the graded rule's single panel would take 88)
+  const double entry_tolerance = 1e-14;
+  const abel_parameters<double> par(0.3, 0.2);
+  const std::size_t degree = 40;
+  for (const auto& [leading, trailing] : {std::pair{edge::bounded, edge::bounded}, std::pair{edge::unbounded, edge::unbounded}})
+    for (double gap_over_h : {1.0, 2.5, 40.0})
+      for (bool right : {true, false}) {
+        const auto g = class_density(par, 2.0, 3.0, leading, trailing);  // h = 0.5
+        const double gap = gap_over_h * g.half_length();
+        CHECK(detail::separated_cross_nodes(gap_over_h, degree) < detail::cross_panel_nodes(0.0, 2.0, degree));
+        std::vector<double> dist;
+        for (int k = 0; k < 12; ++k) dist.push_back(0.1 * k * k);  // target points 0 .. 12 from the facing end
+        auto kernel = [&](double t_minus_s) { return detail::cross_kernel(par, t_minus_s); };
+        const auto B = detail::cross_block(g, gap, right, dist, degree, 1.0, kernel);
+        const auto fine = detail::make_cross_nodes(g, gap, right, 4 * degree + 64);
+        double size = 0, worst = 0;
+        for (std::size_t k = 0; k < dist.size(); ++k) {
+          std::vector<double> reference(degree, 0.0);
+          for (std::size_t q = 0; q < fine.x.size(); ++q) {
+            const double t_minus_s = right ? fine.t_minus_lo[q] + gap + dist[k] : -(fine.hi_minus_t[q] + gap + dist[k]);
+            const auto P = rhabel::quadrature::jacobi_p_all(degree - 1, g.del, g.gam, fine.x[q]);
+            for (std::size_t n = 0; n < degree; ++n) reference[n] += fine.weight[q] * kernel(t_minus_s) * P[n];
+          }
+          for (std::size_t n = 0; n < degree; ++n) {
+            size = std::max(size, std::abs(reference[n]));
+            worst = std::max(worst, std::abs(B(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(n)) - reference[n]));
+          }
+        }
+        INFO("gam " << g.gam << " gap/h " << gap_over_h << " right " << right << ": worst " << worst / size);
+        CHECK(worst <= entry_tolerance * size);
+      }
+}

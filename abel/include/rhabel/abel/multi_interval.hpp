@@ -18,7 +18,10 @@
 //   cross term: B(k, n) = int_{I_i} w_i P_n K(t - s_k) dt by composite Gauss-Jacobi quadrature
 //               graded geometrically toward the end of I_i facing I_j (uniform in the gap), with
 //               panel node counts that follow the resolution P_n needs (detail/union_assembly.hpp),
-//               evaluated as ONE matrix product (kernel values x basis values) per block.
+//               evaluated as ONE matrix product (kernel values x basis values) per block; a
+//               separated pair (gap >= the half-length of I_i) by one Gauss-Jacobi panel of
+//               n/2 + O(log(1/eps)/log rho(gap)) nodes (detail::separated_cross_nodes), whose basis
+//               values are shared by all separated blocks of the solve.
 // Collocation at M points of a degree-(M-1) image is the same linear system as interpolating
 // the data at those points and re-expanding it in the image basis (the method of the
 // single-interval solver), without the O(M^3)-per-block re-expansion: cost O(M^2 x nodes) per
@@ -34,7 +37,10 @@
 //              solvability defect that H_k produces on a nu = -1 interval j (so that a caller can
 //              impose loads and solvability together: defect_j + sum_k x_k defect_kj = 0).
 // The square system (M unknowns and M equations per interval) is solved by LU with partial
-// pivoting: a direct block solve. Block Gauss-Seidel between the intervals (solve each alone
+// pivoting: a direct block solve; or, from options.iterative_from intervals on, by GMRES with the
+// block-diagonal preconditioner (the intervals' own blocks; detail/block_gmres.hpp), O((K M)^2)
+// per iteration instead of the LU's O((K M)^3): many separated intervals (rows of 10-100
+// contacts 1.5 lengths apart: 13-18 iterations to a relative residual of 1e-14). Block Gauss-Seidel between the intervals (solve each alone
 // with the neighbour's image subtracted) was measured and rejected (study_union_convergence
 // out.csv 1024 gauss_seidel: contraction factor of int g_1 per sweep, two intervals, beta 0.3):
 // 0.16 ... 0.34 for alpha in [0.25, 0.5] at every gap, 0.84 ... 0.89 at alpha = 0.9, 0.56 at
@@ -83,7 +89,10 @@
 //             layer in (poles or graded panels at the facing ends).
 // Memory (guarded). The dense solve holds the (K M)^2 collocation matrix (K intervals, M =
 // degree), factorised in place, and during the assembly one cross block's transients (~ 6 M^2
-// numbers); for non-IEEE types also the inverse (for `condition`). detail::union_memory_bytes
+// numbers); for non-IEEE types also the inverse (for `condition`); the iterative route
+// (iterative_from) keeps the matrix unfactorised and adds its Krylov basis and the diagonal
+// blocks' LUs, 61 K M + K M^2 numbers beyond the estimate (a fraction 61/(K M) + 1/K of
+// (K M)^2: 5 % at K = 100, M = 16). detail::union_memory_bytes
 // estimates the peak as sizeof(Real) max((K M)^2 + 6 M^2 [K > 1], (1 or 2) (K M)^2). Measured
 // peak resident set of a whole double solve without residual (F = -s, gap 1e-4, this machine)
 // against the estimate: K = 2, M = 1024: 81 MB (84); K = 3, M = 1024: 123 MB (126);
@@ -95,6 +104,7 @@
 #pragma once
 
 #include "rhabel/abel/abel_solver.hpp"
+#include "rhabel/abel/detail/block_gmres.hpp"
 #include "rhabel/abel/detail/union_assembly.hpp"
 
 #include <Eigen/Dense>
@@ -103,6 +113,7 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <type_traits>
@@ -133,6 +144,13 @@ struct multi_solve_options {
   /// solve_union throws std::domain_error, before allocating, when max(degree, max_degree)
   /// would exceed it. Default 2 GiB (two intervals: degree <= 5181).
   std::size_t max_memory_bytes = std::size_t(1) << 31;
+  /// Compute multi_solution::homogeneous and homogeneous_defects (one more solve with the
+  /// factorised matrix per nu = +1 interval); false: they stay empty / zero.
+  bool homogeneous = true;
+  /// K >= iterative_from intervals (and K > 1; 0: never): the collocation system by GMRES with the
+  /// block-diagonal preconditioner (detail/block_gmres.hpp; LU if it does not reach its tolerance)
+  /// instead of LU; multi_solution::condition is then NaN. Floating-point Real only.
+  std::size_t iterative_from = 0;
 };
 
 template <class Real>
@@ -140,7 +158,7 @@ struct multi_solution {
   std::vector<jacobi_density<Real>> densities;      ///< g_i on I_i
   std::vector<edge_exponents<Real>> exponents;      ///< (gam, del, nu) per interval
   std::vector<Real> solvability_defects;            ///< nu = -1 intervals (0 elsewhere)
-  std::vector<std::vector<jacobi_density<Real>>> homogeneous;  ///< per interval: empty unless nu = +1
+  std::vector<std::vector<jacobi_density<Real>>> homogeneous;  ///< per interval: empty unless nu = +1 (and options.homogeneous)
   std::vector<std::vector<Real>> homogeneous_defects;  ///< [k][j]: defect of homogeneous[k] on nu = -1 interval j
   Real residual = std::numeric_limits<Real>::quiet_NaN();  ///< max relative residual, independent route
   /// 1-norm condition number of the collocation matrix: Eigen's rcond estimate for float and
@@ -300,6 +318,7 @@ multi_solution<Real> solve_union_at_degree(const abel_parameters<Real>& par,
   vector rhs = vector::Zero(T);
   std::vector<vector> c0_columns(K, vector::Zero(T));  // image of the fixed c_0 of nu = +1 intervals
   const chebyshev_grid<Real> grid(M);
+  separated_basis_cache<Real> basis_cache;
   for (std::size_t j = 0; j < K; ++j) {
     const auto& e = sol.exponents[j];
     const Real scale = pow(ops[j].half_length(), -alpha);  // equations in units of h_j^alpha
@@ -329,7 +348,7 @@ multi_solution<Real> solve_union_at_degree(const abel_parameters<Real>& par,
       std::vector<Real> dist(M);
       for (std::size_t k = 0; k < M; ++k) dist[k] = right ? pts[k].to_hi : pts[k].from_lo;
       const auto B = cross_block(sol.densities[i], union_gap(intervals, i, j), right, dist, n_basis[i], scale,
-                                 [&](const Real& t_minus_s) { return cross_kernel(par, t_minus_s); });
+                                 [&](const Real& t_minus_s) { return cross_kernel(par, t_minus_s); }, &basis_cache);
       for (std::size_t n = 0; n < n_basis[i]; ++n) {
         const long c = unknown_index(i, n);
         const auto col = static_cast<Eigen::Index>(n);
@@ -343,19 +362,41 @@ multi_solution<Real> solve_union_at_degree(const abel_parameters<Real>& par,
   // 1-norm of A for the exact condition of non-IEEE types (A is overwritten below).
   Real norm_A = 0;
   if constexpr (!std::is_floating_point_v<Real>) norm_A = A.cwiseAbs().colwise().sum().maxCoeff();
-  // LU in place (Eigen::Ref): A holds the factors from here on. With a copy of A (PartialPivLU
+  // Many intervals (options.iterative_from): GMRES with the block-diagonal preconditioner
+  // (detail/block_gmres.hpp), O(T^2) per iteration against the LU's 2/3 T^3; `condition` is then
+  // not computed (NaN). Otherwise, or when GMRES does not reach its tolerance: LU.
+  // LU in place (Eigen::Ref): A holds the factors from then on. With a copy of A (PartialPivLU
   // of a matrix; its rcond() then also allocated a T x T temporary) the peak was 3 (K M)^2
   // numbers: 405 MB against 143 MB now at K = 1, M = 4096; 410 MB against 268 MB at K = 2,
   // M = 2048. The factorisation is the same, bit for bit (checked on a random 2000 x 2000).
-  Eigen::PartialPivLU<Eigen::Ref<matrix>> lu(A);
-  if constexpr (std::is_floating_point_v<Real>) {
-    sol.condition = 1 / lu.rcond();
+  std::unique_ptr<Eigen::PartialPivLU<Eigen::Ref<matrix>>> lu;
+  std::unique_ptr<block_gmres<Real>> gmres;
+  auto factorise = [&] {
+    gmres.reset();  // it refers to A, which the LU overwrites
+    lu = std::make_unique<Eigen::PartialPivLU<Eigen::Ref<matrix>>>(A);
+    if constexpr (std::is_floating_point_v<Real>) {
+      sol.condition = 1 / lu->rcond();
+    } else {
+      // Eigen's estimator needs NumTraits<Real>::infinity(), which the Boost.Multiprecision
+      // bindings lack: the exact 1-norm condition instead (O(size^3), like the LU itself).
+      const matrix inverse = lu->inverse();
+      sol.condition = norm_A * inverse.cwiseAbs().colwise().sum().maxCoeff();
+    }
+  };
+  if (std::is_floating_point_v<Real> && K > 1 && options.iterative_from > 1 && K >= options.iterative_from) {
+    gmres = std::make_unique<block_gmres<Real>>(A, static_cast<Eigen::Index>(M));
+    sol.condition = std::numeric_limits<Real>::quiet_NaN();
   } else {
-    // Eigen's estimator needs NumTraits<Real>::infinity(), which the Boost.Multiprecision
-    // bindings lack: the exact 1-norm condition instead (O(size^3), like the LU itself).
-    const matrix inverse = lu.inverse();
-    sol.condition = norm_A * inverse.cwiseAbs().colwise().sum().maxCoeff();
+    factorise();
   }
+  auto linear_solve = [&](const vector& right) -> vector {
+    if (gmres) {
+      vector x;
+      if (gmres->solve(right, x, Real(1e-14))) return x;
+      factorise();
+    }
+    return lu->solve(right);
+  };
   vector b = rhs;
   std::vector<Real> c0(K, Real(0));
   for (std::size_t i = 0; i < K; ++i) {
@@ -377,16 +418,16 @@ multi_solution<Real> solve_union_at_degree(const abel_parameters<Real>& par,
       if (sol.exponents[j].nu == -1) out[j] = x[defect_index(j)];
     return out;
   };
-  const vector c = lu.solve(b);
+  const vector c = linear_solve(b);
   sol.densities = unpack(c, c0);
   sol.solvability_defects = defects(c);
   sol.homogeneous.assign(K, {});
   sol.homogeneous_defects.assign(K, std::vector<Real>(K, Real(0)));
-  for (std::size_t k = 0; k < K; ++k) {
+  for (std::size_t k = 0; k < K && options.homogeneous; ++k) {
     if (sol.exponents[k].nu != 1) continue;
     const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[k].del, sol.exponents[k].gam);
     const Real unit = 1 / (ops[k].half_length() * h0);
-    const vector x = lu.solve(-unit * c0_columns[k]);
+    const vector x = linear_solve(-unit * c0_columns[k]);
     std::vector<Real> c0k(K, Real(0));
     c0k[k] = unit;
     sol.homogeneous[k] = unpack(x, c0k);
@@ -426,11 +467,19 @@ Real union_residual(const abel_parameters<Real>& par, const std::vector<interval
         pts.push_back(side == 0 ? union_point<Real>{intervals[j].lo + d, d, 2 * h - d}
                                 : union_point<Real>{intervals[j].hi - d, 2 * h - d, d});
     }
+    // Nodes per panel: n/2 + 24 (n coefficients); a separated pair (gap >= h_i: one panel) takes
+    // 4 more than the assembly's separated_cross_nodes when that is fewer (the same analyticity
+    // bound, eps/100; another node set than the assembly's all the same).
     std::vector<cross_nodes<Real>> nodes(K);
     for (std::size_t i = 0; i < K; ++i)
-      if (i != j)
-        nodes[i] = make_cross_nodes(sol.densities[i], union_gap(intervals, i, j), i > j,
-                                    sol.densities[i].coefficients.size() / 2 + 24);
+      if (i != j) {
+        const std::size_t n = sol.densities[i].coefficients.size();
+        const Real gap = union_gap(intervals, i, j);
+        std::size_t count = n / 2 + 24;
+        if (const std::size_t separated = separated_cross_nodes(gap / sol.densities[i].half_length(), n); separated > 0)
+          count = std::min(count, separated + 4);
+        nodes[i] = make_cross_nodes(sol.densities[i], gap, i > j, count);
+      }
     // g_i at the cross nodes once (the residual is O(points x nodes), the series O(nodes x degree)),
     // each series with its recurrence coefficients computed once (jacobi_density::series_evaluator).
     std::vector<std::vector<Real>> series(K);

@@ -34,6 +34,9 @@
 //    with the facing end on the right its node distances to that end are off by ~eps absolute,
 //    ~eps/d relative (2.3e-13 in the weights at d = 2e-4); here u is measured from the facing
 //    end on either side.
+//  * separated_cross_nodes: the node count of the one panel a separated pair (gap >= the
+//    source's half-length) gets instead: n/2 plus the nodes the kernel's analyticity ellipse asks
+//    for (its function comment).
 //  * cross_block: the matrix B(k, n) = scale int_{I_i} w_i P_n K(t - s_k) dt at collocation
 //    points s_k of I_j given by their distance to the end of I_j facing I_i (no cancellation
 //    in t - s: t - s = (distance of t to its facing end) + gap + (distance of s to its facing end)).
@@ -44,8 +47,12 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <map>
+#include <tuple>
 #include <vector>
 
 namespace rhabel::abel::detail {
@@ -69,6 +76,31 @@ std::size_t cross_panel_nodes(const Real& ua, const Real& ub, std::size_t degree
   return (nodes + 7) / 8 * 8;
 }
 
+/// Gauss-Jacobi nodes that integrate w P_n K(t - s), n < degree, over the whole of I_i in ONE
+/// panel when every point s is at least d = gap/h >= 1 half-lengths h of I_i from its facing end
+/// (a separated pair). K(t - s) = |t - s|^(alpha-1) is then analytic in x (t = centre + h x) inside
+/// the Bernstein ellipse through the singular point x0 = -(1 + d') (d' >= d), whose parameter is
+/// rho(d) = 1 + d + sqrt(d (2 + d)). A Q-point Gauss rule for the weight w is exact for polynomials
+/// of degree 2Q - 1, so its error on P_n K is that of the best approximation of K by degree
+/// 2Q - 1 - n, <= C rho'^-(2Q - 1 - n) for any rho' < rho (C ~ max |K| on that ellipse, which is
+/// of the size of K at the facing end for rho' = rho^0.9, the 10 % kept off the singularity).
+/// So Q = ceil(degree/2) + ceil(ln(100/eps) / (2 x 0.9 ln rho)) + 2 nodes (eps: Real's machine
+/// epsilon) reach eps/100 relative to K's size; in double: n/2 + 20 at d = 1 (neighbours one half-length apart), n/2 + 13 at d = 4, n/2 + 7 at
+/// d = 100, against 20 + pi n/4 + margin of cross_panel_nodes over the same panel, whose count is
+/// for a kernel singularity next to the panel (gap -> 0). Rounded up to a multiple of 4 (few
+/// distinct cached rules) and never more than cross_panel_nodes(0, 2, degree). 0 if d < 1 (not
+/// separated: the graded panels of degree_graded_cross_nodes).
+template <class Real>
+std::size_t separated_cross_nodes(const Real& d, std::size_t degree) {
+  if (!(d >= 1)) return 0;
+  const double dd = static_cast<double>(d);
+  const double log_rho = std::log(1 + dd + std::sqrt(dd * (2 + dd)));
+  const double log_target = std::log(100 / static_cast<double>(std::numeric_limits<Real>::epsilon()));
+  const auto kernel_nodes = static_cast<std::size_t>(std::ceil(log_target / (2 * 0.9 * log_rho)));
+  const std::size_t nodes = (degree + 1) / 2 + kernel_nodes + 2;
+  return std::min((nodes + 3) / 4 * 4, cross_panel_nodes(Real(0), Real(2), degree));
+}
+
 /// Nodes graded toward the end of I_i facing the other interval (the lo end if facing_left),
 /// at distance `gap`; resolve P_n for n < degree (see the top of this header).
 template <class Real>
@@ -90,7 +122,8 @@ cross_nodes<Real> degree_graded_cross_nodes(const jacobi_density<Real>& g, const
   cross_nodes<Real> out;
   for (std::size_t k = 0; k + 1 < breaks.size(); ++k) {
     const Real ua = breaks[k], ub = breaks[k + 1];
-    const std::size_t nodes = cross_panel_nodes(ua, ub, degree);
+    // One panel (d >= 1): a separated pair, whose kernel is smooth on all of I_i.
+    const std::size_t nodes = breaks.size() == 2 && d >= 1 ? separated_cross_nodes(d, degree) : cross_panel_nodes(ua, ub, degree);
     const bool touches_face = k == 0, touches_far = k + 2 == breaks.size();
     // Gauss-Jacobi on [ua, ub] for the weight (ub - u)^P (u - ua)^Q: Q = e_face on the first
     // panel, P = e_far on the last.
@@ -114,16 +147,25 @@ cross_nodes<Real> degree_graded_cross_nodes(const jacobi_density<Real>& g, const
   return out;
 }
 
+/// Basis values P_n^(del, gam)(x_q) (Q x n_basis) of a separated pair's one-panel rule, shared by
+/// all separated blocks of one solve with the same source class and count: the nodes x_q of
+/// separated_cross_nodes do not depend on d (only their number does), so the Q x n_basis values,
+/// O(Q n_basis) each, are computed once per (Q, facing side, n_basis, del, gam).
+template <class Real>
+using separated_basis_cache =
+    std::map<std::tuple<std::size_t, bool, std::size_t, Real, Real>, Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>>;
+
 /// B(k, n) = scale int_{I_i} w_i(t) P_n^(del_i, gam_i)(t) K(t - s_k) dt, n < n_basis, for
 /// points s_k of I_j given by dist_to_facing[k] (distance of s_k to the end of I_j that faces
 /// I_i). i_right_of_j: I_i lies to the right of I_j. K: multi_interval.hpp's cross_kernel
-/// (passed in to keep one definition).
+/// (passed in to keep one definition). basis_cache (optional): separated_basis_cache.
 template <class Real, class Kernel>
 Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> cross_block(const jacobi_density<Real>& g_i, const Real& gap,
                                                                 bool i_right_of_j,
                                                                 const std::vector<Real>& dist_to_facing,
                                                                 std::size_t n_basis, const Real& scale,
-                                                                Kernel&& kernel) {
+                                                                Kernel&& kernel,
+                                                                separated_basis_cache<Real>* basis_cache = nullptr) {
   using matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
   const auto nodes = degree_graded_cross_nodes(g_i, gap, i_right_of_j, n_basis);
   const auto Q = static_cast<Eigen::Index>(nodes.x.size());
@@ -139,12 +181,21 @@ Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic> cross_block(const jacobi_den
       kernel_values(k, q) = scale * nodes.weight[qs] * kernel(t_minus_s);
     }
   }
-  matrix basis(Q, N);
-  for (Eigen::Index q = 0; q < Q; ++q) {
-    const auto P = rhabel::quadrature::jacobi_p_all(n_basis - 1, g_i.del, g_i.gam, nodes.x[static_cast<std::size_t>(q)]);
-    for (Eigen::Index n = 0; n < N; ++n) basis(q, n) = P[static_cast<std::size_t>(n)];
+  auto basis_values = [&] {
+    matrix basis(Q, N);
+    for (Eigen::Index q = 0; q < Q; ++q) {
+      const auto P = rhabel::quadrature::jacobi_p_all(n_basis - 1, g_i.del, g_i.gam, nodes.x[static_cast<std::size_t>(q)]);
+      for (Eigen::Index n = 0; n < N; ++n) basis(q, n) = P[static_cast<std::size_t>(n)];
+    }
+    return basis;
+  };
+  if (basis_cache && gap >= g_i.half_length()) {  // separated: one panel, nodes independent of gap
+    const auto key = std::make_tuple(nodes.x.size(), i_right_of_j, n_basis, g_i.del, g_i.gam);
+    auto it = basis_cache->find(key);
+    if (it == basis_cache->end()) it = basis_cache->emplace(key, basis_values()).first;
+    return kernel_values * it->second;
   }
-  return kernel_values * basis;
+  return kernel_values * basis_values();
 }
 
 }  // namespace rhabel::abel::detail
