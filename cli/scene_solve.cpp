@@ -141,6 +141,28 @@ ordered_json edge_json(const punch::edge_report& e) {
           {"intensity_factor", e.intensity_factor}};
 }
 
+// Runs a solver, its refusals as input errors (exit code 2).
+template <class Solve>
+auto solve_or_refuse(Solve&& solve) {
+  try {
+    return solve();
+  } catch (const std::invalid_argument& e) {  // the solver rejected the scene as posed
+    throw input_error(std::string("solve: the scene was rejected: ") + e.what());
+  } catch (const std::domain_error& e) {  // e.g. overlapping contacts, no contact interval
+    throw input_error(std::string("solve: the scene has no solution: ") + e.what());
+  }
+}
+
+// The head of a result document: the material's regime and the effective modulus.
+template <class Result>
+void begin_document(run_outcome& out, const run_request& request, const Result& r, double effective_modulus) {
+  if (request.grid > 0) out.grid_token = make_grid_token();
+  out.result["beta"] = r.beta;
+  out.result["kappa"] = r.kappa;
+  out.result["regime"] = r.regime;
+  out.result["effective_modulus"] = effective_modulus;
+}
+
 // The fields of one contact's result (an indentor's, or a contact of a profile); its sampled
 // arrays go to out's tables as field `index`, with placeholders numbered by `arrays`.
 ordered_json contact_item(punch::indentor_result& ir, std::size_t index, const std::string& where, const run_request& request,
@@ -193,22 +215,11 @@ run_outcome run_profile(const scene_spec& spec, const run_request& request, cons
   ps.speed = spec.speed;
   ps.load = *spec.body_load;
   ps.profile = {spec.profile->x, spec.profile->z, spec.profile->corners};
-  punch::profile_result r;
-  try {
-    r = punch::solve_profile(ps, options);
-  } catch (const std::invalid_argument& e) {
-    throw input_error(std::string("solve: the scene was rejected: ") + e.what());
-  } catch (const std::domain_error& e) {
-    throw input_error(std::string("solve: the scene has no solution: ") + e.what());
-  }
+  punch::profile_result r = solve_or_refuse([&] { return punch::solve_profile(ps, options); });
   run_outcome out;
   auto& doc = out.result;
-  if (request.grid > 0) out.grid_token = make_grid_token();
+  begin_document(out, request, r, ps.material.effective_modulus(spec.speed));
   std::size_t arrays = 0;
-  doc["beta"] = r.beta;
-  doc["kappa"] = r.kappa;
-  doc["regime"] = r.regime;
-  doc["effective_modulus"] = ps.material.effective_modulus(spec.speed);
   if (!std::isnan(r.body_approach)) doc["body_approach"] = r.body_approach;
   out.pressure.columns = {"contact", "x", "pressure"};
   out.displacement.columns = {"contact", "x", "displacement"};
@@ -240,24 +251,12 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   options.grid_points = request.grid;
   options.acceptance = request.acceptance;
   if (spec.profile) return run_profile(spec, request, options);
-  punch::scene_result r;
-  try {
-    r = punch::solve(to_punch(spec), options);
-  } catch (const std::invalid_argument& e) {  // the solver rejected the scene as posed
-    throw input_error(std::string("solve: the scene was rejected: ") + e.what());
-  } catch (const std::domain_error& e) {  // e.g. overlapping contacts, no contact interval
-    throw input_error(std::string("solve: the scene has no solution: ") + e.what());
-  }
-
+  punch::scene_result r = solve_or_refuse([&] { return punch::solve(to_punch(spec), options); });
   run_outcome out;
   auto& doc = out.result;
-  if (request.grid > 0) out.grid_token = make_grid_token();
+  begin_document(out, request, r, to_punch(spec.material).effective_modulus(spec.speed));
   // Placeholder k of the run: pressure x, p, displacement x, w of each indentor in turn.
   std::size_t arrays = 0;
-  doc["beta"] = r.beta;
-  doc["kappa"] = r.kappa;
-  doc["regime"] = r.regime;
-  doc["effective_modulus"] = to_punch(spec).material.effective_modulus(spec.speed);
   if (r.body_approach) doc["body_approach"] = *r.body_approach;
   ordered_json indentors = ordered_json::array();
   out.pressure.columns = {"indentor", "x", "pressure"};

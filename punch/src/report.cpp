@@ -101,7 +101,7 @@ class inside_action {
 // Penetration check of a coupled contact i (an indentor that is not a flat punch, whose square
 // corners bound it): outside the contact the surface must stay at or above the rigid profile,
 // gap(x) = height(i, x) - profile(i, x) >= 0, at 2 x 7 points a - L 2^-m and b + L 2^-m
-// (m = 0 .. 6). Not closer to the edges: the moments' Gauss-Jacobi rule (~100 nodes) resolves the
+// (m = 0 .. 6; a general profile's inside its search window). Not closer to the edges: the moments' Gauss-Jacobi rule (~100 nodes) resolves the
 // own contact's log kernel at a distance d from its end to ~(1 + sqrt(4 d/L))^-200, 1e-6 at
 // d = L/1024 (measured: a spurious "penetration" of 1.5e-6 of the span there), 1e-20 at L/64. A
 // wrong edge next to a point closer than that shows as tension (non-zero intensity) instead.
@@ -113,8 +113,17 @@ std::pair<double, double> worst_gap(const surface& heights, const std::vector<in
   const double L = g.length();
   double worst = 0, where = 0, span = 0;
   std::vector<std::pair<double, double>> gaps;
+  // A general profile is given on its search window only (a sampled profile's data: beyond
+  // them the slope is a continuation, not the profile; contact_set.cpp checks every sample).
+  double lo = -std::numeric_limits<double>::infinity(), hi = std::numeric_limits<double>::infinity();
+  if (st[i].k == kind::general) {
+    const auto& gp = std::get<general_profile>(st[i].source->shape);
+    lo = st[i].apex + gp.search_lo;
+    hi = st[i].apex + gp.search_hi;
+  }
   for (int m = 0; m <= 6; ++m) {
     for (const double x : {g.a() - L * std::ldexp(1.0, -m), g.b() + L * std::ldexp(1.0, -m)}) {
+      if (x < lo || x > hi) continue;
       const double f = heights.profile(i, x);
       span = std::max(span, std::abs(f));
       gaps.push_back({x, heights.height(i, x) - f});

@@ -34,6 +34,17 @@ namespace {
 constexpr std::size_t fuzz_grid = 7;  // samples per field: exercises the sampling, costs little
 constexpr std::size_t max_fuzz_samples = 12;  // profile samples solved per input
 
+// A valid scene either solves or is refused cleanly (an input_error: exit code 2); anything else
+// is a finding.
+void solve_checked(const rhabel::cli::scene_spec& scene) {
+  try {
+    (void)rhabel::cli::run_scene(scene, rhabel::cli::run_request{fuzz_grid});
+  } catch (const rhabel::cli::input_error&) {
+  } catch (const std::exception& e) {
+    finding("run_scene: internal error on a valid scene", e.what());
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -54,25 +65,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     // contact and a spike took 16 s in Release (over the 30 s timeout under ASan), a slow input,
     // not a hang (tests/fuzz/corpus/hostile_profile_spike.json keeps the crash it found first).
     if (scene.profile->x.size() > max_fuzz_samples || !scene.profile->corners.empty()) return 0;
-    try {
-      (void)run_scene(scene, run_request{fuzz_grid});
-    } catch (const input_error&) {
-      // refused cleanly (exit code 2)
-    } catch (const std::exception& e) {
-      finding("run_scene: internal error on a valid profile scene", e.what());
-    }
+    solve_checked(scene);
     return 0;
   }
   for (const auto& indentor : scene.indentors) {
     scene_spec alone = scene;
     alone.indentors = {indentor};
-    try {
-      (void)run_scene(alone, run_request{fuzz_grid});
-    } catch (const input_error&) {
-      // refused cleanly (exit code 2)
-    } catch (const std::exception& e) {
-      finding("run_scene: internal error on a valid scene", e.what());
-    }
+    solve_checked(alone);
   }
   return 0;
 }

@@ -132,7 +132,8 @@
 //     its residual and error estimate are within solve_options::acceptance (1e-9), its density is
 //     >= -acceptance x its mean at 64 interior points and the check points (else tension), its
 //     load matches (else load_mismatch) and, with several indentors, the surface clears its profile
-//     at 14 points L/64 .. L from its edges (else penetration: the slope equations are solved but
+//     at 14 points L/64 .. L from its edges (a general profile's inside its search window; else
+//     penetration: the slope equations are solved but
 //     the contact set is not the physical one); the scene's code is the coupled solve's or the
 //     first non-ok contact's. Flat punches close behind one another at alpha > 0 typically come back
 //     `tension`: the full-contact class of a flat face gives the trailing corner of the leading
@@ -162,8 +163,8 @@
 //     0.6-2.4 s, 1e-3 L 3-18 s (the correction's degree grows like sqrt(L/gap) and each Newton
 //     evaluation is a dense solve); parabola + wedge 30 ms - 1 s; rows of N parabolas 1.5 L apart
 //     (alpha 0.3, tolerance 1e-10; loads imposed above 5 contacts; build/bin/study_multi_contact
-//     --rows-only, studies/README.md): N = 5 20 ms (14 Newton iterations), 10 69 ms (13), 20 0.27 s
-//     (16), 40 1.3 s (21), 100 22 s (16), 200 207 s (28; peak RSS 456 MB). Each evaluation
+//     --rows-only, studies/README.md): N = 5 23 ms (14 Newton iterations), 10 72 ms (13), 20 0.30 s
+//     (16), 40 1.3 s (21), 100 16 s (16), 200 154 s (28; peak RSS 456 MB). Each evaluation
 //     assembles the union's N^2 cross blocks (by far the most of it: the kernel's powers in the
 //     blocks, in the data -sum A p_i and in the correction's residual) and solves it by GMRES in
 //     13-18 products, so its cost grows like N^2 (no low-rank far field) and the dense matrix's
