@@ -18,6 +18,7 @@
 #include <rhabel/punch/profile.hpp>
 
 #include <cmath>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -163,6 +164,22 @@ void begin_document(run_outcome& out, const run_request& request, const Result& 
   out.result["effective_modulus"] = effective_modulus;
 }
 
+// The tail of a result document: the diagnostics (with `rounds` for a profile's search), the
+// status that decides the exit code, the echo of the scene; every number checked finite.
+template <class Diagnostics>
+void end_document(run_outcome& out, const scene_spec& spec, const Diagnostics& d,
+                  std::optional<std::size_t> rounds = std::nullopt) {
+  ordered_json diagnostics = {{"residual", d.residual}, {"seconds", d.seconds}};
+  if (rounds) diagnostics["rounds"] = *rounds;
+  diagnostics["iterations"] = d.iterations;
+  diagnostics["status"] = punch::to_string(d.code);
+  diagnostics["status_message"] = d.status;
+  out.result["diagnostics"] = std::move(diagnostics);
+  out.ok = d.code == punch::status_code::ok;
+  out.result["scene"] = echo_scene(spec);
+  require_finite(out.result, "result");
+}
+
 // The fields of one contact's result (an indentor's, or a contact of a profile); its sampled
 // arrays go to out's tables as field `index`, with placeholders numbered by `arrays`.
 ordered_json contact_item(punch::indentor_result& ir, std::size_t index, const std::string& where, const run_request& request,
@@ -232,15 +249,7 @@ run_outcome run_profile(const scene_spec& spec, const run_request& request, cons
   }
   doc["contacts"] = std::move(contacts);
   if (!std::isnan(r.clearance)) doc["clearance"] = {{"min", r.clearance}, {"at", r.clearance_at}};
-  doc["diagnostics"] = {{"residual", r.diagnostics.residual},
-                        {"seconds", r.diagnostics.seconds},
-                        {"rounds", r.diagnostics.rounds},
-                        {"iterations", r.diagnostics.iterations},
-                        {"status", punch::to_string(r.diagnostics.code)},
-                        {"status_message", r.diagnostics.status}};
-  out.ok = r.diagnostics.code == punch::status_code::ok;
-  doc["scene"] = echo_scene(spec);
-  require_finite(doc, "result");
+  end_document(out, spec, r.diagnostics, r.diagnostics.rounds);
   return out;
 }
 
@@ -270,14 +279,7 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
     indentors.push_back(std::move(item));
   }
   doc["indentors"] = std::move(indentors);
-  doc["diagnostics"] = {{"residual", r.diagnostics.residual},
-                        {"seconds", r.diagnostics.seconds},
-                        {"iterations", r.diagnostics.iterations},
-                        {"status", punch::to_string(r.diagnostics.code)},
-                        {"status_message", r.diagnostics.status}};
-  out.ok = r.diagnostics.code == punch::status_code::ok;
-  doc["scene"] = echo_scene(spec);
-  require_finite(doc, "result");
+  end_document(out, spec, r.diagnostics);
   return out;
 }
 
