@@ -17,6 +17,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 
@@ -284,63 +285,53 @@ std::string rename(std::string text, const profile_model& m, const std::vector<r
   return text;
 }
 
-/// The runs of the last round, solved: what solve_profile reports.
+/// A solved round: its runs, the scene built from them, the solved states and the outcome.
 struct round_state {
+  std::vector<run> runs;
   scene sc;
   scene_states states;
   coupled_outcome outcome;
 };
 
-}  // namespace
-}  // namespace detail
+/// What the search found: the last solved round and its evidence.
+struct search_result {
+  std::optional<round_state> last;  // empty when no round could be solved at all
+  clearance_check clear;            // of `last` when its outcome is ok
+  std::string failure;              // why the search stopped short of a verified set ("" if it did not)
+  std::size_t rounds = 0, iterations = 0;
+};
 
-profile_result solve_profile(const profile_scene& s, const solve_options& options) {
-  using namespace detail;
-  const auto start = std::chrono::steady_clock::now();
-  validate_profile(s);
-  validate_options(options, who);
-  const profile_model m(s);
-  if (m.bumps.empty())
-    bad("profile.z has no local maximum inside the data (its highest samples are at an end): extend the samples "
-        "beyond the contact");
-  if (std::none_of(m.bumps.begin(), m.bumps.end(), [&](const bump& b) { return s.profile.z[b.tip] == m.top; }))
-    bad("profile.z is highest at an end of the data (x = " +
-        num(s.profile.z.front() == m.top ? s.profile.x.front() : s.profile.x.back()) +
-        "): the first contact would leave the samples; extend them");
-  const context cx = make_context(s.material, s.speed, options);
-  const double tol = options.acceptance;
-
-  std::vector<run> runs;
+/// The runs of the first round: the highest tip alone.
+std::vector<run> first_runs(const profile_model& m) {
   for (std::size_t k = 0; k < m.bumps.size(); ++k)
-    if (s.profile.z[m.bumps[k].tip] == m.top) {
-      runs.push_back({k, k});
-      break;
-    }
+    if (m.curve.z()[m.bumps[k].tip] == m.top) return {{k, k}};
+  return {};
+}
+
+/// The active-set search with load continuation (profile.hpp, "THE CONTACT SET").
+search_result search_contact_set(const profile_model& m, const context& cx) {
+  const double tol = cx.options.acceptance, load = m.source->load;
+  search_result out;
+  std::vector<run> runs = first_runs(m);
   // Times each bump was dropped at the current load; at max_drops it is not added again.
   std::vector<std::size_t> dropped(m.bumps.size(), 0);
   std::map<std::size_t, double> shares;  // tip sample -> its load at the last solved set, per unit t
-  profile_result out;
-  round_state last;
-  clearance_check clear;
-  std::string set_failure;  // why the active set stopped short of a verified set ("" if it did not)
-  // Load continuation: the rounds run at the fraction t of the load, from the highest tip alone
-  // at a t small enough for its contact to fit its basin, then t times load_step up to 1, the set
-  // of the last t as the start of the next.
   double t = start_fraction, settled = 0;
-  std::size_t halvings = 0;
-  std::size_t shrinks = 0;
+  std::size_t halvings = 0, shrinks = 0;
   const std::size_t max_rounds = 2 * m.bumps.size() + 40;
-  for (std::size_t round = 0;; ++round) {
-    if (round == max_rounds) {
-      set_failure = "the contact set did not settle in " + std::to_string(max_rounds) + " rounds";
+  for (;;) {
+    if (out.rounds == max_rounds) {
+      out.failure = "the contact set did not settle in " + std::to_string(max_rounds) + " rounds";
       break;
     }
-    last.sc = make_scene(m, runs, t * s.load);
-    last.states = prepare_states(last.sc, cx);
-    start_split(m, runs, shares, last.states);
-    ++out.diagnostics.rounds;
+    ++out.rounds;
+    round_state next;
+    next.runs = runs;
+    next.sc = make_scene(m, runs, t * load);
+    next.states = prepare_states(next.sc, cx);
+    start_split(m, runs, shares, next.states);
     try {
-      last.outcome = solve_states(last.sc, last.states, cx);
+      next.outcome = solve_states(next.sc, next.states, cx);
     } catch (const std::domain_error& e) {
       // One contact whose edges are not found inside its basin (its contact would be larger):
       // a smaller fraction of the load first.
@@ -349,10 +340,12 @@ profile_result solve_profile(const profile_scene& s, const solve_options& option
         ++shrinks;
         continue;
       }
-      set_failure = rename(e.what(), m, runs);
+      out.failure = rename(e.what(), m, runs);
       break;
     }
-    out.diagnostics.iterations += last.outcome.iterations;
+    out.iterations += next.outcome.iterations;
+    out.last = std::move(next);
+    const round_state& last = *out.last;
     const auto& co = last.outcome;
     if (co.code == status_code::contact_lost && co.lost && runs.size() > 1) {
       const std::size_t k = last.states.st[*co.lost].scene_index;
@@ -378,17 +371,17 @@ profile_result solve_profile(const profile_scene& s, const solve_options& option
     shares.clear();
     for (const auto& state : last.states.st) shares[m.tip(runs[state.scene_index])] = state.target_load / t;
     if (widen(m, runs, last.states)) continue;
-    clear = check_clearance(m, last.states, cx);
+    out.clear = check_clearance(m, last.states, cx);
     double deepest = 0;
     std::vector<bool> active(m.bumps.size(), false);
     for (const run& r : runs)
       for (std::size_t b = r.first; b <= r.last; ++b) active[b] = true;
     for (std::size_t b = 0; b < m.bumps.size(); ++b)
-      if (!active[b] && dropped[b] < max_drops) deepest = std::max(deepest, clear.depth[b]);
+      if (!active[b] && dropped[b] < max_drops) deepest = std::max(deepest, out.clear.depth[b]);
     const bool grow = deepest > tol;
     if (grow) {
       for (std::size_t b = 0; b < m.bumps.size(); ++b)
-        if (!active[b] && dropped[b] < max_drops && clear.depth[b] >= add_fraction * deepest) runs.push_back({b, b});
+        if (!active[b] && dropped[b] < max_drops && out.clear.depth[b] >= add_fraction * deepest) runs.push_back({b, b});
       std::sort(runs.begin(), runs.end(), [](const run& p, const run& q) { return p.first < q.first; });
     }
     if (t == 1) {
@@ -403,49 +396,84 @@ profile_result solve_profile(const profile_scene& s, const solve_options& option
     // A bump dropped at a smaller load may carry load at a larger one.
     dropped.assign(dropped.size(), 0);
   }
+  // The evidence of a round that is reported but was not the last one looked at (a later round
+  // failed to solve or the round limit came): stale clearances are recomputed for it.
+  if (out.last && out.last->outcome.code == status_code::ok && !out.failure.empty())
+    out.clear = check_clearance(m, out.last->states, cx);
+  return out;
+}
 
-  // The report of the last round, with contact.cpp's evidence, and the clearance.
+/// The result of the last solved round with contact.cpp's evidence, the clearance, and the
+/// search's own failure when it had one.
+profile_result report_profile(const profile_model& m, const context& cx, const search_result& sr) {
+  const auto& s = *m.source;
+  const round_state& last = *sr.last;
+  const double tol = cx.options.acceptance;
   const scene_result r = report_scene(last.sc, last.states, cx, last.outcome);
+  profile_result out;
   out.beta = r.beta;
   out.kappa = r.kappa;
   out.regime = r.regime;
   out.contacts = r.indentors;
-  for (auto& c : out.contacts) c.status = rename(c.status, m, runs);
-  for (const run& rn : runs) out.tips.push_back(s.profile.x[m.tip(rn)]);
+  for (auto& c : out.contacts) c.status = rename(c.status, m, last.runs);
+  for (const run& rn : last.runs) out.tips.push_back(s.profile.x[m.tip(rn)]);
   out.body_approach = r.body_approach.value_or(std::numeric_limits<double>::quiet_NaN());
   out.diagnostics.residual = r.diagnostics.residual;
   out.diagnostics.code = r.diagnostics.code;
-  out.diagnostics.status = rename(r.diagnostics.status, m, runs);
-  if (last.outcome.code == status_code::ok) {
-    if (clear.depth.empty()) clear = check_clearance(m, last.states, cx);
-    out.clearance = clear.worst == std::numeric_limits<double>::infinity() ? 0.0 : clear.worst;
-    out.clearance_at = clear.worst_at;
-  } else {
-    out.clearance = std::numeric_limits<double>::quiet_NaN();
-    out.clearance_at = std::numeric_limits<double>::quiet_NaN();
-  }
+  out.diagnostics.status = rename(r.diagnostics.status, m, last.runs);
+  out.diagnostics.rounds = sr.rounds;
+  out.diagnostics.iterations = sr.iterations;
+  const bool checked = last.outcome.code == status_code::ok && !sr.clear.depth.empty();
+  out.clearance = !checked ? std::numeric_limits<double>::quiet_NaN()
+                  : sr.clear.worst == std::numeric_limits<double>::infinity() ? 0.0
+                                                                               : sr.clear.worst;
+  out.clearance_at = checked ? sr.clear.worst_at : std::numeric_limits<double>::quiet_NaN();
+  auto fail = [&](status_code code, const std::string& why) {
+    if (out.diagnostics.code != status_code::ok) return;
+    out.diagnostics.code = code;
+    out.diagnostics.status = why;
+  };
   for (std::size_t k = 0; k < out.contacts.size(); ++k) {
     const auto& c = out.contacts[k];
-    if (out.diagnostics.code == status_code::ok && (c.a < s.profile.x.front() || c.b > s.profile.x.back())) {
-      out.diagnostics.code = status_code::not_converged;
-      out.diagnostics.status = "contacts[" + std::to_string(k) + "] [" + num(c.a) + ", " + num(c.b) +
-                               "] leaves the samples [" + num(s.profile.x.front()) + ", " + num(s.profile.x.back()) +
-                               "]: extend the profile";
-    }
+    if (c.a < s.profile.x.front() || c.b > s.profile.x.back())
+      fail(status_code::not_converged, "contacts[" + std::to_string(k) + "] [" + num(c.a) + ", " + num(c.b) +
+                                           "] leaves the samples [" + num(s.profile.x.front()) + ", " +
+                                           num(s.profile.x.back()) + "]: extend the profile");
   }
-  if (out.diagnostics.code == status_code::ok && !set_failure.empty()) {
-    out.diagnostics.code = status_code::not_converged;
-    out.diagnostics.status = set_failure;
-  }
-  if (out.diagnostics.code == status_code::ok && out.clearance < -tol) {
+  if (!sr.failure.empty()) fail(status_code::not_converged, sr.failure);
+  if (out.clearance < -tol) {
     std::ostringstream os;
     os.precision(3);
     os << "the profile penetrates the surface by " << -out.clearance << " of max z - min z at x = " << out.clearance_at
        << " (outside the contacts found: a contact there vanished in an earlier round, or lies inside a merged "
           "contact's basins)";
-    out.diagnostics.code = status_code::penetration;
-    out.diagnostics.status = os.str();
+    fail(status_code::penetration, os.str());
   }
+  return out;
+}
+
+}  // namespace
+}  // namespace detail
+
+profile_result solve_profile(const profile_scene& s, const solve_options& options) {
+  using namespace detail;
+  const auto start = std::chrono::steady_clock::now();
+  validate_profile(s);
+  validate_options(options, who);
+  const profile_model m(s);
+  if (m.bumps.empty())
+    bad("profile.z has no local maximum inside the data (its highest samples are at an end): extend the samples "
+        "beyond the contact");
+  if (first_runs(m).empty())
+    bad("profile.z is highest at an end of the data (x = " +
+        num(s.profile.z.front() == m.top ? s.profile.x.front() : s.profile.x.back()) +
+        "): the first contact would leave the samples; extend them");
+  const context cx = make_context(s.material, s.speed, options);
+  const search_result sr = search_contact_set(m, cx);
+  // Not even the highest tip alone at 16^-12 of the load: no contact interval (as solve for one
+  // indentor without one).
+  if (!sr.last) throw std::domain_error(std::string(who) + ": no contact found: " + sr.failure);
+  profile_result out = report_profile(m, cx, sr);
   out.diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

@@ -130,8 +130,10 @@ struct profile_result {
 
 /// Solves a sampled profile on one rigid body with the contact set unknown (see the top of this
 /// header). Validates every field first and throws std::invalid_argument naming it (e.g.
-/// "rhabel::punch::solve_profile: profile.x[3] = 0.2 must be > profile.x[2] = 0.2"). The result
-/// is always returned with its evidence; anything not verified is a status other than ok.
+/// "rhabel::punch::solve_profile: profile.x[3] = 0.2 must be > profile.x[2] = 0.2"). Throws
+/// std::domain_error when not even the highest tip alone, at 16^-12 of the load, has a contact
+/// inside its basin. Otherwise the result is returned with its evidence (the last solved round's
+/// contacts); anything not verified is a status other than ok.
 profile_result solve_profile(const profile_scene& s, const solve_options& options = {});
 
 }  // namespace rhabel::punch
