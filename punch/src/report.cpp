@@ -327,9 +327,7 @@ indentor_result report_contact(const std::vector<indentor_state>& st, std::size_
     double scale = g.integral() / g.length() * std::pow(g.length() / 2, cx.alpha);
     const inside_action apply_inside(g, cx.par);
     for (const double sck : points) {
-      double lhs = apply_inside(sck);
-      for (std::size_t j = 0; j < st.size(); ++j)
-        if (j != i) lhs += apply_outside(st[j].g, sck, cx.par);
+      const double lhs = apply_inside(sck) + heights.others_action(i, sck);
       const double rhs = own_slope(st[i], sck) / cx.gamma_factor;
       worst = std::max(worst, std::abs(lhs - rhs));
       scale = std::max(scale, std::abs(rhs));

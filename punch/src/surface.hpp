@@ -2,6 +2,7 @@
 // displacement grid of report.cpp and the penetration check of the coupled contacts).
 #pragma once
 
+#include "far_action.hpp"
 #include "internal.hpp"
 
 #include "rhabel/abel.hpp"
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <memory>
 #include <utility>
 #include <optional>
 #include <vector>
@@ -82,9 +84,16 @@ class surface {
   /// Surface displacement at x relative to its value at a_i (see the class comment).
   double height(std::size_t i, double x) const {
     if (const auto in = in_contact(i, x)) return *in;
-    double h = 0;
-    for (std::size_t o = 0; o < st_.size(); ++o) h += moment(o, x);
+    const double h = psi_field().sum(x, [&](std::size_t o) { return moment(o, x); });
     return cx_.gamma_factor * (h - datum(i));
+  }
+
+  /// sum_{j != i} A g_j (s): the other contacts' action at s (apply_outside each), the far ones
+  /// through far_action's tree (many contacts).
+  double others_action(std::size_t i, double s) const {
+    if (!cross_)
+      cross_ = std::make_unique<far_action>(st_, [par = cx_.par](const double& d) { return abel::detail::cross_kernel(par, d); });
+    return cross_->sum(s, [&](std::size_t j) { return j == i ? 0.0 : apply_outside(st_[j].g, s, cx_.par); });
   }
 
   /// height(i, x) at every x of xs: the same, with the moments of each contact interpolated
@@ -211,12 +220,19 @@ class surface {
     }
   }
 
+  // The sums over contacts of int g_o Psi(t, x) dt (far_action: a tree for many contacts).
+  const far_action& psi_field() const {
+    if (!psi_)
+      psi_ = std::make_unique<far_action>(st_, [alpha = cx_.alpha, omk = omk_, kappa = cx_.kappa](const double& t_minus_x) {
+        return psi_distance(-t_minus_x, alpha, omk, kappa);
+      });
+    return *psi_;
+  }
+
   double datum(std::size_t k) const {
     if (edge_[k]) return *edge_[k];
     const auto& g = st_[k].g;
-    double value = 0;
-    for (std::size_t o = 0; o < st_.size(); ++o)
-      if (o != k) value += moment(o, g.jacobi.lo);
+    double value = psi_field().sum(g.jacobi.lo, [&](std::size_t o) { return o == k ? 0.0 : moment(o, g.jacobi.lo); });
     if (g.line_load) {
       value += moment(k, g.jacobi.lo);  // w Psi(a, a): the kernel's continuous value w/alpha there
     } else {
@@ -255,6 +271,7 @@ class surface {
   double omk_;
   mutable std::vector<std::optional<double>> edge_;
   mutable std::vector<weighted_nodes> nodes_;
+  mutable std::unique_ptr<far_action> psi_, cross_;
 };
 
 }  // namespace rhabel::punch::detail

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -509,6 +510,61 @@ TEST_CASE("iterative_from: block-preconditioned GMRES gives the LU's coefficient
                 coefficient_tolerance * size);
     }
   }
+}
+
+// Many intervals with separated pairs: the far-field route (only own and near blocks assembled,
+// the rest applied through detail/far_field.hpp inside GMRES) solves the same collocation system
+// as the LU on the assembled matrix: a row of 40 intervals of the three classes with loads on the
+// nu = +1 ones, gaps of 0.4 ... 2.5 lengths (near pairs and far ones).
+TEST_CASE("iterative_from with separated intervals: the far-field route gives the LU's coefficients and defects") {
+  // GMRES's 1e-14 relative residual times the condition (~1e3 here, as in the test above) plus
+  // the far field's relative error (residual_tolerance/1000 = 1e-13), with a margin.
+  const double coefficient_tolerance = 1e-10;
+  const abel_parameters<double> par(0.3, 0.2);
+  std::vector<interval_spec<double>> intervals;
+  std::vector<std::optional<double>> loads;
+  double x = 0;
+  for (std::size_t k = 0; k < 40; ++k) {
+    const double L = 1 + 0.5 * std::sin(1.7 * double(k));
+    const edge e1 = k % 3 == 2 ? edge::unbounded : edge::bounded, e2 = k % 3 == 0 ? edge::bounded : edge::unbounded;
+    intervals.push_back({x, x + L, e1, e2});
+    loads.push_back(k % 3 == 2 ? std::optional<double>(0.2 + 0.01 * double(k)) : std::nullopt);
+    x += L * (1.4 + 1.1 * (1 + std::cos(2.3 * double(k))));
+  }
+  std::vector<std::function<double(double)>> F;
+  for (std::size_t j = 0; j < intervals.size(); ++j)
+    F.push_back([j](double s) { return std::cos(0.1 * s + 0.3 * static_cast<double>(j)) - 0.01 * s; });
+  multi_solve_options<double> direct;
+  direct.degree = 24;
+  direct.loads = loads;
+  direct.homogeneous = false;
+  multi_solve_options<double> far = direct;
+  far.iterative_from = 6;
+  const auto a = solve_union(par, intervals, F, direct);
+  const auto b = solve_union(par, intervals, F, far);
+  INFO("residuals " << a.residual << " (LU), " << b.residual << " (far field)");
+  CHECK(a.residual < 1e-9);
+  CHECK(b.residual < 1e-9);
+  CHECK(std::abs(a.residual - b.residual) <= 1e-12);
+  CHECK(std::isnan(b.condition));  // the iterative route was taken
+  double size = 0, worst = 0;
+  for (std::size_t j = 0; j < intervals.size(); ++j)
+    for (std::size_t n = 0; n < a.densities[j].coefficients.size(); ++n) {
+      size = std::max(size, std::abs(a.densities[j].coefficients[n]));
+      worst = std::max(worst, std::abs(a.densities[j].coefficients[n] - b.densities[j].coefficients[n]));
+    }
+  INFO("largest coefficient difference " << worst << " of " << size);
+  CHECK(worst <= coefficient_tolerance * size);
+  for (std::size_t j = 0; j < intervals.size(); ++j)
+    CHECK(std::abs(a.solvability_defects[j] - b.solvability_defects[j]) <= coefficient_tolerance * size);
+  // Memory: the far route's estimate at 1000 such intervals is tens of megabytes (measured 39 MB,
+  // mostly the pairs' 20 x 20 kernel matrices), the dense matrix's gigabytes.
+  std::vector<detail::far_field<double>::box> boxes;
+  for (std::size_t k = 0; k < 1000; ++k) boxes.push_back({1.5 * double(k), 1.5 * double(k) + 1});
+  const detail::far_field<double> row(par, boxes, 20);
+  CHECK(detail::union_far_memory_bytes(row, 16) < 50e6);
+  CHECK(detail::union_memory_bytes<double>(1000, 16) > 2e9);
+  CHECK(detail::union_far_degree_limit(row, std::size_t(1) << 30) > 100);
 }
 
 // multi_solve_options::homogeneous = false leaves the homogeneous solutions out and changes

@@ -19,6 +19,7 @@
 
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 namespace rhabel::abel::detail {
@@ -30,10 +31,18 @@ class block_gmres {
   using vector = Eigen::Matrix<Real, Eigen::Dynamic, 1>;
 
   /// A: the T x T system (kept by reference); blocks: K diagonal blocks of size `block` (T = K block).
-  block_gmres(const matrix& A, Eigen::Index block) : A_(A), block_(block) {
+  block_gmres(const matrix& A, Eigen::Index block)
+      : apply_([&A](const vector& v) { return vector(A * v); }), size_(A.rows()), block_(block) {
     const Eigen::Index K = A.rows() / block;
     for (Eigen::Index k = 0; k < K; ++k)
       diagonal_.emplace_back(matrix(A.block(k * block, k * block, block, block)));
+  }
+
+  /// A given as its product (matrix-free: multi_interval.hpp's far field), with its K diagonal
+  /// blocks (each block x block).
+  block_gmres(std::function<vector(const vector&)> apply, const std::vector<matrix>& diagonal, Eigen::Index block)
+      : apply_(std::move(apply)), size_(static_cast<Eigen::Index>(diagonal.size()) * block), block_(block) {
+    for (const auto& d : diagonal) diagonal_.emplace_back(d);
   }
 
   /// Solves A x = b to |b - A x| <= rtol |b|; false if max_iterations products were not enough.
@@ -41,7 +50,7 @@ class block_gmres {
              std::size_t restart = 60) const {
     using std::abs;
     using std::sqrt;
-    const Eigen::Index T = A_.rows();
+    const Eigen::Index T = size_;
     x = vector::Zero(T);
     const Real b_norm = b.norm();
     if (b_norm == 0) return true;
@@ -61,7 +70,7 @@ class block_gmres {
       H.setZero();
       Eigen::Index k = 0;
       for (; k < m && products < max_iterations; ++k) {
-        vector w = A_ * precondition(V.col(k));
+        vector w = apply_(precondition(V.col(k)));
         ++products;
         // Gram-Schmidt against V(:, 0..k), twice (the second pass restores orthogonality lost to
         // cancellation; "twice is enough").
@@ -95,7 +104,7 @@ class block_gmres {
       // y = H(0..k-1, 0..k-1)^-1 g(0..k-1); x += P^-1 V y.
       const vector y = H.topLeftCorner(k, k).template triangularView<Eigen::Upper>().solve(g.head(k));
       x += precondition(V.leftCols(k) * y);
-      r = b - A_ * x;
+      r = b - apply_(x);
       ++products;
     }
   }
@@ -110,8 +119,8 @@ class block_gmres {
     return out;
   }
 
-  const matrix& A_;
-  Eigen::Index block_;
+  std::function<vector(const vector&)> apply_;
+  Eigen::Index size_, block_;
   std::vector<Eigen::PartialPivLU<matrix>> diagonal_;
 };
 
