@@ -69,14 +69,19 @@ std::pair<double, double> direct(const abel_parameters<double>& par, const layou
   return {sum, scale};
 }
 
-/// Max over leaves and 7 points each of |far - direct| / scale.
-double far_error(const abel_parameters<double>& par, const layout& L, std::size_t p) {
-  const ff F(par, L.boxes, p);
+/// Every leaf's moments of its density (moment_matrix times the coefficients).
+std::vector<ff::vector> leaf_moments(const ff& F, const layout& L) {
   std::vector<ff::vector> W;
   for (std::size_t i = 0; i < L.g.size(); ++i)
     W.push_back(F.moment_matrix(i, L.g[i].del, L.g[i].gam, L.g[i].coefficients.size()) *
                 Eigen::Map<const ff::vector>(L.g[i].coefficients.data(), static_cast<Eigen::Index>(L.g[i].coefficients.size())));
-  const auto local = F.far_values(W);
+  return W;
+}
+
+/// Max over leaves and 7 points each of |far - direct| / scale.
+double far_error(const abel_parameters<double>& par, const layout& L, std::size_t p) {
+  const ff F(par, L.boxes, p);
+  const auto local = F.far_values(leaf_moments(F, L));
   double worst = 0;
   for (std::size_t j = 0; j < L.g.size(); ++j)
     for (double x : {-1.0, -0.9, -0.31, 0.0, 0.44, 0.97, 1.0}) {
@@ -175,11 +180,7 @@ TEST_CASE("far field: at_point (the treecode) matches the direct sum inside leav
   const auto L = densities(par, irregular(60, 7, 1e3), 7);
   for (const auto& k : kernels) {
     const ff F(k, L.boxes, 26);
-    std::vector<ff::vector> W;
-    for (std::size_t i = 0; i < L.g.size(); ++i)
-      W.push_back(F.moment_matrix(i, L.g[i].del, L.g[i].gam, L.g[i].coefficients.size()) *
-                  Eigen::Map<const ff::vector>(L.g[i].coefficients.data(), static_cast<Eigen::Index>(L.g[i].coefficients.size())));
-    const auto boxes = F.upward(W);
+    const auto boxes = F.upward(leaf_moments(F, L));
     double worst = 0;
     std::size_t points = 0;
     for (std::size_t j = 0; j + 1 < L.g.size(); ++j)

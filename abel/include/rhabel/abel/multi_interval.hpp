@@ -466,6 +466,7 @@ std::optional<multi_solution<Real>> solve_union_at_degree(const abel_parameters<
       gmres.reset();  // it refers to A, which the LU overwrites
       lu = std::make_unique<Eigen::PartialPivLU<Eigen::Ref<matrix>>>(A);
       if constexpr (std::is_floating_point_v<Real>) {
+        (void)norm_A;  // used for the exact condition of non-IEEE types only
         sol.condition = 1 / lu->rcond();
       } else {
         // Eigen's estimator needs NumTraits<Real>::infinity(), which the Boost.Multiprecision

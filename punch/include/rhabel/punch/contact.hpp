@@ -88,7 +88,8 @@
 //     -sum_{i != j} A p_i by abel::solve_union (collocation in the contacts' Jacobi bases, cross
 //     blocks by graded quadrature, a pair at least a half-length apart by one Gauss-Jacobi panel
 //     of n/2 + ~20 nodes; from 6 contacts on the collocation system by GMRES with the
-//     block-diagonal preconditioner instead of LU; degree raised until its independent residual is
+//     block-diagonal preconditioner instead of LU, separated contacts through the far field;
+//     degree raised until its independent residual is
 //     within the tolerance relative to the original data). The edges: Newton's method on ALL edge conditions
 //     at once (d_j = 0, or a vanishing near-edge intensity for a split wedge, and int g_j = P_j),
 //     forward-difference Jacobian at the base point's degree (banded by Curtis-Powell-Reid colouring
@@ -163,12 +164,11 @@
 //     0.6-2.4 s, 1e-3 L 3-18 s (the correction's degree grows like sqrt(L/gap) and each Newton
 //     evaluation is a dense solve); parabola + wedge 30 ms - 1 s; rows of N parabolas 1.5 L apart
 //     (alpha 0.3, tolerance 1e-10; loads imposed above 5 contacts; build/bin/study_multi_contact
-//     --rows-only, studies/README.md): N = 5 23 ms (14 Newton iterations), 10 72 ms (13), 20 0.30 s
-//     (16), 40 1.3 s (21), 100 16 s (16), 200 154 s (28; peak RSS 456 MB). Each evaluation
-//     assembles the union's N^2 cross blocks (by far the most of it: the kernel's powers in the
-//     blocks, in the data -sum A p_i and in the correction's residual) and solves it by GMRES in
-//     13-18 products, so its cost grows like N^2 (no low-rank far field) and the dense matrix's
-//     memory like N^2: its 1 GiB bound admits up to 724 contacts at 16 points each. Against the
+//     --rows-only, studies/README.md): N = 5 20 ms (14 Newton iterations), 10 44 ms (13), 40 0.27 s
+//     (10), 100 0.79 s (11), 300 5.2 s (28), 1000 34 s (23; peak RSS 144 MB). From 6 contacts on,
+//     separated contacts act through abel's far field (abel/detail/far_field.hpp: the coupling
+//     data, the union's GMRES products without an assembled matrix, the residuals, the surface
+//     displacement), so an evaluation costs O(N) and memory O(N). Against the
 //     usual boundary-element
 //     method (the tests' oracle at 3200 uniform panels): edges to 3e-4 .. 1.2e-3 L and C_f to
 //     1e-7 .. 4e-6 in 2-8 s.

@@ -68,7 +68,7 @@
 //   * Cost: `rhabel solve examples/rough_profile.json --acceptance 1e-6` (2000 samples, 6 contacts)
 //     7 rounds, 0.93 s (diagnostics.seconds, two runs); ten cosine bumps, 6 contacts: 6 rounds,
 //     0.76 s; 50 cosine bumps, 4000 samples, 29 contacts (`python3 studies/scenes/cosine_profile.py
-//     50 | rhabel solve - --acceptance 1e-6`): 10 rounds, 60 s. Each round is one coupled solve of
+//     50 | rhabel solve - --acceptance 1e-6`): 10 rounds, 35 s. Each round is one coupled solve of
 //     its contacts (contact.hpp, "Cost"), with the full Jacobian of a rigid body (2 N evaluations
 //     of the union solve per Jacobian): ~50 contacts in 2 s would need that Jacobian banded.
 //
