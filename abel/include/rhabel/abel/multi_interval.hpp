@@ -48,12 +48,13 @@
 // moments on every interval, a binary tree of the intervals, p x p kernel matrices between
 // admissible boxes, interpolation back to the collocation points. A product then costs
 // O(K (near + 1) M^2 + K p M + pairs p^2) instead of (K M)^2, and memory is
-// union_far_memory_bytes (O(K M^2 + K p^2)) instead of (K M)^2: K = 1000 at M = 16 needs ~15 MB
-// (the dense matrix: 2 GB). The far field's relative accuracy is options.residual_tolerance/1000
+// union_far_memory_bytes (O(K M^2 + K p^2)) instead of (K M)^2: K = 1000 at M = 16 and p = 20
+// needs ~40 MB, mostly the pairs' kernel matrices (the dense matrix: 2 GB). The far field's relative accuracy is options.residual_tolerance/1000
 // (far_field::order_for; or the caller's options.far_field); the independent residual below
 // takes the far intervals' action through the same far field (its own accuracy is the test
 // tests/abel/test_far_field.cpp against direct quadrature) and the near ones by quadrature. If
-// GMRES does not converge there, the assembled system (if it fits in max_memory_bytes). Block Gauss-Seidel between the intervals (solve each alone
+// GMRES does not converge there, the assembled system (if it fits in max_memory_bytes).
+// Block Gauss-Seidel between the intervals (solve each alone
 // with the neighbour's image subtracted) was measured and rejected (study_union_convergence
 // out.csv 1024 gauss_seidel: contraction factor of int g_1 per sweep, two intervals, beta 0.3):
 // 0.16 ... 0.34 for alpha in [0.25, 0.5] at every gap, 0.84 ... 0.89 at alpha = 0.9, 0.56 at
