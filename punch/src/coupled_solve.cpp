@@ -286,11 +286,8 @@ class particular_field {
     for (std::size_t k = 0; k < targets.size(); ++k) {
       const auto& gi = g[targets[k]];
       out->plain_.push_back(!gi.has_apex);
-      const auto& c = gi.jacobi.coefficients;
-      W.push_back(gi.has_apex || c.empty()
-                      ? Eigen::VectorXd::Zero(static_cast<Eigen::Index>(out->field_->order()))
-                      : Eigen::VectorXd(out->field_->moment_matrix(k, gi.jacobi.del, gi.jacobi.gam, c.size()) *
-                                        Eigen::Map<const Eigen::VectorXd>(c.data(), static_cast<Eigen::Index>(c.size()))));
+      W.push_back(gi.has_apex ? Eigen::VectorXd::Zero(static_cast<Eigen::Index>(out->field_->order()))
+                              : out->field_->density_moments(k, gi.jacobi));
     }
     out->local_ = out->field_->far_values(W);
     return out;
@@ -402,7 +399,7 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
   std::vector<std::function<double(double)>> data;
   abel::multi_solve_options<double> o;
   double worst_ratio = 0;  // max over targets of (scale of D) / (scale of the data)
-  bool any_coupling = n > 1;
+  const bool any_coupling = n > 1;
   for (std::size_t j : targets) {
     const auto [leading, trailing] = series_edges(pb, j);
     intervals.push_back({a[j], b[j], leading, trailing});
@@ -447,9 +444,8 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
                                         : abel::detail::union_degree_limit<double>(K, o.max_memory_bytes);
   o.max_degree = pb.fixed_degree > 0 ? 0 : std::max<std::size_t>(o.degree, std::min<std::size_t>(600, memory_degree));
   o.homogeneous = false;  // the loads are imposed through o.loads; the homogeneous solutions are not used
-  // From 6 contacts the union's collocation system by block-preconditioned GMRES
-  // (abel/detail/block_gmres.hpp): 13-18 products of the matrix for rows of 10-40 parabolas
-  // 1.5 L apart, O((K M)^2) each, against the LU's O((K M)^3) (equal cost at 6).
+  // From iterative_from contacts: GMRES, with the far part through the particulars' far field
+  // (the same intervals): 11-19 products for rows of 10-300 parabolas 1.5 L apart.
   o.iterative_from = iterative_from;
   if (far) o.far_field = far->field();
   const auto sol = abel::solve_union(cx.par, intervals, data, o);
@@ -801,14 +797,15 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
     const double reduction = next.r.lpNorm<Eigen::Infinity>() / ev.r.lpNorm<Eigen::Infinity>();
     ev = std::move(next);
     ++since_fresh;
-    // ... and when even a new Jacobian's step gains less than a quarter, this start is too far
-    // from the solution (rows of 300 parabolas from the isolated contacts: 27 steps from 3.8 to
-    // 0.95, each gaining 1 ... 11 %): the caller's continuation in the load takes over.
+    // Many contacts (coloured Jacobian): when even a new Jacobian's step gains less than a
+    // quarter, this start is too far from the solution (rows of 300 parabolas from the isolated
+    // contacts: 27 steps from 3.8 to 0.95, each gaining 1 ... 11 %): the caller's continuation in
+    // the load takes over.
     if (colouring && step_was_fresh && reduction > 0.75 && step > 10 * tol) {
       out.failure = "the edge iteration stalled";
       break;
     }
-    // Many contacts (coloured Jacobian, 2 full_width evaluations): Broyden's updates from a start
+    // Otherwise (coloured Jacobian, 2 full_width evaluations): Broyden's updates from a start
     // far from the solution crawl (rows of 100 parabolas: the condition fell by less than half per
     // step for 12 steps, then converged in 2 after a new Jacobian); a new one when a step gains
     // less than a factor 2 two steps after the last.

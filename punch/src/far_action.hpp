@@ -47,17 +47,11 @@ class far_action {
     state_of_ = order;
     always_direct_.assign(st.size(), true);
     std::vector<Eigen::VectorXd> W;
-    const auto p = static_cast<Eigen::Index>(field_->order());
     for (std::size_t k = 0; k < order.size(); ++k) {
       const auto& g = st[order[k]].g;
-      const auto& c = g.jacobi.coefficients;
-      if (g.has_apex || c.empty()) {
-        W.push_back(Eigen::VectorXd::Zero(p));
-        continue;
-      }
-      always_direct_[order[k]] = false;
-      W.push_back(field_->moment_matrix(k, g.jacobi.del, g.jacobi.gam, c.size()) *
-                  Eigen::Map<const Eigen::VectorXd>(c.data(), static_cast<Eigen::Index>(c.size())));
+      const bool plain = !g.has_apex && !g.jacobi.coefficients.empty();
+      always_direct_[order[k]] = !plain;
+      W.push_back(plain ? field_->density_moments(k, g.jacobi) : Eigen::VectorXd::Zero(static_cast<Eigen::Index>(field_->order())));
     }
     moments_ = field_->upward(W);
   }

@@ -28,7 +28,8 @@ namespace rhabel::punch::detail {
 // E_k = sum_o int g_o Psi(t, a_k) dt (the datum at a_k: the own contact's integral, log-singular at
 // t = a_k, by tanh-sinh in offsets from its singular ends; the others' by Gauss-Jacobi). Every
 // moment by Gauss-Jacobi for the regular part (smooth in t when x is off the interval) and abel's
-// composite rule for the apex part. E_k is computed once, on first use.
+// composite rule for the apex part. E_k is computed once, on first use. With many contacts the
+// sums over contacts (height, datum, others_action) take the far ones through far_action's tree.
 class surface {
  public:
   surface(const std::vector<indentor_state>& st, const context& cx)

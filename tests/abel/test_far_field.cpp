@@ -69,12 +69,10 @@ std::pair<double, double> direct(const abel_parameters<double>& par, const layou
   return {sum, scale};
 }
 
-/// Every leaf's moments of its density (moment_matrix times the coefficients).
+/// Every leaf's moments of its density.
 std::vector<ff::vector> leaf_moments(const ff& F, const layout& L) {
   std::vector<ff::vector> W;
-  for (std::size_t i = 0; i < L.g.size(); ++i)
-    W.push_back(F.moment_matrix(i, L.g[i].del, L.g[i].gam, L.g[i].coefficients.size()) *
-                Eigen::Map<const ff::vector>(L.g[i].coefficients.data(), static_cast<Eigen::Index>(L.g[i].coefficients.size())));
+  for (std::size_t i = 0; i < L.g.size(); ++i) W.push_back(F.density_moments(i, L.g[i]));
   return W;
 }
 

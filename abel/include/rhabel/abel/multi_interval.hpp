@@ -588,10 +588,7 @@ Real union_residual(const abel_parameters<Real>& par, const std::vector<interval
   std::vector<Eigen::Matrix<Real, Eigen::Dynamic, 1>> local;
   if (far) {
     std::vector<Eigen::Matrix<Real, Eigen::Dynamic, 1>> W;
-    for (const auto& g : sol.densities)
-      W.push_back(far->moment_matrix(W.size(), g.del, g.gam, g.coefficients.size()) *
-                  Eigen::Map<const Eigen::Matrix<Real, Eigen::Dynamic, 1>>(g.coefficients.data(),
-                                                                           static_cast<Eigen::Index>(g.coefficients.size())));
+    for (const auto& g : sol.densities) W.push_back(far->density_moments(W.size(), g));
     local = far->far_values(W);
   }
   auto coupled = [&](std::size_t j, std::size_t i) {

@@ -132,21 +132,13 @@ class far_field {
     return half_width(leaf_node_[i]) * it->second;
   }
 
-  /// Leaf i's moments of a density given at quadrature points: sum_q weight_q g(t_q) l_l(t_q),
-  /// x_q the reference coordinates on leaf i and weighted[q] = weight_q g(t_q) (dt included).
-  vector moments(const std::vector<Real>& x, const std::vector<Real>& weighted) const {
-    const std::size_t p = order();
-    vector W = vector::Zero(static_cast<Eigen::Index>(p));
-    std::vector<Real> l(p);
-    for (std::size_t q = 0; q < x.size(); ++q) {
-      lagrange(x[q], l.data());
-      for (std::size_t k = 0; k < p; ++k) W[static_cast<Eigen::Index>(k)] += weighted[q] * l[k];
-    }
-    return W;
+  /// Leaf i's moments of a Jacobi density on it: moment_matrix times its coefficients (zero for
+  /// an empty series).
+  vector density_moments(std::size_t i, const jacobi_density<Real>& g) const {
+    const auto& c = g.coefficients;
+    if (c.empty()) return vector::Zero(static_cast<Eigen::Index>(order()));
+    return moment_matrix(i, g.del, g.gam, c.size()) * Eigen::Map<const vector>(c.data(), static_cast<Eigen::Index>(c.size()));
   }
-
-  /// A point source of weight w at reference coordinate x of its leaf (a line load).
-  vector point_moments(const Real& x, const Real& w) const { return moments({x}, {w}); }
 
   /// Every box's moments from the leaves' (the upward pass; input of at_point).
   std::vector<vector> upward(const std::vector<vector>& leaf_moments) const {
