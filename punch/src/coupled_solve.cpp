@@ -887,6 +887,8 @@ newton_result attempt(problem& pb, const edges& isolated) {
   // (Only gaps that the load changes count; t >= 4^-10: a contact ~1e-3 of its full size.)
   double t = 1;
   for (int k = 0; k < 10 && !(gap_ratio(pb, scaled_guess(pb, isolated, t), true) > 1); ++k) t /= 4;
+  // Already well apart at the full load: the continuation would repeat the direct attempt.
+  if (t == 1 && gap_ratio(pb, isolated) > 0) return result;
   pb.load_factor = t;
   result = newton(pb, scaled_guess(pb, isolated, t));
   double step = 4;  // factor by which t grows

@@ -12,6 +12,7 @@
 #include <boost/math/special_functions/gamma.hpp>
 #include <boost/math/tools/roots.hpp>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -326,6 +327,24 @@ TEST_CASE("indentors on one rigid body: the loads' split, the common approach, c
     const auto r = solve(s);
     CHECK(r.diagnostics.code == status_code::contact_lost);
     CHECK(r.diagnostics.status.find("indentors[1]") != std::string::npos);
+  }
+  SUBCASE("the approach's two quadratures agree where they meet (alpha = 1e-2)") {
+    // The own contact's datum int g Psi(t, a) dt is one Gauss-Jacobi sum of weight
+    // (1-x)^del (1+x)^(gam + alpha) from alpha = 1e-2 on, tanh-sinh in the offsets from the ends
+    // below (surface.hpp): the two routes share no quadrature. Across the switch alpha moves by
+    // 2e-9 relative, which moves the approaches by ~1e-11 of max|f'| L; the tanh-sinh route is
+    // good to ~1e-12 and the Gauss-Jacobi one to eps/alpha ~ 2e-14.
+    constexpr double routes_tol = 1e-9;  // relative to the approach's scale max|f'| L = L^2/(2R)
+    auto approaches = [&](double alpha) {
+      scene s = two(material{alpha, 1.0, 0.3, 0.0}, indentor{parabolic{1.0}, 1.0, 0.0}, indentor{parabolic{2.0}, 0.5, 3.0});
+      const auto r = solve(s);
+      REQUIRE(r.diagnostics.code == status_code::ok);
+      return std::array<double, 3>{r.indentors[0].approach, r.indentors[1].approach, r.indentors[0].contact_length};
+    };
+    const auto below = approaches(1e-2 * (1 - 1e-9)), above = approaches(1e-2 * (1 + 1e-9));
+    const double scale = above[2] * above[2] / 2;
+    CHECK(std::abs(below[0] - above[0]) < routes_tol * scale);
+    CHECK(std::abs(below[1] - above[1]) < routes_tol * scale);
   }
   SUBCASE("bad input names the scene field") {
     scene s = two(material{0.0, 1.0, 0.3, 0.0}, indentor{parabolic{1.0}, 1.0, 0.0}, indentor{flat{1.0}, 1.0, 3.0});

@@ -66,9 +66,9 @@
 //   * Residual of (8) against the spline for ten cosine bumps sampled 200 times per period:
 //     4e-9 .. 3.5e-8 (the residual of the contacts of examples/rough_profile.json: 8e-10 .. 5e-8).
 //   * Cost: `rhabel solve examples/rough_profile.json --acceptance 1e-6` (2000 samples, 6 contacts)
-//     7 rounds, 0.93 s (diagnostics.seconds, two runs); ten cosine bumps, 6 contacts: 6 rounds,
-//     0.76 s; 50 cosine bumps, 4000 samples, 29 contacts (`python3 studies/scenes/cosine_profile.py
-//     50 | rhabel solve - --acceptance 1e-6`): 10 rounds, 35 s. Each round is one coupled solve of
+//     7 rounds, 0.55 s (diagnostics.seconds, two runs); ten cosine bumps, 6 contacts: 6 rounds,
+//     0.40 s; 50 cosine bumps, 4000 samples, 29 contacts (`python3 studies/scenes/cosine_profile.py
+//     50 | rhabel solve - --acceptance 1e-6`): 10 rounds, 7 s. Each round is one coupled solve of
 //     its contacts (contact.hpp, "Cost"), with the full Jacobian of a rigid body (2 N evaluations
 //     of the union solve per Jacobian): ~50 contacts in 2 s would need that Jacobian banded.
 //
