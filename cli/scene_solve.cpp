@@ -259,6 +259,7 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   punch::solve_options options;
   options.grid_points = request.grid;
   options.acceptance = request.acceptance;
+  options.threads = request.threads;
   if (spec.profile) return run_profile(spec, request, options);
   punch::scene_result r = solve_or_refuse([&] { return punch::solve(to_punch(spec), options); });
   run_outcome out;

@@ -1,4 +1,4 @@
-// rhabel solve SCENE.json [--grid N] [--csv PREFIX] [--acceptance TOL] [--compact]
+// rhabel solve SCENE.json [--grid N] [--csv PREFIX] [--acceptance TOL] [--threads N] [--compact]
 //
 // Reads a scene (a JSON file, or stdin for "-"), validates all of it, solves it with the punch
 // layer and prints the result as JSON on stdout. Schemas: cli/scene_json.hpp (scene) and
@@ -10,6 +10,8 @@
 //                  PREFIX_displacement.csv (indentor,x,displacement): all indentors in one file
 //                  each, `indentor` is the index in the scene; implies --grid 201 unless given.
 //   --acceptance TOL  the bar of status "ok" (punch::solve_options::acceptance, default 1e-9).
+//   --threads N    threads for the Jacobian columns of several contacts (punch::solve_options::threads;
+//                  default 0: every core); the result does not depend on N.
 //   --compact      one-line JSON instead of the indented form.
 //
 // Output discipline: everything is computed in memory first; on any error nothing is written to
@@ -55,6 +57,7 @@ struct solve_arguments {
   bool csv = false;  // --csv given (an empty prefix is an error, not "no CSV")
   bool compact = false;
   double acceptance = 1e-9;
+  std::size_t threads = 0;  // every core
 };
 
 std::string read_scene(const std::string& path) {
@@ -206,6 +209,7 @@ int run(const solve_arguments& args) {
   run_request request;
   request.grid = args.grid;
   request.acceptance = args.acceptance;
+  request.threads = args.threads;
   if (request.grid == 0 && args.csv) request.grid = default_csv_grid;
   std::string warning;
   const run_outcome outcome = run_scene_with_material(scene, request, &warning);
@@ -250,6 +254,11 @@ void add_solve_command(CLI::App& app, command_action& action) {
                    "the bar of status \"ok\": relative residual of (8), negative pressure, load defect and error "
                    "estimate (default 1e-9; a sampled profile is worth ~1e-6)")
       ->check(CLI::Range(1e-15, 0.1));
+  solve
+      ->add_option("--threads", args->threads,
+                   "threads for the finite-difference Jacobian of several contacts (default 0: every core; the "
+                   "result does not depend on it)")
+      ->check(CLI::Range(std::size_t{0}, std::size_t{1024}));
   solve->add_flag("--compact", args->compact, "print the JSON on one line");
   solve->callback([&action, args, csv] {
     args->csv = csv->count() > 0;

@@ -351,6 +351,9 @@ scene_result report_scene(const scene& s, const scene_states& ss, const context&
 void validate_options(const solve_options& options, const char* function) {
   if (!(options.tolerance > 0) || !(options.tolerance < 1))
     throw std::invalid_argument(std::string(function) + ": options.tolerance must be in (0, 1)");
+  if (options.threads > 1024)
+    throw std::invalid_argument(std::string(function) + ": options.threads = " + std::to_string(options.threads) +
+                                " must be at most 1024 (0: every core)");
 }
 
 }  // namespace detail

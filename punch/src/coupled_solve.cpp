@@ -59,6 +59,7 @@
 // stalls is status_code::not_converged with its residuals. The caller (contact.cpp) then checks the
 // result independently (residual of (8), sign of the pressure, loads) before it says ok.
 #include "internal.hpp"
+#include "parallel.hpp"
 #include "surface.hpp"
 
 #include "rhabel/abel.hpp"
@@ -67,6 +68,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <exception>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -654,31 +656,49 @@ Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x,
   const std::size_t colours = n <= full_width || pb.body_load ? n : full_width;
   std::vector<double> h(static_cast<std::size_t>(m));
   for (std::size_t k = 0; k < h.size(); ++k) h[k] = 1e-7 * (x.b[u.state[k]] - x.a[u.state[k]]);
+  // One column (group) per colour and side: the unknowns moved together, their difference of the
+  // conditions, or the failure of both differences. Independent of one another: on
+  // solve_options::threads threads.
+  struct column {
+    std::vector<std::size_t> moved_unknowns;
+    Eigen::VectorXd dr;
+    std::exception_ptr failure;
+  };
+  std::vector<column> columns;
   for (std::size_t colour = 0; colour < colours; ++colour) {
     for (int side = 0; side < 2; ++side) {
-      std::vector<std::size_t> moved_unknowns;
+      column c;
       for (std::size_t k = 0; k < h.size(); ++k)
-        if (rank[u.state[k]] % colours == colour && u.trailing[k] == (side == 1)) moved_unknowns.push_back(k);
-      if (moved_unknowns.empty()) continue;
-      auto difference = [&](double sign) {
-        Eigen::VectorXd e = Eigen::VectorXd::Zero(m);
-        for (std::size_t k : moved_unknowns) e[static_cast<Eigen::Index>(k)] = sign * h[k];
-        const edges y = moved(pb, u, x, e);
-        return Eigen::VectorXd(sign * (evaluate(pb, u, y.a, y.b).r - r));
-      };
-      Eigen::VectorXd dr;
+        if (rank[u.state[k]] % colours == colour && u.trailing[k] == (side == 1)) c.moved_unknowns.push_back(k);
+      if (!c.moved_unknowns.empty()) columns.push_back(std::move(c));
+    }
+  }
+  run_tasks(columns.size(), pb.cx->options.threads, [&](std::size_t index) {
+    column& c = columns[index];
+    auto difference = [&](double sign) {
+      Eigen::VectorXd e = Eigen::VectorXd::Zero(m);
+      for (std::size_t k : c.moved_unknowns) e[static_cast<Eigen::Index>(k)] = sign * h[k];
+      const edges y = moved(pb, u, x, e);
+      return Eigen::VectorXd(sign * (evaluate(pb, u, y.a, y.b).r - r));
+    };
+    try {
       try {
-        dr = difference(1);
+        c.dr = difference(1);
       } catch (const std::exception&) {  // the forward step closes a gap (or leaves a domain): backward
-        dr = difference(-1);
+        c.dr = difference(-1);
       }
-      for (Eigen::Index row = 0; row < m; ++row) {
-        const std::size_t ri = rank[u.state[static_cast<std::size_t>(row)]];
-        for (std::size_t k : moved_unknowns) {
-          const std::size_t ci = rank[u.state[k]];
-          const std::size_t distance = ri > ci ? ri - ci : ci - ri;
-          if (colours == n || 2 * distance < colours) J(row, static_cast<Eigen::Index>(k)) = dr[row] / h[k];
-        }
+    } catch (...) {
+      c.failure = std::current_exception();
+    }
+  });
+  for (const column& c : columns) {
+    if (c.failure) std::rethrow_exception(c.failure);  // the first failed column, as a serial run would
+    for (Eigen::Index row = 0; row < m; ++row) {
+      const std::size_t ri = rank[u.state[static_cast<std::size_t>(row)]];
+      for (std::size_t k : c.moved_unknowns) {
+        const std::size_t ci = rank[u.state[k]];
+        const std::size_t distance = ri > ci ? ri - ci : ci - ri;
+        if (colours == n || 2 * distance < colours) J(row, static_cast<Eigen::Index>(k)) = c.dr[row] / h[k];
       }
     }
   }

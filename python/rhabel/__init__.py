@@ -37,7 +37,7 @@ __all__ = ["solve", "trial_interval", "load_scene", "validate_scene", "Record", 
            "abel", "riemann", "__version__"]
 
 
-def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acceptance=1e-9):
+def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acceptance=1e-9, threads=1):
     """Solve a scene: rigid indentors sliding together at speed U towards -x over a power-law
     viscoelastic half-space E(t) = E1 t^-alpha (plane strain, steady state). Same schema, same
     validation and same numbers as ``rhabel solve SCENE.json`` (examples/README.md).
@@ -98,6 +98,9 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
     acceptance : float in [1e-15, 0.1]
         The bar of status "ok" (residual, negative pressure, load defect, error estimate;
         default 1e-9). A sampled profile is worth ~1e-6 (its spline limits the residual).
+    threads : int in [0, 1024]
+        Threads for the finite-difference Jacobian of several contacts (default 1; 0: every
+        core). The result is the same for any count, bit for bit.
 
     Returns
     -------
@@ -157,8 +160,10 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
     acceptance = float(acceptance)
     if not 1e-15 <= acceptance <= 0.1:
         raise ValueError(f"acceptance = {acceptance!r} is outside the valid range [1e-15, 0.1]")
+    if isinstance(threads, bool) or not isinstance(threads, int) or not 0 <= threads <= 1024:
+        raise ValueError(f"threads = {threads!r} must be an integer in [0, 1024] (0: every core)")
     if "profile" in spec:
-        result = _rhabel._solve_profile(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance)
+        result = _rhabel._solve_profile(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance, threads)
         # The command line's echo of a profile: the samples stand as their count and range.
         profile = spec["profile"]
         echo = Record({k: v for k, v in spec.items() if k != "profile"})
@@ -167,7 +172,7 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
                                   "corners": profile["corners"]})
         result["scene"] = echo
         return result
-    result = _rhabel._solve(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance)
+    result = _rhabel._solve(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance, threads)
     result["scene"] = spec
     return result
 

@@ -358,3 +358,44 @@ TEST_CASE("indentors on one rigid body: the loads' split, the common approach, c
     CHECK_THROWS_WITH_AS(solve(s), doctest::Contains("indentors[0].height"), std::invalid_argument);
   }
 }
+
+TEST_CASE("solve_options::threads: the Jacobian's columns on several threads give the same result, bit for bit") {
+  // Each finite-difference column is a function of its index alone (parallel.hpp), so any thread
+  // count must reproduce the serial run exactly: a data race or an order-dependent cache would
+  // show here as a difference in the last bits (or under the sanitizers).
+  auto same = [](const scene_result& p, const scene_result& q) {
+    REQUIRE(p.indentors.size() == q.indentors.size());
+    for (std::size_t i = 0; i < p.indentors.size(); ++i) {
+      CHECK(p.indentors[i].a == q.indentors[i].a);
+      CHECK(p.indentors[i].b == q.indentors[i].b);
+      CHECK(p.indentors[i].load == q.indentors[i].load);
+      CHECK(p.indentors[i].hysteretic_friction == q.indentors[i].hysteretic_friction);
+    }
+    CHECK(p.diagnostics.iterations == q.diagnostics.iterations);
+  };
+  solve_options serial, parallel;
+  parallel.threads = 3;
+  SUBCASE("three parabolas on one rigid body (the full Jacobian, 6 columns)") {
+    scene s{material{0.3, 1.0, 0.3, 0.0}, 1.0,
+            {indentor{parabolic{1.0}, 1.0, 0.0}, indentor{parabolic{2.0}, 1.0, 3.0}, indentor{parabolic{1.0}, 1.0, 6.0}}};
+    s.indentors[2].height = 0.01;
+    s.body = rigid_body{1.0};
+    const auto p = solve(s, serial), q = solve(s, parallel);
+    REQUIRE(p.diagnostics.code == status_code::ok);
+    same(p, q);
+    CHECK(*p.body_approach == *q.body_approach);
+  }
+  SUBCASE("a row of eight parabolas (the coloured Jacobian)") {
+    scene s{material{0.3, 1.0, 0.3, 0.0}, 1.0, {}};
+    for (int k = 0; k < 8; ++k) s.indentors.push_back(indentor{parabolic{1.0}, 0.3, 2.0 * k});
+    const auto p = solve(s, serial), q = solve(s, parallel);
+    REQUIRE(p.diagnostics.code == status_code::ok);
+    same(p, q);
+  }
+  SUBCASE("more than 1024 threads is refused, naming the option") {
+    scene s = two(material{0.3, 1.0, 0.3, 0.0}, indentor{parabolic{1.0}, 0.3, 0.0}, indentor{parabolic{1.0}, 0.3, 3.0});
+    solve_options o;
+    o.threads = 1025;
+    CHECK_THROWS_WITH_AS(solve(s, o), doctest::Contains("options.threads"), std::invalid_argument);
+  }
+}

@@ -71,3 +71,15 @@ def test_bad_body_scenes_name_the_field(array, change, message):
     change(scene)
     with pytest.raises(ValueError, match=message.replace("[", r"\[").replace("]", r"\]")):
         rhabel.solve(scene)
+
+
+def test_threads_give_the_same_result(array):
+    # solve_options::threads: the Jacobian's columns in parallel; each column depends on its index
+    # alone, so the result is the same bit for bit.
+    scene, r = array
+    q = rhabel.solve(scene, threads=3)
+    assert [c.contact for c in q.indentors] == [c.contact for c in r.indentors]
+    assert [c.load for c in q.indentors] == [c.load for c in r.indentors]
+    for bad in (-1, 1025, 2.0, True):
+        with pytest.raises(ValueError, match="threads"):
+            rhabel.solve(scene, threads=bad)

@@ -275,6 +275,12 @@ struct solve_options {
   /// diagnostics::residual): the evidence that the solution solves the equation. false skips it
   /// (roughly a quarter to a third of a wedge solve; study_scene_timing) and reports NaN there.
   bool residual = true;
+  /// Threads for the finite-difference columns of a coupled solve's Jacobian (several contacts;
+  /// the sampled profile's contact search): 1 runs them in turn, 0 on every core. The columns are
+  /// independent, so the result is the same for any count, bit for bit. At most 1024. The other
+  /// work of a solve stays on the calling thread; callers that solve many scenes at once (rhabel
+  /// sweep) keep 1 and run scenes in parallel instead.
+  std::size_t threads = 1;
 };
 
 /// What a result's evidence says (indentor_result::code, scene_result::diagnostics_t::code). A
