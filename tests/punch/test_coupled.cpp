@@ -328,6 +328,37 @@ TEST_CASE("indentors on one rigid body: the loads' split, the common approach, c
     CHECK(r.diagnostics.code == status_code::contact_lost);
     CHECK(r.diagnostics.status.find("indentors[1]") != std::string::npos);
   }
+  SUBCASE("seven indentors (the coloured Jacobian with the loads' far monopoles) agree with the per-indentor solve") {
+    // More than five smooth contacts on a body: the Jacobian is coloured and its far entries come
+    // from body_far_model (coupled_solve.cpp). The per-indentor solve with the body's loads runs
+    // another iteration (loads imposed, the relative intensities as conditions): its edges and
+    // relative offsets must be the body's, and the loads must add up.
+    const material m{0.3, 1.0, 0.3, 0.0};
+    scene s{m, 1.0, {}};
+    const double heights[] = {0.0, 0.004, -0.003, 0.002, 0.0, -0.002, 0.003};
+    for (int k = 0; k < 7; ++k) {
+      s.indentors.push_back(indentor{parabolic{k % 2 == 0 ? 1.0 : 1.5}, 1.0, 6.0 * k});
+      s.indentors.back().height = heights[k];
+    }
+    s.body = rigid_body{1.0};
+    const auto r = solve(s);
+    REQUIRE(r.diagnostics.code == status_code::ok);
+    double total = 0;
+    for (const auto& c : r.indentors) total += c.load;
+    CHECK(std::abs(total - 1) < level_tol);
+    scene per = s;
+    per.body.reset();
+    for (std::size_t k = 0; k < 7; ++k) per.indentors[k].load = r.indentors[k].load;
+    const auto q = solve(per);
+    REQUIRE(q.diagnostics.code == status_code::ok);
+    const double L = r.indentors[0].contact_length;
+    for (std::size_t k = 0; k < 7; ++k) {
+      CHECK(std::abs(q.indentors[k].a - r.indentors[k].a) < 1e-8 * L);
+      CHECK(std::abs(q.indentors[k].b - r.indentors[k].b) < 1e-8 * L);
+      // The relative vertical offsets of the per-indentor solve are the heights (paper, end of section 3).
+      CHECK(std::abs((q.indentors[k].approach - q.indentors[0].approach) + (heights[k] - heights[0])) < 1e-8 * L * L);
+    }
+  }
   SUBCASE("the approach's two quadratures agree where they meet (alpha = 1e-2)") {
     // The own contact's datum int g Psi(t, a) dt is one Gauss-Jacobi sum of weight
     // (1-x)^del (1+x)^(gam + alpha) from alpha = 1e-2 on, tanh-sinh in the offsets from the ends
