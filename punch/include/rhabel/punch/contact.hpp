@@ -112,8 +112,10 @@
 //     oracle's. Cost: see "Cost" below.
 //   * Rigid body (scene::body): the loads are unknowns; each contact's load condition is replaced
 //     by the total load (one contact) or equal levels approach + height (the others), solved by
-//     the same Newton iteration (full Jacobian), from an equal split of the load, with a
-//     continuation in the height differences when that fails. Against the boundary-element
+//     the same Newton iteration (up to five contacts the full Jacobian; from six, coloured with
+//     the far entries from each load's monopole, the full one if that fails), from an equal
+//     split of the load, with a continuation in the height differences when that fails. The
+//     differenced columns run on solve_options::threads threads. Against the boundary-element
 //     oracle (one_body mode): the loads' split, edges, C_f and the approach within twice its
 //     error bar (test_coupled_bem.cpp). An indentor lifted off by the others is reported as
 //     status_code::contact_lost (it is not removed from the scene); flat punches on a body are

@@ -66,11 +66,14 @@
 //   * Residual of (8) against the spline for ten cosine bumps sampled 200 times per period:
 //     4e-9 .. 3.5e-8 (the residual of the contacts of examples/rough_profile.json: 8e-10 .. 5e-8).
 //   * Cost: `rhabel solve examples/rough_profile.json --acceptance 1e-6` (2000 samples, 6 contacts)
-//     7 rounds, 0.55 s (diagnostics.seconds, two runs); ten cosine bumps, 6 contacts: 6 rounds,
-//     0.40 s; 50 cosine bumps, 4000 samples, 29 contacts (`python3 studies/scenes/cosine_profile.py
-//     50 | rhabel solve - --acceptance 1e-6`): 10 rounds, 7 s. Each round is one coupled solve of
-//     its contacts (contact.hpp, "Cost"), with the full Jacobian of a rigid body (2 N evaluations
-//     of the union solve per Jacobian): ~50 contacts in 2 s would need that Jacobian banded.
+//     7 rounds, 0.34 s (diagnostics.seconds, two runs); ten cosine bumps, 6 contacts: 6 rounds,
+//     0.24 s; 50 cosine bumps, 4000 samples, 29 contacts (`python3 studies/scenes/cosine_profile.py
+//     50 | rhabel solve - --acceptance 1e-6 --threads 1`): 10 rounds, 4.8 s (3.8 s on two
+//     threads). Each round is one coupled solve of its contacts (contact.hpp, "Cost"); from six
+//     contacts on, a rigid body's Jacobian is coloured (10 evaluations) with its far entries from
+//     the loads' monopoles. Half of the 4.8 s goes to the first rounds, which add bumps and drop
+//     them again one per round. Weak: 25 of those bumps end not_converged (a contact with a
+//     negative load after 12 rounds), and 60 bumps sampled 33 times each do not settle.
 //
 // LIMITS
 //   Any alpha in [0, 1) and beta; contacts with smooth edges and no declared corner inside (see
