@@ -511,23 +511,28 @@ std::vector<double> body_levels(const std::vector<indentor_state>& states, const
   return level;
 }
 
+/// The unit of a body's level row i > 0: Gamma times the larger max|f'| L of contacts i and i - 1
+/// (the size of a contact's own displacement).
+double level_row_scale(const problem& pb, std::size_t i, const std::vector<double>& a, const std::vector<double>& b) {
+  const auto& st = *pb.st;
+  const auto& cx = *pb.cx;
+  const double scale = cx.gamma_factor * std::max(data_scale(st[i], cx, a[i], b[i]) * (b[i] - a[i]),
+                                                  data_scale(st[i - 1], cx, a[i - 1], b[i - 1]) * (b[i - 1] - a[i - 1]));
+  return std::max(scale, std::numeric_limits<double>::min());
+}
+
 /// scene::body: the second condition of every contact (the one a per-indentor load would fill):
 /// contact 0 the total load, sum int g_j / body_load - 1; contact i > 0 its level against contact
-/// i - 1's, relative to the larger max|f'| L of the two (the size of a contact's own displacement).
+/// i - 1's, in units of level_row_scale.
 std::vector<double> body_conditions(const problem& pb, const fixed_solution& sol, const std::vector<double>& a,
                                     const std::vector<double>& b) {
   const auto& st = *pb.st;
-  const auto& cx = *pb.cx;
-  const std::vector<double> level = body_levels(st, sol.g, cx, pb.height_factor);
+  const std::vector<double> level = body_levels(st, sol.g, *pb.cx, pb.height_factor);
   std::vector<double> r(st.size());
   double total = 0;
   for (const auto& g : sol.g) total += g.integral();
   r[0] = total / (pb.load_factor * *pb.body_load) - 1;
-  for (std::size_t i = 1; i < st.size(); ++i) {
-    const double scale = cx.gamma_factor * std::max(data_scale(st[i], cx, a[i], b[i]) * (b[i] - a[i]),
-                                                    data_scale(st[i - 1], cx, a[i - 1], b[i - 1]) * (b[i - 1] - a[i - 1]));
-    r[i] = (level[i] - level[i - 1]) / std::max(scale, std::numeric_limits<double>::min());
-  }
+  for (std::size_t i = 1; i < st.size(); ++i) r[i] = (level[i] - level[i - 1]) / level_row_scale(pb, i, a, b);
   return r;
 }
 
@@ -695,9 +700,7 @@ class body_far_model {
         ell_[j][k] = sol.solvability_defect;
       }
       defect_scale_[j] = std::pow((b - a) / 2, cx.alpha) / std::max(data_scale(st[j], cx, a, b), std::numeric_limits<double>::min());
-      if (j > 0)
-        level_scale_[j] = std::max(cx.gamma_factor * data_scale(st[j], cx, a, b) * (b - a),
-                                   cx.gamma_factor * data_scale(st[j - 1], cx, x.a[j - 1], x.b[j - 1]) * (x.b[j - 1] - x.a[j - 1]));
+      if (j > 0) level_scale_[j] = level_row_scale(pb, j, x.a, x.b);
     }
   }
   /// d(defect row of j)/d P_i.
@@ -750,8 +753,8 @@ Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x,
   auto near = [&](std::size_t ci, std::size_t cj) { return colours == n || 2 * (ci > cj ? ci - cj : cj - ci) < colours; };
   std::optional<body_far_model> far;
   if (body && colours < n) far.emplace(pb, x);
-  std::vector<double> base_load(n);
-  for (std::size_t i = 0; i < n; ++i) base_load[i] = ev.sol.g[i].integral();
+  std::vector<double> base_load(far ? n : 0);
+  for (std::size_t i = 0; i < base_load.size(); ++i) base_load[i] = ev.sol.g[i].integral();
   std::vector<double> h(static_cast<std::size_t>(m));
   for (std::size_t k = 0; k < h.size(); ++k) h[k] = 1e-7 * (x.b[u.state[k]] - x.a[u.state[k]]);
   // One column (group) per colour and side: the unknowns moved together, their difference of the
@@ -779,8 +782,10 @@ Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x,
       for (std::size_t k : c.moved_unknowns) e[static_cast<Eigen::Index>(k)] = sign * h[k];
       const edges y = moved(pb, u, x, e);
       const evaluation at = evaluate(pb, u, y.a, y.b);
-      c.dload.resize(n);
-      for (std::size_t i = 0; i < n; ++i) c.dload[i] = sign * (at.sol.g[i].integral() - base_load[i]);
+      if (far) {
+        c.dload.resize(n);
+        for (std::size_t i = 0; i < n; ++i) c.dload[i] = sign * (at.sol.g[i].integral() - base_load[i]);
+      }
       return Eigen::VectorXd(sign * (at.r - r));
     };
     try {

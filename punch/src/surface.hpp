@@ -9,7 +9,6 @@
 #include "rhabel/riemann/abel_solver.hpp"
 
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
 #include <cstddef>
 #include <memory>
