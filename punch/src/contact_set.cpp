@@ -6,8 +6,12 @@
 // whose edges are sought inside the run's basins, all contacts on one rigid body (contact.cpp's
 // prepare_states / solve_states: the coupled solve with the loads unknown). Each round changes the
 // set by the evidence of the last solve: a contact that vanished is dropped, contacts that met
-// are merged, bumps whose samples penetrate the deformed surface are added. The last round's
-// solve is reported with contact.cpp's checks plus the clearance at every sample.
+// are merged, bumps whose samples penetrate the deformed surface are added. The first set is the
+// coarse boundary-element solve's at the full load (coarse_contact.hpp, predicted_start); when its
+// rounds do not end in a verified set, the search starts again from the highest tip alone by load
+// continuation (continuation_start). The last round's solve is reported with contact.cpp's checks
+// plus the clearance at every sample.
+#include "coarse_contact.hpp"
 #include "internal.hpp"
 #include "profile_curve.hpp"
 #include "surface.hpp"
@@ -58,6 +62,15 @@ constexpr std::size_t max_halvings = 3;
 // name a bump that does touch (measured: 50 cosine bumps, a tip dropped at the full load then
 // penetrated by 1.2 of the profile's span). A second drop is final (the iteration could cycle).
 constexpr std::size_t max_drops = 2;
+
+// A coarse contact at an end of the samples with this share of the load or more: the contact set
+// leaves the data, and the scene is refused (predicted_start). WHY: the surface displacement of a
+// load grows with the distance (Psi ~ -d^alpha/alpha, -log d at alpha = 0), so far from the loads
+// the surface rises above any profile of bounded height: a long profile under a heavy load (or at
+// alpha near 1) touches at the end of its data, which has no continuation to solve (measured: 50
+// cosine bumps at alpha 0.7 put 74 % of the load on the first panel; the search ran 124 s
+// into not_converged). Smaller coarse contacts there are left to the search and its clearance check.
+constexpr double end_share = 1e-3;
 
 [[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(std::string(who) + ": " + what); }
 
@@ -308,15 +321,75 @@ std::vector<run> first_runs(const profile_model& m) {
   return {};
 }
 
-/// The active-set search with load continuation (profile.hpp, "THE CONTACT SET").
-search_result search_contact_set(const profile_model& m, const context& cx) {
+/// Where a search starts: its runs, the loads of their tips (per unit of t; empty: an equal
+/// split) and the fraction t of the load.
+struct search_start {
+  std::vector<run> runs;
+  std::map<std::size_t, double> shares;
+  double t = start_fraction;
+};
+
+/// The continuation's start: the highest tip alone at start_fraction of the load.
+search_start continuation_start(const profile_model& m) { return {first_runs(m), {}, start_fraction}; }
+
+/// The coarse solve's contacts (coarse_contact.hpp) at the full load as runs of bumps (runs that
+/// would share a bump become one), each with the coarse loads of its contacts. Empty when the coarse solve did not settle. std::domain_error when a
+/// coarse contact at an end of the samples carries end_share of the load or more.
+std::optional<search_start> predicted_start(const profile_model& m, const context& cx) {
+  const double load = m.source->load / cx.pressure_scale;
+  const auto patches = coarse_contacts(m.curve, load, cx, m.curve.x().size());
+  for (const coarse_patch& p : patches)
+    if ((p.a == m.curve.lo() || p.b == m.curve.hi()) && p.load >= end_share * load) {
+      std::ostringstream os;
+      os.precision(3);
+      os << who << ": at body.load = " << m.source->load << " the contacts reach the end of the samples at x = "
+         << (p.a == m.curve.lo() ? p.a : p.b) << " (a coarse boundary-element solve puts " << 100 * p.load / load
+         << " % of the load on [" << p.a << ", " << p.b
+         << "]): extend profile.x and profile.z beyond it, or lower body.load";
+      throw std::domain_error(os.str());
+    }
+  if (patches.empty()) return std::nullopt;
+  const auto& x = m.curve.x();
+  search_start out;
+  out.t = 1;
+  std::vector<double> loads;
+  for (const coarse_patch& p : patches) {
+    // The bumps whose tips it covers; none (a contact off its tip, as above alpha = 1/2): the bump
+    // whose basin holds its middle. WHY not every basin it meets: a coarse edge is known to a
+    // panel, and a contact reaching one panel into the next basin would merge two bumps.
+    run r{m.bumps.size(), 0};
+    for (std::size_t k = 0; k < m.bumps.size(); ++k)
+      if (x[m.bumps[k].tip] >= p.a && x[m.bumps[k].tip] <= p.b) r.first = std::min(r.first, k), r.last = k;
+    if (r.first == m.bumps.size()) {
+      const double middle = (p.a + p.b) / 2;
+      r.first = 0;
+      while (r.first + 1 < m.bumps.size() && x[m.bumps[r.first].last] < middle) ++r.first;
+      r.last = r.first;
+    }
+    if (!out.runs.empty() && out.runs.back().last >= r.first) {
+      out.runs.back().last = std::max(out.runs.back().last, r.last);
+      loads.back() += p.load;
+    } else {
+      out.runs.push_back(r);
+      loads.push_back(p.load);
+    }
+  }
+  if (out.runs.empty()) return std::nullopt;
+  for (std::size_t k = 0; k < out.runs.size(); ++k) out.shares[m.tip(out.runs[k])] = loads[k];
+  return out;
+}
+
+/// The active-set search from `start`, with load continuation when start.t < 1 (profile.hpp, "THE
+/// CONTACT SET").
+search_result search_contact_set(const profile_model& m, const context& cx, const search_start& start) {
   const double tol = cx.options.acceptance, load = m.source->load;
   search_result out;
-  std::vector<run> runs = first_runs(m);
+  std::vector<run> runs = start.runs;
   // Times each bump was dropped at the current load; at max_drops it is not added again.
   std::vector<std::size_t> dropped(m.bumps.size(), 0);
-  std::map<std::size_t, double> shares;  // tip sample -> its load at the last solved set, per unit t
-  double t = start_fraction, settled = 0;
+  std::map<std::size_t, double> shares = start.shares;  // tip sample -> its load at the last solved set, per unit t
+  // settled: the last fraction at which the set settled (a failed step halves towards it).
+  double t = start.t, settled = 0;
   std::size_t halvings = 0, shrinks = 0;
   const std::size_t max_rounds = 2 * m.bumps.size() + 40;
   for (;;) {
@@ -361,7 +434,7 @@ search_result search_contact_set(const profile_model& m, const context& cx) {
     }
     if (co.code != status_code::ok) {
       // Failed right after a load step: half the step (in log t), at most max_halvings times.
-      if (t > settled * 1.01 && halvings < max_halvings) {
+      if (settled > 0 && t > settled * 1.01 && halvings < max_halvings) {
         t = std::sqrt(t * settled);
         ++halvings;
         continue;
@@ -401,6 +474,13 @@ search_result search_contact_set(const profile_model& m, const context& cx) {
   if (out.last && out.last->outcome.code == status_code::ok && !out.failure.empty())
     out.clear = check_clearance(m, out.last->states, cx);
   return out;
+}
+
+/// Whether a search ended in a set the report will call ok: its last round solved and converged,
+/// and no sample penetrates.
+bool verified(const search_result& sr, double tol) {
+  return sr.last && sr.failure.empty() && sr.last->outcome.code == status_code::ok && !sr.clear.depth.empty() &&
+         !(sr.clear.worst < -tol);
 }
 
 /// The result of the last solved round with contact.cpp's evidence, the clearance, and the
@@ -469,7 +549,17 @@ profile_result solve_profile(const profile_scene& s, const solve_options& option
         num(s.profile.z.front() == m.top ? s.profile.x.front() : s.profile.x.back()) +
         "): the first contact would leave the samples; extend them");
   const context cx = make_context(s.material, s.speed, options);
-  const search_result sr = search_contact_set(m, cx);
+  // From the coarse solve's contacts at the full load; when that does not end in a verified set,
+  // by the continuation from the highest tip (its rounds and iterations add up).
+  search_result sr;
+  const auto predicted = predicted_start(m, cx);
+  if (predicted) sr = search_contact_set(m, cx, *predicted);
+  if (!predicted || !verified(sr, cx.options.acceptance)) {
+    search_result again = search_contact_set(m, cx, continuation_start(m));
+    again.rounds += sr.rounds;
+    again.iterations += sr.iterations;
+    sr = std::move(again);
+  }
   // Not even the highest tip alone at 16^-12 of the load: no contact interval (as solve for one
   // indentor without one).
   if (!sr.last) throw std::domain_error(std::string(who) + ": no contact found: " + sr.failure);

@@ -11,7 +11,10 @@
 //   fields.cpp         edge intensities, peak, Riemann-Hilbert samples, the displacement kernel;
 //   surface.hpp        the surface displacement (displacement grid, penetration check);
 //   report.cpp         the report of a solved contact: residual of (8), status, sampled fields;
-//   contact.cpp        the public entry points (solve, solve_single, trial_interval), validation.
+//   contact.cpp        the public entry points (solve, solve_single, trial_interval), validation;
+//   contact_set.cpp    a sampled profile on one rigid body (solve_profile): the search for its
+//                      contact set, started from coarse_contact.hpp's boundary-element solve, on
+//                      the spline and bumps of profile_curve.hpp.
 // A new shape: its forcing in shapes.cpp (own_slope, own_forcing), its isolated contact in
 // single_contact.cpp (solve_isolated), its role in the coupled system in coupled_solve.cpp
 // (role_of), its profile in surface.hpp. A new edge condition: coupled_solve.cpp (evaluate).

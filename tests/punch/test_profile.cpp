@@ -10,6 +10,7 @@
 
 #include <boost/math/special_functions/gamma.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -136,6 +137,95 @@ TEST_CASE("several bumps: the contact set and the contacts of the boundary-eleme
     CHECK(theirs.a.error < 2e-3 * c.contact_length);  // the comparison is not vacuous
   }
   CHECK(ours.clearance >= -1e-6);
+}
+
+namespace {
+/// The cosine bumps of studies/scenes/cosine_profile.py: `periods` bumps of period 1 and height
+/// 0.05 (varying by 20 %), 80 samples per period, E1 = 1, speed 1, the body's load periods/200.
+pu::profile_scene cosine_bumps(int periods, double alpha) {
+  pu::profile_scene ps;
+  ps.material.alpha = alpha;
+  ps.load = periods / 200.0;
+  const int n = 80 * periods;
+  for (int i = 0; i < n; ++i) {
+    const double x = -0.5 + periods * static_cast<double>(i) / (n - 1);
+    ps.profile.x.push_back(x);
+    ps.profile.z.push_back(0.05 * std::cos(2 * pi * x) * (1 + 0.2 * std::sin(2 * pi * x / 3.7)));
+  }
+  return ps;
+}
+}  // namespace
+
+TEST_CASE("many bumps: the set of 25 cosine bumps, checked by the surface its pressure makes") {
+  // This scene ended not_converged (a contact with a negative load, the profile penetrating by
+  // 2.4e-3 of its span) when the search grew the set from the highest tip by load continuation;
+  // it now starts from the coarse boundary-element solve's set (contact_set.cpp).
+  const double alpha = 0.3;
+  const auto ps = cosine_bumps(25, alpha);
+  auto o = profile_options();
+  o.grid_points = 401;
+  const auto r = pu::solve_profile(ps, o);
+  CAPTURE(r.diagnostics.status);
+  REQUIRE(r.diagnostics.code == pu::status_code::ok);
+  CHECK(r.contacts.size() > 10);  // most bumps touch (14 at this load)
+  // Independent evidence from the reported pressure samples alone (no rhabel code): the density
+  // g = p/((pi/2) E_U) piecewise constant between the samples, its surface displacement
+  // w = Gamma(1 - alpha) int g Psi by the oracle's closed-form panel integrals. On the contacts
+  // w - z is one level D; off them w - z >= D. check_tol: the piecewise-constant quadrature of
+  // a density with square-root edges on 400 intervals, ~(1/400)^1.5 of Gamma P / alpha ~ 1e-4
+  // of the span 0.1, times 10 (measured: levels within 1.6e-4 of the span, clearance >= -6.5e-5).
+  constexpr double check_tol = 1e-3;
+  const punch_test::bem::kernel K(alpha, 0.0);
+  const double span = 0.12;  // max z - min z of the samples (0.05 (1 +- 0.2) on either side)
+  auto w_minus_z = [&](double x, double z) {
+    double w = 0;
+    for (const auto& c : r.contacts)
+      for (std::size_t k = 0; k + 1 < c.grid_x.size(); ++k) {
+        const double g = (c.pressure[k] + c.pressure[k + 1]) / 2 / pressure_scale(alpha);
+        w += g * K.panel(c.grid_x[k], c.grid_x[k + 1], x);
+      }
+    return K.gamma1 * w - z;
+  };
+  double total = 0;
+  std::vector<double> levels;
+  for (const auto& c : r.contacts) {
+    double load = 0;
+    for (std::size_t k = 0; k + 1 < c.grid_x.size(); ++k) load += (c.pressure[k] + c.pressure[k + 1]) / 2 * (c.grid_x[k + 1] - c.grid_x[k]);
+    CHECK(load > 0);
+    CHECK(*std::min_element(c.pressure.begin(), c.pressure.end()) >= 0);
+    total += load;
+    const double mid = (c.a + c.b) / 2;
+    levels.push_back(w_minus_z(mid, 0.05 * std::cos(2 * pi * mid) * (1 + 0.2 * std::sin(2 * pi * mid / 3.7))));
+  }
+  // The trapezoid rule on 401 points of a density with square-root edges: measured 5.9e-4.
+  CHECK(std::abs(total - ps.load) <= 2e-3 * ps.load);
+  const double D = levels[0];
+  for (const double l : levels) CHECK(std::abs(l - D) <= check_tol * span);
+  double worst = 0;
+  for (std::size_t q = 0; q < ps.profile.x.size(); q += 4) {
+    const double x = ps.profile.x[q];
+    bool inside = false;
+    for (const auto& c : r.contacts) inside = inside || (x >= c.a && x <= c.b);
+    if (!inside) worst = std::min(worst, w_minus_z(x, ps.profile.z[q]) - D);
+  }
+  CHECK(worst >= -check_tol * span);
+}
+
+TEST_CASE("a profile whose contacts would reach the end of its samples is refused") {
+  // At alpha 0.7 the surface far ahead of the loads rises like d^0.7 above any bounded profile:
+  // 50 cosine bumps put most of the load on the samples' first panel (the search ran 124 s into
+  // not_converged before this was recognised).
+  const auto ps = cosine_bumps(50, 0.7);
+  std::string message = "no exception";
+  try {
+    pu::solve_profile(ps, profile_options());
+  } catch (const std::domain_error& e) {
+    message = e.what();
+  }
+  CAPTURE(message);
+  CHECK(message.find("body.load = 0.25") != std::string::npos);
+  CHECK(message.find("reach the end of the samples at x = -0.5") != std::string::npos);
+  CHECK(message.find("extend profile.x and profile.z") != std::string::npos);
 }
 
 TEST_CASE("solve_profile refuses bad input naming the field") {

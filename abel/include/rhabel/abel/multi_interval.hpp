@@ -536,7 +536,7 @@ std::optional<multi_solution<Real>> solve_union_at_degree(const abel_parameters<
       }
       return out;
     };
-    gmres = std::make_unique<block_gmres<Real>>(apply, own, Mi);
+    gmres = std::make_unique<block_gmres<Real>>(apply, own);
     sol.condition = std::numeric_limits<Real>::quiet_NaN();
     linear_solve = [&](const vector& right) -> std::optional<vector> {
       vector x;

@@ -36,11 +36,14 @@
 // THE CONTACT SET (an active set on the profile's bumps; punch/src/contact_set.cpp)
 //   The bumps are the local maxima of the samples (tips), each with its basin between the lowest
 //   samples towards its neighbours. A contact covers one basin, or a run of adjacent basins when
-//   contacts merged. Load continuation: the rounds run at the fraction t of P, from the highest
-//   tip alone at t = 1/256, t raised by 4 after each round below P (the set grows with the load,
-//   so the set grown at t is the start at 4 t), then rounds at P until the set settles. A round:
+//   contacts merged.
+//   The first set comes from a coarse boundary-element solve of the whole profile at the full
+//   load (punch/src/coarse_contact.hpp: piecewise-constant pressure on one panel per sample,
+//   non-negative, one rigid body, an active set on panels refined from 256 panels up; a few ms
+//   for 4000 samples): each coarse contact becomes the run of basins it meets, with its coarse
+//   load as the start of the coupled solve's split. From there, rounds at the full load P:
 //     1. solve the current contacts on one rigid body (contact.hpp's coupled solve: every contact a
-//        general profile with smooth edges, loads unknown, total load t P, equal rigid levels),
+//        general profile with smooth edges, loads unknown, total load P, equal rigid levels),
 //        started from the last round's loads;
 //     2. a contact that vanishes in that solve (status contact_lost) is dropped; two contacts that
 //        meet (contacts_merge) become one contact over both basins; a contact that reaches beyond
@@ -50,9 +53,19 @@
 //        resolved and the edge conditions hold anyway): where the profile penetrates the surface
 //        by more than acceptance x (max z - min z), the basins of the deepest penetrations (within
 //        a factor 4 of the deepest) are added as new contacts.
+//   The coarse set is first-order accurate: a contact carrying a few percent of its neighbours'
+//   load may be missing or extra, and costs one more round. When these rounds do not end in a
+//   verified set (or the coarse solve's active set does not settle), the search starts again by
+//   load continuation: from the highest tip alone at 1/256 of P, the load raised by 4 after each
+//   round that settles (the set grown at t is the start at 4 t), then rounds at P.
 //   A bump dropped twice at the same load is not added again (the iteration could cycle between
 //   a contact too small to keep and a penetration too deep to ignore): its penetration is then
 //   reported as status penetration with the numbers.
+//   A scene whose coarse solve puts 1e-3 of the load or more on a panel at an end of the samples
+//   is refused (std::domain_error naming body.load and the samples): the surface displacement of a
+//   load grows with the distance (Psi ~ -d^alpha/alpha, -log d at alpha = 0), so far from the
+//   loads the surface rises above any profile of bounded height, and a long profile under a heavy
+//   load (or at alpha near 1) touches at the end of its data, beyond which nothing is known.
 //   So `ok` means: every contact passes contact.hpp's checks (residual of (8) against the
 //   spline, non-negative pressure, loads adding up to P, equal levels), and the surface clears
 //   the profile at every checked sample to acceptance x (max z - min z).
@@ -63,17 +76,24 @@
 //   * The envelope of four parabolic caps, one 0.3 lower (tests/punch/test_profile.cpp): the same
 //     three contacts as the boundary-element oracle's one-body active set, edges and loads within
 //     twice its error bar.
+//   * 25 cosine bumps (tests/punch/test_profile.cpp): the surface made by the reported pressure
+//     samples alone, integrated by the test's own panels, clears the profile and has one level on
+//     the 14 contacts, both to 1.6e-4 of the span (the quadrature's error).
 //   * Residual of (8) against the spline for ten cosine bumps sampled 200 times per period:
 //     4e-9 .. 3.5e-8 (the residual of the contacts of examples/rough_profile.json: 8e-10 .. 5e-8).
-//   * Cost: `rhabel solve examples/rough_profile.json --acceptance 1e-6` (2000 samples, 6 contacts)
-//     7 rounds, 0.34 s (diagnostics.seconds, two runs); ten cosine bumps, 6 contacts: 6 rounds,
-//     0.24 s; 50 cosine bumps, 4000 samples, 29 contacts (`python3 studies/scenes/cosine_profile.py
-//     50 | rhabel solve - --acceptance 1e-6 --threads 1`): 10 rounds, 4.8 s (3.8 s on two
-//     threads). Each round is one coupled solve of its contacts (contact.hpp, "Cost"); from six
-//     contacts on, a rigid body's Jacobian is coloured (10 evaluations) with its far entries from
-//     the loads' monopoles. Half of the 4.8 s goes to the first rounds, which add bumps and drop
-//     them again one per round. Weak: 25 of those bumps end not_converged (a contact with a
-//     negative load after 12 rounds), and 60 bumps sampled 33 times each do not settle.
+//   * Cost (`rhabel solve --acceptance 1e-6 --threads 1`, diagnostics.seconds, one quiet core):
+//       scene (samples, contacts)                                      rounds   time
+//       examples/rough_profile.json (2000, 6)                               1     0.06 s
+//       studies/scenes/cosine_profile.py 10 (800, 6)                        1     0.09 s
+//       cosine_profile.py 25 (2000, 14)                                     1     0.17 s
+//       cosine_profile.py 50 (4000, 29)                                     1     1.1-1.5 s (0.75 s, 2 threads)
+//       cosine_profile.py 100 20 0.25 (2000, 45)                            2     1.4 s
+//     The coarse solve takes 3-40 ms of that.
+//     Each round is one coupled solve of its contacts (contact.hpp, "Cost"); from six contacts on,
+//     a rigid body's Jacobian is coloured (10 evaluations) with its far entries from the loads'
+//     monopoles. At alpha = 0 a contact's own datum is integrated by tanh-sinh (no exact rule for
+//     the logarithm): the 50 bumps above with material.alpha = 0, 49 contacts, take 13 s (9 s on two
+//     threads).
 //
 // LIMITS
 //   Any alpha in [0, 1) and beta; contacts with smooth edges and no declared corner inside (see

@@ -31,18 +31,24 @@ class block_gmres {
   using vector = Eigen::Matrix<Real, Eigen::Dynamic, 1>;
 
   /// A: the T x T system (kept by reference); blocks: K diagonal blocks of size `block` (T = K block).
-  block_gmres(const matrix& A, Eigen::Index block)
-      : apply_([&A](const vector& v) { return vector(A * v); }), size_(A.rows()), block_(block) {
+  block_gmres(const matrix& A, Eigen::Index block) : apply_([&A](const vector& v) { return vector(A * v); }), size_(A.rows()) {
     const Eigen::Index K = A.rows() / block;
-    for (Eigen::Index k = 0; k < K; ++k)
+    for (Eigen::Index k = 0; k < K; ++k) {
       diagonal_.emplace_back(matrix(A.block(k * block, k * block, block, block)));
+      offsets_.push_back(k * block);
+    }
   }
 
-  /// A given as its product (matrix-free: multi_interval.hpp's far field), with its K diagonal
-  /// blocks (each block x block).
-  block_gmres(std::function<vector(const vector&)> apply, const std::vector<matrix>& diagonal, Eigen::Index block)
-      : apply_(std::move(apply)), size_(static_cast<Eigen::Index>(diagonal.size()) * block), block_(block) {
-    for (const auto& d : diagonal) diagonal_.emplace_back(d);
+  /// A given as its product (matrix-free: multi_interval.hpp's far field), with its diagonal
+  /// blocks in order, square and of any sizes (T is the sum of their sizes; punch's coarse contact
+  /// solve has one block per run of active panels).
+  block_gmres(std::function<vector(const vector&)> apply, const std::vector<matrix>& diagonal)
+      : apply_(std::move(apply)), size_(0) {
+    for (const auto& d : diagonal) {
+      offsets_.push_back(size_);
+      size_ += d.rows();
+      diagonal_.emplace_back(d);
+    }
   }
 
   /// Solves A x = b to |b - A x| <= rtol |b|; false if max_iterations products were not enough.
@@ -113,14 +119,15 @@ class block_gmres {
   vector precondition(const vector& v) const {
     vector out(v.size());
     for (std::size_t k = 0; k < diagonal_.size(); ++k) {
-      const auto at = static_cast<Eigen::Index>(k) * block_;
-      out.segment(at, block_) = diagonal_[k].solve(v.segment(at, block_));
+      const Eigen::Index size = diagonal_[k].rows();
+      out.segment(offsets_[k], size) = diagonal_[k].solve(v.segment(offsets_[k], size));
     }
     return out;
   }
 
   std::function<vector(const vector&)> apply_;
-  Eigen::Index size_, block_;
+  Eigen::Index size_;
+  std::vector<Eigen::Index> offsets_;  // where each diagonal block starts
   std::vector<Eigen::PartialPivLU<matrix>> diagonal_;
 };
 
