@@ -143,7 +143,9 @@
 //     punch a negative intensity (partial contact of a flat face is not modelled).
 //   * Displacement: outside the contact from the slope integral (paper 27, 28) integrated in closed
 //     form in s, then Gauss-Jacobi in t (series part), abel's composite quadrature of the apex enrichment;
-//     the datum (log-singular at t = a) by tanh-sinh in offsets from a, the apex and b; inside the own
+//     the datum (log-singular at t = a) by one Gauss-Jacobi sum from alpha = 1e-2 on, by closed-form
+//     moments of the logarithm at alpha = 0, else (and with a wedge's apex) by tanh-sinh in offsets
+//     from a, the apex and b; inside the own
 //     contact f(x) - f(a) exactly. Elastic flat punch against -(2P/(pi E*)) arccosh(x/c): < 1e-8 for
 //     |x| >= 1.4 c; accuracy degrades next to the edges (log kernel nearly singular there).
 //   * Cost (Release, warm caches; build/bin/study_scene_timing and study_wedge_near_edge: wall time

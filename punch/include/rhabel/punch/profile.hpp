@@ -87,13 +87,13 @@
 //       studies/scenes/cosine_profile.py 10 (800, 6)                        1     0.09 s
 //       cosine_profile.py 25 (2000, 14)                                     1     0.17 s
 //       cosine_profile.py 50 (4000, 29)                                     1     1.1-1.5 s (0.75 s, 2 threads)
-//       cosine_profile.py 100 20 0.25 (2000, 45)                            2     1.4 s
+//       cosine_profile.py 100 20 0.25 (2000, 45)                            2     1.4-2.3 s
 //     The coarse solve takes 3-40 ms of that.
 //     Each round is one coupled solve of its contacts (contact.hpp, "Cost"); from six contacts on,
 //     a rigid body's Jacobian is coloured (10 evaluations) with its far entries from the loads'
-//     monopoles. At alpha = 0 a contact's own datum is integrated by tanh-sinh (no exact rule for
-//     the logarithm): the 50 bumps above with material.alpha = 0, 49 contacts, take 13 s (9 s on two
-//     threads).
+//     monopoles. The same 50 bumps at material.alpha = 0: 49 contacts, 2 rounds, 1.6-2.6 s (a
+//     contact's own datum by closed-form moments of the logarithm; between alpha = 0 and 1e-2 it is
+//     tanh-sinh, several times slower).
 //
 // LIMITS
 //   Any alpha in [0, 1) and beta; contacts with smooth edges and no declared corner inside (see
