@@ -144,7 +144,8 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
     ValueError
         Invalid scene (one line naming the field, e.g. ``indentors[0].radius = -2 is outside
         the valid range (0, inf) (radius of curvature of the parabola)``), overlapping
-        contacts or no contact interval (the library's message).
+        contacts, no contact interval, or a sampled profile whose contacts would reach the end
+        of its samples (the library's message).
 
     The solve releases the GIL: several threads may solve scenes at the same time.
 
