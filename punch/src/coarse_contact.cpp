@@ -83,7 +83,8 @@ grid make_grid(const profile_curve& curve, std::size_t n, const context& cx, dou
 std::vector<std::pair<Eigen::Index, Eigen::Index>> runs_of(const std::vector<std::size_t>& idx) {
   std::vector<std::pair<Eigen::Index, Eigen::Index>> out;
   for (std::size_t c = 0; c < idx.size(); ++c) {
-    if (c == 0 || idx[c] != idx[c - 1] + 1) out.emplace_back(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c));
+    const auto at = static_cast<Eigen::Index>(c);
+    if (c == 0 || idx[c] != idx[c - 1] + 1) out.emplace_back(at, at);
     ++out.back().second;
   }
   return out;
@@ -93,7 +94,9 @@ std::vector<std::pair<Eigen::Index, Eigen::Index>> runs_of(const std::vector<std
 /// with A g1 = z and A g0 = 1. False when the solve fails.
 bool solve_active(const grid& gr, const std::vector<std::size_t>& idx, double load, Eigen::VectorXd& g, double& D) {
   const auto m = static_cast<Eigen::Index>(idx.size());
-  auto at = [&](Eigen::Index r, Eigen::Index c) { return gr.A(idx[static_cast<std::size_t>(r)], idx[static_cast<std::size_t>(c)]); };
+  auto at = [&](Eigen::Index r, Eigen::Index c) {
+    return gr.A(idx[static_cast<std::size_t>(r)], idx[static_cast<std::size_t>(c)]);
+  };
   Eigen::MatrixXd rhs(m, 2), X(m, 2);
   for (Eigen::Index r = 0; r < m; ++r) rhs(r, 0) = gr.z[idx[static_cast<std::size_t>(r)]];
   rhs.col(1).setOnes();
@@ -160,7 +163,8 @@ bool settle(const grid& gr, double load, double span, std::vector<char>& active,
 
 }  // namespace
 
-std::vector<coarse_patch> coarse_contacts(const profile_curve& curve, double load, const context& cx, std::size_t panels) {
+std::vector<coarse_patch> coarse_contacts(const profile_curve& curve, double load, const context& cx,
+                                          std::size_t panels) {
   const auto [lo, hi] = std::minmax_element(curve.z().begin(), curve.z().end());
   const double top = *hi, span = *hi - *lo, length = curve.hi() - curve.lo();
   panels = std::clamp(panels, first_panels, max_panels);
@@ -176,9 +180,9 @@ std::vector<coarse_patch> coarse_contacts(const profile_curve& curve, double loa
     // The next grid: a panel is active where the centre of its panel on this one was.
     const std::size_t next = std::min(4 * n, panels);
     std::vector<char> finer(next, 0);
+    const double ratio = static_cast<double>(n) / static_cast<double>(next);
     for (std::size_t i = 0; i < next; ++i)
-      finer[i] = active[std::min(n - 1, static_cast<std::size_t>((static_cast<double>(i) + 0.5) * static_cast<double>(n) /
-                                                                  static_cast<double>(next)))];
+      finer[i] = active[std::min(n - 1, static_cast<std::size_t>((static_cast<double>(i) + 0.5) * ratio))];
     active = std::move(finer);
     n = next;
   }

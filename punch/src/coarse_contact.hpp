@@ -42,6 +42,7 @@ struct coarse_patch {
 
 /// The contacts of the coarse solve in the order of x, on `panels` panels (clamped to 256 .. 4096);
 /// empty when its active set did not settle (the caller then searches without it).
-std::vector<coarse_patch> coarse_contacts(const profile_curve& curve, double load, const context& cx, std::size_t panels);
+std::vector<coarse_patch> coarse_contacts(const profile_curve& curve, double load, const context& cx,
+                                          std::size_t panels);
 
 }  // namespace rhabel::punch::detail

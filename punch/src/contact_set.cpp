@@ -69,7 +69,8 @@ constexpr std::size_t max_drops = 2;
 // the surface rises above any profile of bounded height: a long profile under a heavy load (or at
 // alpha near 1) touches at the end of its data, which has no continuation to solve (measured: 50
 // cosine bumps at alpha 0.7 put 74 % of the load on the first panel; the search ran 124 s
-// into not_converged). Smaller coarse contacts there are left to the search and its clearance check.
+// into not_converged). Smaller coarse contacts there are left to the search and its clearance
+// check.
 constexpr double end_share = 1e-3;
 
 [[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(std::string(who) + ": " + what); }
@@ -332,22 +333,28 @@ struct search_start {
 /// The continuation's start: the highest tip alone at start_fraction of the load.
 search_start continuation_start(const profile_model& m) { return {first_runs(m), {}, start_fraction}; }
 
+/// std::domain_error naming body.load when a coarse contact at an end of the samples carries
+/// end_share of the load (in units of int g) or more: the contacts would leave the data.
+void refuse_end_contacts(const profile_model& m, const std::vector<coarse_patch>& patches, double load) {
+  for (const coarse_patch& p : patches) {
+    if (!(p.a == m.curve.lo() || p.b == m.curve.hi()) || p.load < end_share * load) continue;
+    std::ostringstream os;
+    os.precision(3);
+    os << who << ": at body.load = " << m.source->load << " the contacts reach the end of the samples at x = "
+       << (p.a == m.curve.lo() ? p.a : p.b) << " (a coarse boundary-element solve puts " << 100 * p.load / load
+       << " % of the load on [" << p.a << ", " << p.b
+       << "]): extend profile.x and profile.z beyond it, or lower body.load";
+    throw std::domain_error(os.str());
+  }
+}
+
 /// The coarse solve's contacts (coarse_contact.hpp) at the full load as runs of bumps (runs that
-/// would share a bump become one), each with the coarse loads of its contacts. Empty when the coarse solve did not settle. std::domain_error when a
-/// coarse contact at an end of the samples carries end_share of the load or more.
+/// would share a bump become one), each with the coarse loads of its contacts; empty when the
+/// coarse solve did not settle. Refuses a scene whose contacts reach an end of the samples.
 std::optional<search_start> predicted_start(const profile_model& m, const context& cx) {
   const double load = m.source->load / cx.pressure_scale;
   const auto patches = coarse_contacts(m.curve, load, cx, m.curve.x().size());
-  for (const coarse_patch& p : patches)
-    if ((p.a == m.curve.lo() || p.b == m.curve.hi()) && p.load >= end_share * load) {
-      std::ostringstream os;
-      os.precision(3);
-      os << who << ": at body.load = " << m.source->load << " the contacts reach the end of the samples at x = "
-         << (p.a == m.curve.lo() ? p.a : p.b) << " (a coarse boundary-element solve puts " << 100 * p.load / load
-         << " % of the load on [" << p.a << ", " << p.b
-         << "]): extend profile.x and profile.z beyond it, or lower body.load";
-      throw std::domain_error(os.str());
-    }
+  refuse_end_contacts(m, patches, load);
   if (patches.empty()) return std::nullopt;
   const auto& x = m.curve.x();
   search_start out;
@@ -387,7 +394,8 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
   std::vector<run> runs = start.runs;
   // Times each bump was dropped at the current load; at max_drops it is not added again.
   std::vector<std::size_t> dropped(m.bumps.size(), 0);
-  std::map<std::size_t, double> shares = start.shares;  // tip sample -> its load at the last solved set, per unit t
+  // Tip sample -> its load at the last solved set, per unit t.
+  std::map<std::size_t, double> shares = start.shares;
   // settled: the last fraction at which the set settled (a failed step halves towards it).
   double t = start.t, settled = 0;
   std::size_t halvings = 0, shrinks = 0;
