@@ -8,7 +8,6 @@
 #include "rhabel/abel.hpp"
 #include "rhabel/riemann/abel_solver.hpp"
 
-#include <boost/math/special_functions/beta.hpp>
 #include <boost/math/special_functions/digamma.hpp>
 
 #include <algorithm>
@@ -299,13 +298,16 @@ class surface {
   /// cosine bumps at alpha = 0: 13 s with tanh-sinh at every level).
   static double log_datum(const abel::jacobi_density<double>& j) {
     if (j.coefficients.empty()) return 0.0;
-    const double del = j.del, gam = j.gam, h = j.half_length(), scale = std::pow(2.0, del + gam + 1);
-    double sum = j.coefficients[0] * scale * boost::math::beta(del + 1, gam + 1) *
+    const double del = j.del, gam = j.gam, h = j.half_length();
+    // h0 = int w = 2^(del+gam+1) B(del+1, gam+1); the n-th moment's factor 2^(del+gam+1) B(del+n+1, gam+1)
+    // follows from it by B(del+n+2, gam+1) = B(del+n+1, gam+1) (del+n+1)/(del+gam+n+2).
+    const double h0 = quadrature::jacobi_norm_squared<double>(0, del, gam);
+    double sum = j.coefficients[0] * h0 *
                  (std::log(2.0) + boost::math::digamma(gam + 1) - boost::math::digamma(del + gam + 2));
-    double b = boost::math::beta(del + 2, gam + 1);  // B(del + n + 1, gam + 1) at n = 1
+    double b = h0 * (del + 1) / (del + gam + 2);  // 2^(del+gam+1) B(del + n + 1, gam + 1) at n = 1
     for (std::size_t n = 1; n < j.coefficients.size(); ++n) {
       const double k = static_cast<double>(n);
-      sum += j.coefficients[n] * (n % 2 == 1 ? 1.0 : -1.0) / k * scale * b;
+      sum += j.coefficients[n] * (n % 2 == 1 ? 1.0 : -1.0) / k * b;
       b *= (del + k + 1) / (del + gam + k + 2);
     }
     return -std::log(h) * j.integral() - h * sum;

@@ -14,6 +14,7 @@
 #include <functional>
 #include <map>
 #include <random>
+#include <stdexcept>
 #include <vector>
 
 using namespace rhabel::abel;
@@ -76,9 +77,8 @@ std::vector<ff::vector> leaf_moments(const ff& F, const layout& L) {
   return W;
 }
 
-/// Max over leaves and 7 points each of |far - direct| / scale.
-double far_error(const abel_parameters<double>& par, const layout& L, std::size_t p) {
-  const ff F(par, L.boxes, p);
+/// Max over leaves and 7 points each of |far - direct| / scale, for the far field F of L's densities.
+double far_error(const abel_parameters<double>& par, const layout& L, const ff& F) {
   const auto local = F.far_values(leaf_moments(F, L));
   double worst = 0;
   for (std::size_t j = 0; j < L.g.size(); ++j)
@@ -87,6 +87,11 @@ double far_error(const abel_parameters<double>& par, const layout& L, std::size_
       if (scale > 0) worst = std::max(worst, std::abs(F.interpolate(local[j], x) - sum) / scale);
     }
   return worst;
+}
+
+/// The same for the far field built on L's boxes at order p.
+double far_error(const abel_parameters<double>& par, const layout& L, std::size_t p) {
+  return far_error(par, L, ff(par, L.boxes, p));
 }
 
 std::vector<ff::box> row(std::size_t K, double pitch, double origin = 0) {
@@ -148,6 +153,44 @@ TEST_CASE("far field: order_for(tolerance) reaches the tolerance; the error fall
     CHECK(far_error(par, L, ff::order_for(tol)) < tol);
   }
   CHECK(far_error(par, L, 8) > far_error(par, L, 16));  // not a test that cannot fail: p matters
+}
+
+TEST_CASE("far field: one tree for intervals inside its boxes (far_field(boxes, intervals)) matches the direct sum") {
+  // The tree is built on boxes; the densities live on intervals that fill 60 ... 100 % of their box
+  // at random offsets (one interval is its whole box). Tolerance as above: the re-expansion into the
+  // box is exact (degree p - 1), so only the boxes' interpolation error and rounding remain.
+  const double tol = 64 * eps;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (double alpha : {0.0, 0.3, 0.9}) {
+    const abel_parameters<double> par(alpha, 0.3);
+    CAPTURE(alpha);
+    for (const auto& boxes : {row(40, 1.5), irregular(50, 8, -1e4)}) {
+      std::vector<ff::box> inside;
+      for (std::size_t i = 0; i < boxes.size(); ++i) {
+        const double w = boxes[i].hi - boxes[i].lo, keep = i == 3 ? 1.0 : 0.6 + 0.4 * u(rng);
+        const double lo = boxes[i].lo + (1 - keep) * w * u(rng);
+        inside.push_back({lo, std::min(boxes[i].hi, lo + keep * w)});
+      }
+      const ff tree(par, boxes, 26);
+      REQUIRE(tree.covers(inside));
+      const auto L = densities(par, inside, 9);
+      const ff F(tree, inside);
+      CHECK(F.pairs() == tree.pairs());
+      CHECK(far_error(par, L, F) < tol);
+      // The interval's own moments without the re-expansion (the tree's leaves taken as the
+      // intervals) are wrong by O(1): the comparison sees the difference.
+      CHECK(far_error(par, L, tree) > 1e3 * tol);
+    }
+  }
+  // An interval outside its box is refused.
+  const abel_parameters<double> par(0.3, 0.3);
+  const ff tree(par, row(4, 1.5), 12);
+  auto outside = row(4, 1.5);
+  outside[2].hi += 0.01;
+  CHECK_FALSE(tree.covers(outside));
+  CHECK_THROWS_AS(ff(tree, outside), std::invalid_argument);
+  CHECK_FALSE(tree.covers(row(3, 1.5)));
 }
 
 namespace {

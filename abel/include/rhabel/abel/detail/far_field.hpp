@@ -37,6 +37,9 @@
 // size at the nearest point with the 10 % of the ellipse kept off the singularity as in
 // union_assembly.hpp's separated_cross_nodes. order_for(tolerance) takes the p for a looser
 // relative tolerance (the punch layer asks 1e-3 of its requested tolerance).
+// ONE TREE, MOVING INTERVALS. far_field(boxes, intervals) reuses a built tree for densities on
+// intervals inside its leaf boxes (the exact re-expansion at that constructor), so that a caller
+// whose intervals move a little (the edges of a Newton iteration) pays for the kernel matrices once.
 // COST per far_values call: (number of boxes + admissible pairs) p^2 multiply-adds; building the
 // pairs' kernel matrices costs p^2 kernel evaluations per pair (the only powers).
 #pragma once
@@ -52,6 +55,8 @@
 #include <functional>
 #include <limits>
 #include <map>
+#include <memory>
+#include <stdexcept>
 #include <tuple>
 #include <utility>
 #include <vector>
@@ -107,10 +112,55 @@ class far_field {
       bary_[k] = (k % 2 == 0 ? Real(1) : Real(-1)) * sin(pi * (Real(k) + Real(0.5)) / Real(p));
     if (leaves.empty()) return;
     build(leaves, 0, leaves.size(), -1);
-    for (std::size_t n = 1; n < nodes_.size(); ++n) transfer_.push_back(transfer(nodes_[n].parent, n));
+    auto transfers = std::make_shared<std::vector<matrix>>();
+    for (std::size_t n = 1; n < nodes_.size(); ++n) transfers->push_back(transfer(nodes_[n].parent, n));
+    transfer_ = std::move(transfers);
     near_.assign(leaves.size(), {});
-    if (with_pairs) interact(0, 0);
+    auto pairs = std::make_shared<std::vector<pair>>();
+    if (with_pairs) interact(0, 0, *pairs);
+    pairs_ = std::move(pairs);
     for (auto& list : near_) std::sort(list.begin(), list.end());
+  }
+
+  /// The far field of `boxes`' tree for densities on other intervals, interval i inside box i
+  /// (covers()): the boxes, admissible pairs, near lists and kernel matrices are shared with
+  /// `boxes`, not recomputed (the punch layer keeps one tree while a Newton run moves the edges
+  /// inside it). Exact re-expansion, no new approximation: box i's Lagrange polynomials restricted
+  /// to interval i are polynomials of degree p - 1, which interval i's own p points interpolate
+  /// exactly, so its moments enter box i by inner(l, m) = l_l^box(point m of the interval) and the
+  /// box's local values reach the interval's points by the transpose (as a child's do). Moments
+  /// (moment_matrix, density_moments), local values (far_values) and reference coordinates
+  /// (interpolation, interpolate) are then those of the intervals; admissibility, near_leaves and
+  /// the accuracy estimate are the boxes' (a target point of interval i lies in box i).
+  far_field(const far_field& boxes, const std::vector<box>& intervals) : far_field(boxes) {
+    if (!boxes.covers(intervals))
+      throw std::invalid_argument("far_field: every interval must lie inside its box (covers())");
+    interval_ = intervals;
+    inner_.assign(intervals.size(), matrix());
+    const std::size_t p = order();
+    std::vector<Real> l(p);
+    for (std::size_t i = 0; i < intervals.size(); ++i) {
+      const auto& B = nodes_[leaf_node_[i]];
+      if (intervals[i].lo == B.lo && intervals[i].hi == B.hi) continue;
+      const Real hb = half_width(leaf_node_[i]), hi = (intervals[i].hi - intervals[i].lo) / 2;
+      const Real offset = intervals[i].lo - B.lo;
+      matrix& T = inner_[i];
+      T.resize(static_cast<Eigen::Index>(p), static_cast<Eigen::Index>(p));
+      for (std::size_t m = 0; m < p; ++m) {
+        lagrange((offset + hi * grid_.one_plus_x[m]) / hb - 1, l.data());
+        for (std::size_t k = 0; k < p; ++k) T(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(m)) = l[k];
+      }
+    }
+  }
+
+  /// Whether every interval lies inside its box (as many intervals as leaves, in their order).
+  bool covers(const std::vector<box>& intervals) const {
+    if (intervals.size() != leaf_node_.size()) return false;
+    for (std::size_t i = 0; i < intervals.size(); ++i) {
+      const auto& B = nodes_[leaf_node_[i]];
+      if (!(intervals[i].lo >= B.lo && intervals[i].hi <= B.hi && intervals[i].lo < intervals[i].hi)) return false;
+    }
+    return true;
   }
 
   std::size_t order() const { return grid_.x.size(); }
@@ -118,7 +168,7 @@ class far_field {
   /// near_leaves(j): the leaves i != j whose action on j is NOT in far_values (sorted).
   const std::vector<std::size_t>& near_leaves(std::size_t j) const { return near_[j]; }
   /// Number of admissible pairs (each one p x p kernel matrix).
-  std::size_t pairs() const { return pairs_.size(); }
+  std::size_t pairs() const { return pairs_ ? pairs_->size() : 0; }
 
   /// S(l, n) = int_{I_i} l_l(t) w(t) P_n^(del, gam)(x(t)) dt, n < count: leaf i's moments of a
   /// Jacobi series are S c. Gauss-Jacobi with (p + count)/2 + 1 nodes, exact for the degree
@@ -129,7 +179,7 @@ class far_field {
     const auto key = std::make_tuple(del, gam, count);
     auto it = reference_moments_.find(key);
     if (it == reference_moments_.end()) it = reference_moments_.emplace(key, reference_moment_matrix(del, gam, count)).first;
-    return half_width(leaf_node_[i]) * it->second;
+    return leaf_half_width(i) * it->second;
   }
 
   /// Leaf i's moments of a Jacobi density on it: moment_matrix times its coefficients (zero for
@@ -144,8 +194,9 @@ class far_field {
   std::vector<vector> upward(const std::vector<vector>& leaf_moments) const {
     const auto P = static_cast<Eigen::Index>(order());
     std::vector<vector> W(nodes_.size(), vector::Zero(P));
-    for (std::size_t i = 0; i < leaf_node_.size(); ++i) W[leaf_node_[i]] = leaf_moments[i];
-    for (std::size_t n = nodes_.size(); n-- > 1;) W[nodes_[n].parent].noalias() += transfer_[n - 1] * W[n];
+    for (std::size_t i = 0; i < leaf_node_.size(); ++i)
+      W[leaf_node_[i]] = inner(i) ? vector(inner_[i] * leaf_moments[i]) : leaf_moments[i];
+    for (std::size_t n = nodes_.size(); n-- > 1;) W[nodes_[n].parent].noalias() += (*transfer_)[n - 1] * W[n];
     return W;
   }
 
@@ -185,10 +236,12 @@ class far_field {
     const auto P = static_cast<Eigen::Index>(order());
     const std::vector<vector> W = upward(leaf_moments);
     std::vector<vector> L(nodes_.size(), vector::Zero(P));
-    for (const auto& pr : pairs_) L[pr.target].noalias() += pr.kernel * W[pr.source];
-    for (std::size_t n = 1; n < nodes_.size(); ++n) L[n].noalias() += transfer_[n - 1].transpose() * L[nodes_[n].parent];
+    for (const auto& pr : *pairs_) L[pr.target].noalias() += pr.kernel * W[pr.source];
+    for (std::size_t n = 1; n < nodes_.size(); ++n)
+      L[n].noalias() += (*transfer_)[n - 1].transpose() * L[nodes_[n].parent];
     std::vector<vector> out(leaf_node_.size());
-    for (std::size_t i = 0; i < leaf_node_.size(); ++i) out[i] = std::move(L[leaf_node_[i]]);
+    for (std::size_t i = 0; i < leaf_node_.size(); ++i)
+      out[i] = inner(i) ? vector(inner_[i].transpose() * L[leaf_node_[i]]) : std::move(L[leaf_node_[i]]);
     return out;
   }
 
@@ -227,6 +280,12 @@ class far_field {
   };
 
   Real half_width(std::size_t n) const { return (nodes_[n].hi - nodes_[n].lo) / 2; }
+  /// Whether leaf i's interval is smaller than its box (the far_field(boxes, intervals) form).
+  bool inner(std::size_t i) const { return i < inner_.size() && inner_[i].size() > 0; }
+  /// Half width of leaf i's interval.
+  Real leaf_half_width(std::size_t i) const {
+    return inner(i) ? (interval_[i].hi - interval_[i].lo) / 2 : half_width(leaf_node_[i]);
+  }
 
   /// moment_matrix on [-1, 1] (h = 1).
   matrix reference_moment_matrix(const Real& del, const Real& gam, std::size_t count) const {
@@ -318,17 +377,17 @@ class far_field {
   }
 
   /// The dual traversal (header): target box t, source box s.
-  void interact(std::size_t t, std::size_t s) {
+  void interact(std::size_t t, std::size_t s, std::vector<pair>& pairs) {
     const auto& T = nodes_[t];
     const auto& S = nodes_[s];
     if (t == s) {
       if (T.leaf()) return;
       for (long a : T.child)
-        for (long b : T.child) interact(static_cast<std::size_t>(a), static_cast<std::size_t>(b));
+        for (long b : T.child) interact(static_cast<std::size_t>(a), static_cast<std::size_t>(b), pairs);
       return;
     }
     if (admissible(t, s)) {
-      pairs_.push_back({t, s, kernel(t, s)});
+      pairs.push_back({t, s, kernel(t, s)});
       return;
     }
     if (T.leaf() && S.leaf()) {
@@ -337,9 +396,9 @@ class far_field {
     }
     const bool split_target = S.leaf() || (!T.leaf() && T.hi - T.lo >= S.hi - S.lo);
     if (split_target) {
-      for (long c : T.child) interact(static_cast<std::size_t>(c), s);
+      for (long c : T.child) interact(static_cast<std::size_t>(c), s, pairs);
     } else {
-      for (long c : S.child) interact(t, static_cast<std::size_t>(c));
+      for (long c : S.child) interact(t, static_cast<std::size_t>(c), pairs);
     }
   }
 
@@ -348,8 +407,12 @@ class far_field {
   std::vector<Real> bary_;
   std::vector<node> nodes_;
   std::vector<std::size_t> leaf_node_;
-  std::vector<matrix> transfer_;  // transfer_[n - 1]: node n to its parent
-  std::vector<pair> pairs_;
+  // Shared between far_field(boxes, intervals) copies: the tree's matrices (the kernel values
+  // are most of a build's cost).
+  std::shared_ptr<const std::vector<matrix>> transfer_ = std::make_shared<const std::vector<matrix>>();  // [n - 1]: n to its parent
+  std::shared_ptr<const std::vector<pair>> pairs_ = std::make_shared<const std::vector<pair>>();
+  std::vector<box> interval_;  // far_field(boxes, intervals): leaf i's interval
+  std::vector<matrix> inner_;  // ... and its re-expansion into box i (empty: the interval is the box)
   std::vector<std::vector<std::size_t>> near_;
   mutable std::map<std::tuple<Real, Real, std::size_t>, matrix> reference_moments_;
 };
