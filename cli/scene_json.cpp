@@ -32,7 +32,7 @@ namespace {
 using json = nlohmann::json;
 
 // A message must stay on one line whatever the input contained (commands.hpp: one_line).
-[[noreturn]] void fail(const std::string& message) { throw input_error("solve: " + one_line(message)); }
+[[noreturn]] void fail_scene(const std::string& message) { throw input_error("solve: " + one_line(message)); }
 
 // What nlohmann-json does not check safely, found by one pass over the bytes before parsing:
 // - a NUL byte: nlohmann's lexer takes it for the end of the input and accepted
@@ -47,7 +47,7 @@ void check_bytes(std::string_view text, const std::string& source) {
   for (std::size_t i = 0; i < text.size(); ++i) {
     const char c = text[i];
     if (c == '\0') {
-      fail("scene " + source + " contains a NUL byte at byte offset " + std::to_string(i) +
+      fail_scene("scene " + source + " contains a NUL byte at byte offset " + std::to_string(i) +
            " (the whole input must be one JSON object)");
     }
     if (in_string) {
@@ -62,7 +62,7 @@ void check_bytes(std::string_view text, const std::string& source) {
       in_string = true;
     } else if (c == '[' || c == '{') {
       if (++depth > max_scene_depth) {
-        fail("scene " + source + " nests arrays and objects deeper than the limit of " +
+        fail_scene("scene " + source + " nests arrays and objects deeper than the limit of " +
              std::to_string(max_scene_depth) + " levels (at byte offset " + std::to_string(i) + ")");
       }
     } else if ((c == ']' || c == '}') && depth > 0) {
@@ -84,7 +84,7 @@ class duplicate_key_guard {
         const auto key = parsed.get<std::string>();
         if (!top.keys.insert(key).second) {
           top.key = key;
-          fail(path() + " appears twice in the same object (duplicate keys are rejected: which one was meant?)");
+          fail_scene(path() + " appears twice in the same object (duplicate keys are rejected: which one was meant?)");
         }
         top.key = key;
         break;
@@ -174,27 +174,27 @@ void only_keys(const json& object, const std::string& path, std::initializer_lis
       list += list.empty() ? name : std::string(", ") + name;
     }
     if (!known) {
-      fail(child(path, item.key()) + " is not a known field" + context + " (known: " + list + ")");
+      fail_scene(child(path, item.key()) + " is not a known field" + context + " (known: " + list + ")");
     }
   }
 }
 
 const json& require(const json& object, const std::string& path, const char* key, const std::string& what) {
   const auto it = object.find(key);
-  if (it == object.end()) fail(child(path, key) + " is missing: " + what);
+  if (it == object.end()) fail_scene(child(path, key) + " is missing: " + what);
   return *it;
 }
 
 double number(const json& value, const std::string& path, const range& valid, const std::string& what) {
   if (!value.is_number()) {
-    fail(path + " must be a number in " + valid.text + " (" + what + "), got " + type_of(value) + " " + show(value));
+    fail_scene(path + " must be a number in " + valid.text + " (" + what + "), got " + type_of(value) + " " + show(value));
   }
   const double x = value.get<double>();
   if (!std::isfinite(x)) {
-    fail(path + " = " + show(value) + " overflows a double; valid range " + valid.text + " (" + what + ")");
+    fail_scene(path + " = " + show(value) + " overflows a double; valid range " + valid.text + " (" + what + ")");
   }
   if (!valid.contains(x)) {
-    fail(path + " = " + show(value) + " is outside the valid range " + valid.text + " (" + what + ")");
+    fail_scene(path + " = " + show(value) + " is outside the valid range " + valid.text + " (" + what + ")");
   }
   return x;
 }
@@ -209,12 +209,12 @@ double required_number(const json& object, const std::string& path, const char* 
 std::string optional_string(const json& object, const std::string& path, const char* key) {
   const auto it = object.find(key);
   if (it == object.end()) return {};
-  if (!it->is_string()) fail(child(path, key) + " must be a string, got " + type_of(*it) + " " + show(*it));
+  if (!it->is_string()) fail_scene(child(path, key) + " must be a string, got " + type_of(*it) + " " + show(*it));
   return it->get<std::string>();
 }
 
 void require_object(const json& value, const std::string& path) {
-  if (!value.is_object()) fail(path + " must be a JSON object {...}, got " + type_of(value) + " " + show(value));
+  if (!value.is_object()) fail_scene(path + " must be a JSON object {...}, got " + type_of(value) + " " + show(value));
 }
 
 material_spec parse_material(const json& value, const std::string& base_dir) {
@@ -227,13 +227,13 @@ material_spec parse_material(const json& value, const std::string& base_dir) {
     master_curve_spec c;
     const auto& file = value.at("master_curve");
     if (!file.is_string() || file.get<std::string>().empty()) {
-      fail("material.master_curve must be a non-empty string (a CSV file name), got " + type_of(file) + " " + show(file));
+      fail_scene("material.master_curve must be a non-empty string (a CSV file name), got " + type_of(file) + " " + show(file));
     }
     c.path = file.get<std::string>();
     c.resolved_path = base_dir.empty() || c.path.front() == '/' ? c.path : base_dir + "/" + c.path;
     const bool has_t = value.contains("temperature"), has_wlf = value.contains("wlf");
     if (has_t != has_wlf) {
-      fail(std::string("material.") + (has_t ? "wlf" : "temperature") + " is missing: \"temperature\" and \"wlf\" " +
+      fail_scene(std::string("material.") + (has_t ? "wlf" : "temperature") + " is missing: \"temperature\" and \"wlf\" " +
            "go together (the WLF shift of the master curve to that temperature)");
     }
     if (has_t) {
@@ -267,7 +267,7 @@ indentor_spec parse_indentor(const json& value, const std::string& path, bool bo
   indentor_spec d;
   const auto& shape = require(value, path, "shape", "one of \"parabolic\", \"wedge\", \"flat\" is required");
   if (!shape.is_string()) {
-    fail(child(path, "shape") + " must be one of \"parabolic\", \"wedge\", \"flat\", got " + type_of(shape) + " " +
+    fail_scene(child(path, "shape") + " must be one of \"parabolic\", \"wedge\", \"flat\", got " + type_of(shape) + " " +
          show(shape));
   }
   const auto name = shape.get<std::string>();
@@ -275,9 +275,9 @@ indentor_spec parse_indentor(const json& value, const std::string& path, bool bo
   // Python's rhabel/_scene.py mirrors these checks and their order (the messages are compared).
   if (name == "parabolic" || name == "wedge" || name == "flat") {
     if (body && value.contains("load"))
-      fail(child(path, "load") + " is not used on a rigid body (the body's load is split over the indentors): remove it");
+      fail_scene(child(path, "load") + " is not used on a rigid body (the body's load is split over the indentors): remove it");
     if (!body && value.contains("height"))
-      fail(child(path, "height") + " needs a rigid body (\"body\": {\"load\": ...}): remove it or add the body");
+      fail_scene(child(path, "height") + " needs a rigid body (\"body\": {\"load\": ...}): remove it or add the body");
   }
   const char* own = body ? "height" : "load";
   if (name == "parabolic") {
@@ -294,7 +294,7 @@ indentor_spec parse_indentor(const json& value, const std::string& path, bool bo
     only_keys(value, path, {"shape", own, "apex", "name", "width"}, context);
     d.width = required_number(value, path, "width", positive, "width of the flat face");
   } else {
-    fail(child(path, "shape") + " = " + show(shape) + " is not a known shape (valid: \"parabolic\", \"wedge\", \"flat\")");
+    fail_scene(child(path, "shape") + " = " + show(shape) + " is not a known shape (valid: \"parabolic\", \"wedge\", \"flat\")");
   }
   if (body) {
     if (const auto it = value.find("height"); it != value.end())
@@ -310,7 +310,7 @@ indentor_spec parse_indentor(const json& value, const std::string& path, bool bo
 }
 
 std::vector<double> number_array(const json& value, const std::string& path, const std::string& what) {
-  if (!value.is_array()) fail(path + " must be an array of numbers (" + what + "), got " + type_of(value) + " " + show(value));
+  if (!value.is_array()) fail_scene(path + " must be an array of numbers (" + what + "), got " + type_of(value) + " " + show(value));
   std::vector<double> out;
   out.reserve(value.size());
   for (std::size_t i = 0; i < value.size(); ++i)
@@ -324,9 +324,9 @@ void read_profile_csv(const std::string& path, const std::string& shown, profile
   // Only a regular file: a device (/dev/zero) or a pipe would be read forever.
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec))
-    fail("profile.file = \"" + shown + "\" is not a readable regular file (" + path + ")");
+    fail_scene("profile.file = \"" + shown + "\" is not a readable regular file (" + path + ")");
   std::ifstream in(path);
-  if (!in) fail("profile.file = \"" + shown + "\" cannot be read (" + path + ")");
+  if (!in) fail_scene("profile.file = \"" + shown + "\" cannot be read (" + path + ")");
   std::string line;
   std::size_t number_of_line = 0;
   while (std::getline(in, line)) {
@@ -341,7 +341,7 @@ void read_profile_csv(const std::string& path, const std::string& shown, profile
     const bool numeric = static_cast<bool>(fields >> x >> z);
     if (!numeric && p.x.empty() && number_of_line == 1) continue;  // a header
     if (!numeric || (fields >> rest) || !std::isfinite(x) || !std::isfinite(z))
-      fail("profile.file = \"" + shown + "\" line " + std::to_string(number_of_line) +
+      fail_scene("profile.file = \"" + shown + "\" line " + std::to_string(number_of_line) +
            ": expected two finite numbers x,z, got \"" + line.substr(0, 80) + "\"");
     p.x.push_back(x);
     p.z.push_back(z);
@@ -384,15 +384,15 @@ scene_spec parse_scene(std::string_view text, const std::string& source, const s
     if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
     // e.byte counts the bytes read, the offending one included: its offset is e.byte - 1.
     const std::size_t offset = e.byte > 0 ? e.byte - 1 : 0;
-    fail("scene " + source + " is not valid JSON: " + what + " (byte offset " + std::to_string(offset) + ")");
+    fail_scene("scene " + source + " is not valid JSON: " + what + " (byte offset " + std::to_string(offset) + ")");
   } catch (const json::out_of_range& e) {
     // nlohmann-json 3.11 refuses a number beyond the double range ("number overflow parsing
     // '1e400'"); the guard still knows which value was being read.
     std::string what = e.what();
     if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
-    fail(guard.path() + " is out of range: " + what + " (numbers must be finite doubles)");
+    fail_scene(guard.path() + " is out of range: " + what + " (numbers must be finite doubles)");
   }
-  if (!root.is_object()) fail("scene " + source + ": the top level must be a JSON object {...}, got " + type_of(root));
+  if (!root.is_object()) fail_scene("scene " + source + ": the top level must be a JSON object {...}, got " + type_of(root));
   only_keys(root, "", {"description", "material", "speed", "body", "indentors", "profile"});
 
   scene_spec scene;
@@ -405,14 +405,14 @@ scene_spec parse_scene(std::string_view text, const std::string& source, const s
     scene.body_load = required_number(*it, "body", "load", positive, "total normal force per unit length");
   }
   if (const auto it = root.find("profile"); it != root.end()) {
-    if (root.contains("indentors")) fail("indentors and profile are exclusive: give one of them");
-    if (!scene.body_load) fail("profile needs a rigid body with its total load: add \"body\": {\"load\": ...}");
+    if (root.contains("indentors")) fail_scene("indentors and profile are exclusive: give one of them");
+    if (!scene.body_load) fail_scene("profile needs a rigid body with its total load: add \"body\": {\"load\": ...}");
     scene.profile = parse_profile(*it, base_dir);
     return scene;
   }
   const auto& list = require(root, "", "indentors", "a non-empty array of indentors is required");
-  if (!list.is_array()) fail("indentors must be a non-empty array [...], got " + type_of(list) + " " + show(list));
-  if (list.empty()) fail("indentors is empty: at least one indentor is required");
+  if (!list.is_array()) fail_scene("indentors must be a non-empty array [...], got " + type_of(list) + " " + show(list));
+  if (list.empty()) fail_scene("indentors is empty: at least one indentor is required");
   for (std::size_t i = 0; i < list.size(); ++i) {
     scene.indentors.push_back(parse_indentor(list[i], "indentors[" + std::to_string(i) + "]", scene.body_load.has_value()));
   }

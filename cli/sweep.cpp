@@ -23,15 +23,15 @@ namespace {
 using json = nlohmann::json;
 namespace fs = std::filesystem;
 
-[[noreturn]] void fail(const std::string& message) { throw input_error("sweep: " + one_line(message)); }
+[[noreturn]] void fail_sweep(const std::string& message) { throw input_error("sweep: " + one_line(message)); }
 
 std::string read_text(const std::string& path, const char* what) {
   std::error_code ec;
-  if (fs::is_directory(path, ec)) fail(std::string("cannot read ") + what + " '" + path + "': it is a directory");
+  if (fs::is_directory(path, ec)) fail_sweep(std::string("cannot read ") + what + " '" + path + "': it is a directory");
   std::ifstream file(path, std::ios::binary);
-  if (!file) fail(std::string("cannot read ") + what + " '" + path + "': " + std::strerror(errno));
+  if (!file) fail_sweep(std::string("cannot read ") + what + " '" + path + "': " + std::strerror(errno));
   std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-  if (file.bad()) fail(std::string("cannot read ") + what + " '" + path + "': read error");
+  if (file.bad()) fail_sweep(std::string("cannot read ") + what + " '" + path + "': read error");
   return text;
 }
 
@@ -41,7 +41,7 @@ json parse_json(const std::string& text, const std::string& source) {
   } catch (const json::exception& e) {
     std::string what = e.what();
     if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
-    fail(source + " is not valid JSON: " + what);
+    fail_sweep(source + " is not valid JSON: " + what);
   }
 }
 
@@ -49,7 +49,7 @@ json parse_json(const std::string& text, const std::string& source) {
 json::json_pointer to_pointer(const std::string& path, const std::string& where) {
   std::string pointer;
   std::size_t i = 0;
-  auto bad = [&] { fail(where + " = \"" + path + "\" is not a field path like speed, indentors[0].load, material.temperature"); };
+  auto bad = [&] { fail_sweep(where + " = \"" + path + "\" is not a field path like speed, indentors[0].load, material.temperature"); };
   if (path.empty()) bad();
   while (i < path.size()) {
     std::size_t j = i;
@@ -78,26 +78,26 @@ json::json_pointer to_pointer(const std::string& path, const std::string& where)
 double range_number(const json& object, const std::string& where, const char* key) {
   const auto it = object.find(key);
   if (it == object.end() || !it->is_number() || !std::isfinite(it->get<double>())) {
-    fail(where + "." + key + " must be a finite number");
+    fail_sweep(where + "." + key + " must be a finite number");
   }
   return it->get<double>();
 }
 
 std::vector<json> expand_range(const json& spec, const std::string& where, bool logarithmic) {
-  if (!spec.is_object()) fail(where + " must be an object {\"from\": .., \"to\": .., \"count\": ..}");
+  if (!spec.is_object()) fail_sweep(where + " must be an object {\"from\": .., \"to\": .., \"count\": ..}");
   for (const auto& item : spec.items()) {
     if (item.key() != "from" && item.key() != "to" && item.key() != "count") {
-      fail(where + "." + item.key() + " is not a known field (known: from, to, count)");
+      fail_sweep(where + "." + item.key() + " is not a known field (known: from, to, count)");
     }
   }
   const double from = range_number(spec, where, "from"), to = range_number(spec, where, "to");
   const auto c = spec.find("count");
   if (c == spec.end() || !c->is_number_integer() || c->get<long long>() < 1 ||
       c->get<long long>() > static_cast<long long>(max_sweep_rows)) {
-    fail(where + ".count must be an integer in [1, " + std::to_string(max_sweep_rows) + "]");
+    fail_sweep(where + ".count must be an integer in [1, " + std::to_string(max_sweep_rows) + "]");
   }
   const auto n = static_cast<std::size_t>(c->get<long long>());
-  if (logarithmic && !(from > 0 && to > 0)) fail(where + ": from and to must be > 0 for a log_range");
+  if (logarithmic && !(from > 0 && to > 0)) fail_sweep(where + ": from and to must be > 0 for a log_range");
   std::vector<json> values;
   for (std::size_t i = 0; i < n; ++i) {
     double v;
@@ -146,16 +146,16 @@ std::string value_text(const json& v, row_format format) {
 
 sweep_spec read_sweep(const std::string& path) {
   const json doc = parse_json(read_text(path, "sweep file"), "sweep file '" + path + "'");
-  if (!doc.is_object()) fail("sweep file '" + path + "': the top level must be an object");
+  if (!doc.is_object()) fail_sweep("sweep file '" + path + "': the top level must be an object");
   for (const auto& item : doc.items()) {
     if (item.key() != "description" && item.key() != "scene" && item.key() != "axes" && item.key() != "combine") {
-      fail(item.key() + " is not a known field of a sweep (known: description, scene, axes, combine)");
+      fail_sweep(item.key() + " is not a known field of a sweep (known: description, scene, axes, combine)");
     }
   }
   const fs::path dir = fs::path(path).parent_path();
   sweep_spec sweep;
   const auto s = doc.find("scene");
-  if (s == doc.end()) fail("scene is missing: a scene object or the name of a scene file is required");
+  if (s == doc.end()) fail_sweep("scene is missing: a scene object or the name of a scene file is required");
   fs::path scene_dir = dir;
   if (s->is_string()) {
     const fs::path scene_path = dir / s->get<std::string>();
@@ -164,7 +164,7 @@ sweep_spec read_sweep(const std::string& path) {
   } else if (s->is_object()) {
     sweep.base = *s;
   } else {
-    fail("scene must be an object or a file name");
+    fail_sweep("scene must be an object or a file name");
   }
   absolutize_curve(sweep.base, scene_dir);
   // The base scene must be valid by itself (its errors name the field: "sweep: scene: ...").
@@ -176,35 +176,35 @@ sweep_spec read_sweep(const std::string& path) {
       try {
         (void)materials::read_master_curve(spec.material.curve->resolved_path);
       } catch (const std::invalid_argument& e) {
-        fail(std::string("scene: material.master_curve: ") + e.what());
+        fail_sweep(std::string("scene: material.master_curve: ") + e.what());
       }
     }
   } catch (const input_error& e) {
     std::string what = e.what();
     if (what.starts_with("solve: ")) what = what.substr(7);
-    fail("scene: " + what);
+    fail_sweep("scene: " + what);
   }
   if (const auto c = doc.find("combine"); c != doc.end()) {
     if (*c == "zip") sweep.zip = true;
-    else if (*c != "product") fail("combine = " + c->dump() + " is not known (valid: \"product\", \"zip\")");
+    else if (*c != "product") fail_sweep("combine = " + c->dump() + " is not known (valid: \"product\", \"zip\")");
   }
   const auto a = doc.find("axes");
-  if (a == doc.end() || !a->is_array() || a->empty()) fail("axes must be a non-empty array of {path, values|range|log_range}");
+  if (a == doc.end() || !a->is_array() || a->empty()) fail_sweep("axes must be a non-empty array of {path, values|range|log_range}");
   for (std::size_t k = 0; k < a->size(); ++k) {
     const json& item = (*a)[k];
     const std::string where = "axes[" + std::to_string(k) + "]";
-    if (!item.is_object()) fail(where + " must be an object");
+    if (!item.is_object()) fail_sweep(where + " must be an object");
     sweep_axis axis;
     int kinds = 0;
     for (const auto& field : item.items()) {
       if (field.key() == "path") continue;
       if (field.key() == "values") {
         ++kinds;
-        if (!field.value().is_array() || field.value().empty()) fail(where + ".values must be a non-empty array");
+        if (!field.value().is_array() || field.value().empty()) fail_sweep(where + ".values must be a non-empty array");
         for (std::size_t i = 0; i < field.value().size(); ++i) {
           const auto& v = field.value()[i];
           if (!(v.is_number() || v.is_string() || v.is_boolean())) {
-            fail(where + ".values[" + std::to_string(i) + "] must be a number, string or boolean");
+            fail_sweep(where + ".values[" + std::to_string(i) + "] must be a number, string or boolean");
           }
           axis.values.push_back(v);
         }
@@ -212,26 +212,26 @@ sweep_spec read_sweep(const std::string& path) {
         ++kinds;
         axis.values = expand_range(field.value(), where + "." + field.key(), field.key() == "log_range");
       } else {
-        fail(where + "." + field.key() + " is not a known field (known: path, values, range, log_range)");
+        fail_sweep(where + "." + field.key() + " is not a known field (known: path, values, range, log_range)");
       }
     }
-    if (kinds != 1) fail(where + " needs exactly one of values, range, log_range");
+    if (kinds != 1) fail_sweep(where + " needs exactly one of values, range, log_range");
     const auto p = item.find("path");
-    if (p == item.end() || !p->is_string()) fail(where + ".path is missing: the JSON path of a scene field, e.g. speed");
+    if (p == item.end() || !p->is_string()) fail_sweep(where + ".path is missing: the JSON path of a scene field, e.g. speed");
     axis.path = p->get<std::string>();
     axis.pointer = to_pointer(axis.path, where + ".path");
     const auto parent = axis.pointer.parent_pointer();
     if (!sweep.base.contains(parent) || !(sweep.base.at(parent).is_object() || sweep.base.at(parent).is_array())) {
-      fail(where + ".path = \"" + axis.path + "\": its parent does not exist in the base scene");
+      fail_sweep(where + ".path = \"" + axis.path + "\": its parent does not exist in the base scene");
     }
     if (sweep.base.at(parent).is_array() && !sweep.base.contains(axis.pointer)) {
-      fail(where + ".path = \"" + axis.path + "\": index out of range in the base scene");
+      fail_sweep(where + ".path = \"" + axis.path + "\": index out of range in the base scene");
     }
     if (sweep.base.contains(axis.pointer) && !sweep.base.at(axis.pointer).is_primitive()) {
-      fail(where + ".path = \"" + axis.path + "\" is not a scalar field of the scene");
+      fail_sweep(where + ".path = \"" + axis.path + "\" is not a scalar field of the scene");
     }
     for (const auto& other : sweep.axes) {
-      if (other.pointer == axis.pointer) fail(where + ".path = \"" + axis.path + "\" is swept twice");
+      if (other.pointer == axis.pointer) fail_sweep(where + ".path = \"" + axis.path + "\" is swept twice");
     }
     sweep.axes.push_back(std::move(axis));
   }
@@ -239,11 +239,11 @@ sweep_spec read_sweep(const std::string& path) {
   for (const auto& axis : sweep.axes) {
     if (sweep.zip) {
       if (axis.values.size() != rows) {
-        fail("combine \"zip\" needs axes of one length: " + axis.path + " has " + std::to_string(axis.values.size()) +
+        fail_sweep("combine \"zip\" needs axes of one length: " + axis.path + " has " + std::to_string(axis.values.size()) +
              " values, " + sweep.axes.front().path + " has " + std::to_string(rows));
       }
     } else {
-      if (rows > max_sweep_rows / axis.values.size()) fail("more than " + std::to_string(max_sweep_rows) + " rows");
+      if (rows > max_sweep_rows / axis.values.size()) fail_sweep("more than " + std::to_string(max_sweep_rows) + " rows");
       rows *= axis.values.size();
     }
   }
