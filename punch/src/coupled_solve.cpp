@@ -44,7 +44,8 @@
 // Broyden's steps gain less than a factor 2, and a start from which even a new Jacobian's step
 // gains less than a quarter is given up for the continuation in the load (rows of 300 parabolas:
 // the isolated contacts are too far from the coupled ones). The linear system of a Newton step is
-// solved with full pivoting up to 64 unknowns, partial pivoting above.
+// solved with full pivoting up to 64 unknowns; above, each finite-difference Jacobian is factorised
+// once and Broyden's updates enter by the Woodbury identity (abel/detail/broyden_matrix.hpp).
 //
 // A RIGID BODY (scene::body). The loads are unknowns and the heights of the indentors are given:
 // every contact keeps its first condition (d_j = 0 or its split-form intensity), and its second
@@ -67,6 +68,7 @@
 #include "surface.hpp"
 
 #include "rhabel/abel.hpp"
+#include "rhabel/abel/detail/broyden_matrix.hpp"
 
 #include <Eigen/Dense>
 
@@ -911,17 +913,24 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
     out.sol = std::move(ev.sol);
     return out;
   }
-  Eigen::MatrixXd J = jacobian(pb, u, out.x, ev);
+  // Up to 64 unknowns the updated matrix is factorised with full pivoting at every step (robust
+  // when it is nearly singular, e.g. contacts about to merge); above, J0's LU with Broyden's
+  // updates by the Woodbury identity (rows of 1000 parabolas: the factorisations were 32 % of the
+  // time).
+  abel::detail::broyden_matrix<double> J(jacobian(pb, u, out.x, ev));
   bool fresh = true;
   std::size_t since_fresh = 0;  // accepted steps since the last finite-difference Jacobian
   const bool colouring = pb.roles.size() > full_width && (!pb.body_load || body_colouring(pb));
   for (std::size_t it = 0; it < 60; ++it) {
     out.iterations = it + 1;
-    // Full pivoting for the few edges of a handful of contacts (robust when J is nearly
-    // singular, e.g. contacts about to merge); partial pivoting (blocked, ~10x faster at 600
-    // unknowns) for many, where J is dominated by its banded part.
-    const Eigen::VectorXd dx = J.rows() <= 64 ? Eigen::VectorXd(-J.fullPivLu().solve(ev.r))
-                                              : Eigen::VectorXd(-J.partialPivLu().solve(ev.r));
+    const auto solved = J.solve(ev.r);
+    if (!solved) {  // Broyden's updates made the matrix singular (a fresh one has none): a new Jacobian
+      J.reset(jacobian(pb, u, out.x, ev));
+      fresh = true;
+      since_fresh = 0;
+      continue;
+    }
+    const Eigen::VectorXd dx = -*solved;
     if (!dx.allFinite()) {
       out.failure = "singular Jacobian of the edge conditions";
       break;
@@ -961,7 +970,7 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
     }
     if (!accepted) {
       if (!fresh) {  // Broyden's matrix went stale: a new finite-difference Jacobian
-        J = jacobian(pb, u, out.x, ev);
+        J.reset(jacobian(pb, u, out.x, ev));
         fresh = true;
         since_fresh = 0;
         continue;
@@ -974,7 +983,7 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
     // Broyden's (good) update with the step taken.
     const Eigen::VectorXd s = t * dx;
     const Eigen::VectorXd dr = next.r - ev.r;
-    J += (dr - J * s) * s.transpose() / s.squaredNorm();
+    J.update(s, dr);
     const bool step_was_fresh = fresh;
     fresh = false;
     double step = 0;
@@ -1000,7 +1009,7 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
     // step for 12 steps, then converged in 2 after a new Jacobian); a new one when a step gains
     // less than a factor 2 two steps after the last.
     if (colouring && reduction > 0.5 && since_fresh >= 2 && step > 10 * tol) {
-      J = jacobian(pb, u, out.x, ev);
+      J.reset(jacobian(pb, u, out.x, ev));
       fresh = true;
       since_fresh = 0;
     }

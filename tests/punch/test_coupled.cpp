@@ -163,6 +163,24 @@ TEST_CASE("rows of parabolas: mirror symmetry of an elastic row, few Newton iter
   for (const auto& c : v.indentors) CHECK(std::abs(c.load / one.load - 1) < 1e-9);
 }
 
+TEST_CASE("a row of 40 contacts (80 edges: Broyden's updates by the Woodbury identity) converges to its tolerance") {
+  // Above 64 unknowns a Newton step solves with the last finite-difference Jacobian's factors and
+  // Broyden's updates by the Woodbury identity (abel/detail/broyden_matrix.hpp; its singular
+  // updates are tested in tests/abel/test_broyden_matrix.cpp): a wrong step would stall the
+  // iteration or stop it early. The residual of (8) of a converged row is at the tolerance's
+  // level (measured 2.8e-13 at 1e-12); 100 times it is the bar.
+  const material visco{0.3, 1.0, 0.3, 0.0};
+  const indentor one{parabolic{1.0}, 0.5, 0.0};
+  const double L = solve_single(visco, 1.0, one).contact_length;
+  scene row{visco, 1.0, {}};
+  for (int k = 0; k < 40; ++k) row.indentors.push_back({one.shape, one.load, 1.5 * L * k});
+  solve_options o;
+  const auto r = solve(row, o);
+  REQUIRE(r.diagnostics.code == status_code::ok);
+  CHECK(r.diagnostics.residual < 100 * o.tolerance);
+  for (const auto& c : r.indentors) CHECK(std::abs(c.load / one.load - 1) < 1e-9);
+}
+
 TEST_CASE("viscoelastic sliding breaks the mirror symmetry") {
   const material m{0.3, 1.0, 0.3, 0.0};
   const auto r = solve(two(m, indentor{parabolic{1.0}, 0.1, 0.0}, indentor{parabolic{1.0}, 0.1, 1.5}));

@@ -168,8 +168,8 @@
 //     0.6-2.4 s, 1e-3 L 3-18 s (the correction's degree grows like sqrt(L/gap) and each Newton
 //     evaluation is a dense solve); parabola + wedge 30 ms - 1 s; rows of N parabolas 1.5 L apart
 //     (alpha 0.3, tolerance 1e-10; loads imposed above 5 contacts; build/bin/study_multi_contact
-//     --rows-only, studies/README.md): N = 5 20 ms (14 Newton iterations), 10 44 ms (13), 40 0.27 s
-//     (10), 100 0.79 s (11), 300 5.2 s (28), 1000 34 s (23; peak RSS 144 MB). From 6 contacts on,
+//     --rows-only, studies/README.md): N = 5 21 ms (14 Newton iterations), 10 41 ms (13), 40 0.22 s
+//     (10), 100 0.83 s (12), 300 4.3 s (24), 1000 23 s (22; peak RSS 172 MB). From 6 contacts on,
 //     separated contacts act through abel's far field (abel/detail/far_field.hpp: the coupling
 //     data, the union's GMRES products without an assembled matrix, the residuals, the surface
 //     displacement), so an evaluation costs O(N) and memory O(N). Against the
