@@ -1,4 +1,5 @@
-// rhabel solve SCENE.json [--grid N] [--csv PREFIX] [--acceptance TOL] [--threads N] [--compact]
+// rhabel solve SCENE.json [--grid N] [--csv PREFIX] [--acceptance TOL] [--threads N] [--time-limit S]
+//              [--compact]
 //
 // Reads a scene (a JSON file, or stdin for "-"), validates all of it, solves it with the punch
 // layer and prints the result as JSON on stdout. Schemas: cli/scene_json.hpp (scene) and
@@ -12,6 +13,9 @@
 //   --acceptance TOL  the bar of status "ok" (punch::solve_options::acceptance, default 1e-9).
 //   --threads N    threads for the Jacobian columns of several contacts (punch::solve_options::threads;
 //                  default 0: every core); the result does not depend on N.
+//   --time-limit S seconds after which a solve of several contacts stops and reports what it
+//                  reached with status not_converged (punch::solve_options::time_limit; default 0:
+//                  no limit).
 //   --compact      one-line JSON instead of the indented form.
 //
 // Output discipline: everything is computed in memory first; on any error nothing is written to
@@ -58,6 +62,7 @@ struct solve_arguments {
   bool compact = false;
   double acceptance = 1e-9;
   std::size_t threads = 0;  // every core
+  double time_limit = 0;    // none
 };
 
 std::string read_scene(const std::string& path) {
@@ -210,6 +215,7 @@ int run(const solve_arguments& args) {
   request.grid = args.grid;
   request.acceptance = args.acceptance;
   request.threads = args.threads;
+  request.time_limit = args.time_limit;
   if (request.grid == 0 && args.csv) request.grid = default_csv_grid;
   std::string warning;
   const run_outcome outcome = run_scene_with_material(scene, request, &warning);
@@ -259,6 +265,11 @@ void add_solve_command(CLI::App& app, command_action& action) {
                    "threads for the finite-difference Jacobian of several contacts (default 0: every core; the "
                    "result does not depend on it)")
       ->check(CLI::Range(std::size_t{0}, std::size_t{1024}));
+  solve
+      ->add_option("--time-limit", args->time_limit,
+                   "seconds after which a solve of several contacts stops and reports what it reached, status "
+                   "not_converged (default 0: no limit)")
+      ->check(CLI::Range(0.0, 1e9));
   solve->add_flag("--compact", args->compact, "print the JSON on one line");
   solve->callback([&action, args, csv] {
     args->csv = csv->count() > 0;

@@ -354,6 +354,8 @@ void validate_options(const solve_options& options, const char* function) {
   if (options.threads > 1024)
     throw std::invalid_argument(std::string(function) + ": options.threads = " + std::to_string(options.threads) +
                                 " must be at most 1024 (0: every core)");
+  if (!(options.time_limit >= 0) || !std::isfinite(options.time_limit))
+    throw std::invalid_argument(std::string(function) + ": options.time_limit must be finite and >= 0 (0: no limit)");
 }
 
 }  // namespace detail

@@ -60,9 +60,12 @@
 // that iteration fails, again with every column differenced.
 //
 // OUTCOMES. Converged: every edge step below 10 tolerance L. A gap that closes (below 1e-12 of the
-// smaller contact) is status_code::contacts_merge with the two contacts named; an iteration that
-// stalls is status_code::not_converged with its residuals. The caller (contact.cpp) then checks the
-// result independently (residual of (8), sign of the pressure, loads) before it says ok.
+// smaller contact) is status_code::contacts_merge with the two contacts named, and so is a flat run
+// (steps that no longer lower the conditions; see flat_gain) that ends with two neighbours closing
+// under flat_merge_gap of a length; any other stalled iteration, and one stopped by
+// solve_options::time_limit, is status_code::not_converged with its residuals. The caller
+// (contact.cpp) then checks the result independently (residual of (8), sign of the pressure, loads)
+// before it says ok.
 #include "internal.hpp"
 #include "parallel.hpp"
 #include "surface.hpp"
@@ -691,6 +694,40 @@ struct newton_result {
 /// the load) is taken as vanishing: its indentor would carry no load.
 constexpr double vanishing_length = 1e-3;
 
+/// A FLAT RUN: accepted steps that each lower the largest edge condition by less than
+/// flat_gain (the line search shortened them to almost nothing). After flat_steps of them a new
+/// Jacobian is taken; flat_steps more end the iteration. WHY: the conditions have reached the
+/// floor of what the evaluation resolves, and the sufficient-decrease test (1 - 1e-4 t) accepts
+/// steps of t ~ 1e-5 for ever (measured: a 12-sample profile whose two contacts closed in on
+/// each other at 0.009 of a contact length; 30 steps at the same condition, 6e-4, at 0.36 s
+/// each, then the iteration limit).
+constexpr double flat_gain = 0.99;
+constexpr std::size_t flat_steps = 4;
+/// A flat run that ends with two neighbours closer than this fraction of the smaller contact,
+/// their gap narrowing, is reported as those contacts merging (contacts_merge; the profile search
+/// then solves them as one contact). WHY: a gap that the iteration keeps closing but cannot
+/// resolve is the approach of a merge; a few percent of a length needs degree ~ 10 sqrt(L/gap).
+constexpr double flat_merge_gap = 0.02;
+
+/// The closest pair of neighbours in x (by gap relative to the smaller length) whose gap the move
+/// from `before` to `after` narrowed, with that ratio at `after`; none when no gap narrowed.
+std::optional<closing_gap> narrowing_pair(const problem& pb, const edges& before, const edges& after) {
+  const std::size_t n = pb.roles.size();
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return after.a[i] < after.a[j]; });
+  std::optional<closing_gap> out;
+  for (std::size_t k = 0; k + 1 < n; ++k) {
+    const std::size_t i = order[k], j = order[k + 1];
+    const double gap = after.a[j] - after.b[i];
+    if (!(gap < before.a[j] - before.b[i])) continue;
+    const double L = std::min(after.b[i] - after.a[i], after.b[j] - after.a[j]);
+    if (!(L > 0)) continue;
+    if (!out || gap / L < out->gap_ratio) out = closing_gap{i, j, gap / L, gap <= 0};
+  }
+  return out;
+}
+
 /// Forward-difference Jacobian of the edge conditions (relative step 1e-7 of each contact's
 /// length; backward where the forward step would close a gap). Up to `full_width` contacts: one
 /// evaluation per unknown. More: the contacts are coloured by their rank along x modulo
@@ -897,6 +934,11 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
   out.x = start;
   for (std::size_t i = 0; i < pb.roles.size(); ++i)
     if (pb.roles[i] == role::apex_ended) out.x.b[i] = (*pb.st)[i].apex;
+  if (pb.cx->out_of_time()) {  // the callers' loops then end after one cheap call each
+    out.failure = pb.cx->time_limit_message();
+    out.residual = std::numeric_limits<double>::infinity();
+    return out;
+  }
   evaluation ev;
   try {
     ev = evaluate(pb, u, out.x.a, out.x.b);
@@ -920,8 +962,14 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
   abel::detail::broyden_matrix<double> J(jacobian(pb, u, out.x, ev));
   bool fresh = true;
   std::size_t since_fresh = 0;  // accepted steps since the last finite-difference Jacobian
+  std::size_t flat = 0;         // accepted steps of the current flat run
+  bool refreshed_in_flat = false;
   const bool colouring = pb.roles.size() > full_width && (!pb.body_load || body_colouring(pb));
   for (std::size_t it = 0; it < 60; ++it) {
+    if (pb.cx->out_of_time()) {
+      out.failure = pb.cx->time_limit_message();
+      break;
+    }
     out.iterations = it + 1;
     const auto solved = J.solve(ev.r);
     if (!solved) {  // Broyden's updates made the matrix singular (a fresh one has none): a new Jacobian
@@ -991,10 +1039,41 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
       const std::size_t i = u.state[k];
       step = std::max(step, std::abs(s[static_cast<Eigen::Index>(k)]) / (y.b[i] - y.a[i]));
     }
+    const edges before = out.x;
     out.x = y;
     const double reduction = next.r.lpNorm<Eigen::Infinity>() / ev.r.lpNorm<Eigen::Infinity>();
     ev = std::move(next);
     ++since_fresh;
+    if (reduction > flat_gain && step > 10 * tol) {
+      if (++flat == flat_steps && !refreshed_in_flat) {
+        J.reset(jacobian(pb, u, out.x, ev));
+        fresh = true;
+        since_fresh = 0;
+        flat = 0;
+        refreshed_in_flat = true;
+        continue;
+      }
+      if (flat == flat_steps) {
+        const auto pair = narrowing_pair(pb, before, out.x);
+        if (pair && pair->gap_ratio < flat_merge_gap) {
+          const auto& st = *pb.st;
+          std::ostringstream os;
+          os.precision(3);
+          os << "the contacts of " << indentor_name(st[pair->first].scene_index, *st[pair->first].source) << " and "
+             << indentor_name(st[pair->second].scene_index, *st[pair->second].source) << " are " << pair->gap_ratio
+             << " of a contact length apart and still closing where the edge iteration stalls (largest edge condition "
+             << ev.r.lpNorm<Eigen::Infinity>() << "): they merge";
+          out.failure = os.str();
+          out.merged = std::make_pair(pair->first, pair->second);
+        } else {
+          out.failure = "the edge iteration stalled";
+        }
+        break;
+      }
+    } else {
+      flat = 0;
+      refreshed_in_flat = false;
+    }
     // Many contacts (coloured Jacobian): when even a new Jacobian's step gains less than a
     // quarter, this start is too far from the solution (rows of 300 parabolas from the isolated
     // contacts: 27 steps from 3.8 to 0.95, each gaining 1 ... 11 %): the caller's continuation in
@@ -1309,8 +1388,8 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
       os << result.failure;
     } else {
       out.code = status_code::not_converged;
-      os << "coupled edge iteration did not converge: " << (result.failure.empty() ? "iteration limit" : result.failure)
-         << "; largest edge condition " << result.residual;
+      os << "coupled edge iteration did not converge: " << (result.failure.empty() ? "iteration limit" : result.failure);
+      if (std::isfinite(result.residual)) os << "; largest edge condition " << result.residual;
     }
     if (pb.load_factor < 1) os << " (at " << pb.load_factor << " of the loads)";
     out.message = os.str();

@@ -27,6 +27,7 @@
 #include <boost/math/constants/constants.hpp>
 #include <boost/math/quadrature/tanh_sinh.hpp>
 
+#include <chrono>
 #include <cstddef>
 #include <memory>
 #include <optional>
@@ -84,6 +85,9 @@ struct context {
   double gamma_factor = 1;  // Gamma(1 - alpha)
   double pressure_scale = 1;  // (pi/2) E_U
   solve_options options;
+  /// When options.time_limit > 0: the moment it runs out (make_context is called at the start of
+  /// a solve); time_point::max() otherwise.
+  std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   // The operator's parameters for rhabel::abel; on the boundary (kappa = 0 above) kappa is exactly 0.
   abel::abel_parameters<double> par{0.0, 0.0};
 
@@ -91,6 +95,10 @@ struct context {
     par = abel::abel_parameters<double>(alpha, beta);
     if (kappa == 0 && par.kappa() != 0) par = abel::abel_parameters<double>::from_kappa(alpha, 0.0);
   }
+  /// Whether options.time_limit has run out.
+  bool out_of_time() const { return deadline != std::chrono::steady_clock::time_point::max() && std::chrono::steady_clock::now() >= deadline; }
+  /// The failure text of a solve stopped by options.time_limit.
+  std::string time_limit_message() const;
   /// Edge exponents of the class of index nu (see leading_edge, trailing_edge).
   edge_exponents exponents(int nu) const { return par.exponents(leading_edge(nu), trailing_edge(nu)); }
 };

@@ -44,6 +44,12 @@ double material_kappa(const material& m) {
 // ---------------------------------------------------------------------------------------------
 // The context of one solve: the material's derived constants and the options.
 
+std::string context::time_limit_message() const {
+  std::ostringstream os;
+  os << "stopped at the time limit of " << options.time_limit << " s (solve_options::time_limit)";
+  return os.str();
+}
+
 context make_context(const material& m, double speed, const solve_options& options) {
   context cx;
   // alpha below 1e-300 (down to the subnormal 5e-324, where the small-alpha forms divide by alpha)
@@ -56,6 +62,9 @@ context make_context(const material& m, double speed, const solve_options& optio
   cx.gamma_factor = boost::math::tgamma(1 - cx.alpha);
   cx.pressure_scale = pi / 2 * m.effective_modulus(speed);
   cx.options = options;
+  if (options.time_limit > 0)
+    cx.deadline = std::chrono::steady_clock::now() +
+                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(options.time_limit));
   cx.set_parameters();
   return cx;
 }

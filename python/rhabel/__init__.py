@@ -37,7 +37,7 @@ __all__ = ["solve", "trial_interval", "load_scene", "validate_scene", "Record", 
            "abel", "riemann", "__version__"]
 
 
-def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acceptance=1e-9, threads=1):
+def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acceptance=1e-9, threads=1, time_limit=0):
     """Solve a scene: rigid indentors sliding together at speed U towards -x over a power-law
     viscoelastic half-space E(t) = E1 t^-alpha (plane strain, steady state). Same schema, same
     validation and same numbers as ``rhabel solve SCENE.json`` (examples/README.md).
@@ -101,6 +101,10 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
     threads : int in [0, 1024]
         Threads for the finite-difference Jacobian of several contacts (default 1; 0: every
         core). The result is the same for any count, bit for bit.
+    time_limit : float >= 0
+        Seconds after which a solve of several contacts (or a sampled profile's contact search)
+        stops and returns what it reached with status "not_converged" and a message naming the
+        limit (default 0: no limit). A result stopped by it depends on the machine's speed.
 
     Returns
     -------
@@ -163,8 +167,12 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
         raise ValueError(f"acceptance = {acceptance!r} is outside the valid range [1e-15, 0.1]")
     if isinstance(threads, bool) or not isinstance(threads, int) or not 0 <= threads <= 1024:
         raise ValueError(f"threads = {threads!r} must be an integer in [0, 1024] (0: every core)")
+    time_limit = float(time_limit)
+    if not (time_limit >= 0 and time_limit < float("inf")):
+        raise ValueError(f"time_limit = {time_limit!r} must be finite and >= 0 (0: no limit)")
     if "profile" in spec:
-        result = _rhabel._solve_profile(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance, threads)
+        result = _rhabel._solve_profile(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance, threads,
+                                        time_limit)
         # The command line's echo of a profile: the samples stand as their count and range.
         profile = spec["profile"]
         echo = Record({k: v for k, v in spec.items() if k != "profile"})
@@ -173,7 +181,7 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
                                   "corners": profile["corners"]})
         result["scene"] = echo
         return result
-    result = _rhabel._solve(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance, threads)
+    result = _rhabel._solve(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance, threads, time_limit)
     result["scene"] = spec
     return result
 

@@ -11,8 +11,10 @@
 // The solve cost per input is bounded so that a 60 s run explores many inputs: each indentor is
 // solved alone (a one-indentor copy of the scene). A coupled solve of several contacts can take
 // seconds (closeness costs degree ~ sqrt(L/gap)), and its paths are covered by the punch tests; the
-// isolated path, where hostile numbers meet the solver, costs milliseconds. Master-curve materials
-// are parsed but not solved (they read a file).
+// isolated path, where hostile numbers meet the solver, costs milliseconds. A sampled profile is
+// solved whole (its contact search is a coupled solve) under solve_options::time_limit
+// (fuzz_time_limit), so that a slow input ends in a result rather than in libFuzzer's timeout.
+// Master-curve materials are parsed but not solved (they read a file).
 #include "scene_json.hpp"
 #include "scene_solve.hpp"
 #include "commands.hpp"
@@ -33,12 +35,20 @@ namespace {
 
 constexpr std::size_t fuzz_grid = 7;  // samples per field: exercises the sampling, costs little
 constexpr std::size_t max_fuzz_samples = 12;  // profile samples solved per input
+// Seconds of a profile's contact search. WHY 5: under ASan at -O1 a Newton step of two nearly
+// touching contacts (degree ~180) costs up to ~3 s, so a search stops well inside libFuzzer's 30 s
+// timeout (tests/fuzz/run.sh); measured: a 12-sample profile whose contacts close in on each other
+// took 29 s here with no limit (0.36 s per step in Release).
+constexpr double fuzz_time_limit = 5;
 
 // A valid scene either solves or is refused cleanly (an input_error: exit code 2); anything else
 // is a finding.
 void solve_checked(const rhabel::cli::scene_spec& scene) {
   try {
-    (void)rhabel::cli::run_scene(scene, rhabel::cli::run_request{fuzz_grid});
+    rhabel::cli::run_request request;
+    request.grid = fuzz_grid;
+    request.time_limit = fuzz_time_limit;
+    (void)rhabel::cli::run_scene(scene, request);
   } catch (const rhabel::cli::input_error&) {
   } catch (const std::exception& e) {
     finding("run_scene: internal error on a valid scene", e.what());

@@ -239,6 +239,26 @@ TEST_CASE("close contacts are solved, not refused") {
   }
 }
 
+TEST_CASE("solve_options::time_limit stops a coupled solve with not_converged and says so") {
+  const material m{0.3, 1.0, 0.3, 0.0};
+  const indentor lone{parabolic{1.0}, 0.1, 0.0};
+  const double L = solve_single(m, 1.0, lone).contact_length;
+  const scene sc = two(m, lone, indentor{parabolic{1.0}, 0.1, 0.9 * L});
+  solve_options o;
+  o.time_limit = 1e-9;  // out of time before the first Newton step: the outcome is the machine's
+  const auto r = solve(sc, o);
+  CAPTURE(r.diagnostics.status);
+  CHECK(r.diagnostics.code == status_code::not_converged);
+  CHECK(r.diagnostics.status.find("stopped at the time limit of 1e-09 s (solve_options::time_limit)") != std::string::npos);
+  o.time_limit = 0;  // no limit: the scene of "close contacts are solved, not refused"
+  CHECK(solve(sc, o).diagnostics.code == status_code::ok);
+  // One contact does not check the limit (milliseconds): ok.
+  o.time_limit = 1e-9;
+  CHECK(solve(scene{m, 1.0, {lone}}, o).diagnostics.code == status_code::ok);
+  o.time_limit = -1;
+  CHECK_THROWS_AS(solve(sc, o), std::invalid_argument);
+}
+
 TEST_CASE("a solution of the slope equations whose surface penetrates an indentor is never ok") {
   // Elastic, R = 10 at 0 and R = 1 at -1.5, loads 1: the isolated contacts overlap; the coupled
   // slope equations, edge conditions and loads are solved (residual ~4e-13), but the surface rises

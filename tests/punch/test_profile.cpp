@@ -228,6 +228,49 @@ TEST_CASE("a profile whose contacts would reach the end of its samples is refuse
   CHECK(message.find("extend profile.x and profile.z") != std::string::npos);
 }
 
+TEST_CASE("a profile whose two contacts close in on each other ends in few Newton iterations") {
+  // Found by the fuzz target (tests/fuzz/corpus/slow_profile_closing.json): 12 samples, a deep
+  // dip after the highest. The coupled solve of the two bumps' contacts crept toward a merge at
+  // 0.009 of a contact length, its condition stuck at 6e-4 with accepted steps of 1e-5, for 60
+  // iterations of 0.36 s each, and the search repeated that set round after round (minutes; the
+  // search then reached its limit of 44 rounds). The flat-run rule (coupled_solve.cpp) ends such
+  // an iteration and names the closing pair (contacts_merge). The result need not be ok; it must
+  // be bounded and honest.
+  pu::profile_scene ps;
+  ps.material = {0.3, 1.0, 0.3, 0.2};
+  ps.load = 0.001;
+  ps.profile.x = {0.1, 0.4, 0.8, 1.2, 1.6, 2.0, 2.4, 2.8, 3.2, 3.6, 4.0, 4.4};
+  ps.profile.z = {0.01, 0.0, -0.01, 0.0, 0.01, 0.0, 0.0, 0.0, 0.02, 0.0, -1.01, 0.0};
+  if (punch_test::bem::sanitizer_build) return;  // 5 s in Release, ~30 s under ASan
+  const auto r = pu::solve_profile(ps, profile_options());
+  CAPTURE(r.diagnostics.status);
+  CHECK(r.diagnostics.iterations < 300);  // measured 140 in 10 rounds; thousands without the rule
+  CHECK(r.diagnostics.rounds < 20);
+  if (r.diagnostics.code == pu::status_code::ok) CHECK(r.diagnostics.residual < profile_options().acceptance);
+}
+
+TEST_CASE("solve_options::time_limit: a search stopped by it reports not_converged and says why") {
+  const auto ps = cosine_bumps(10, 0.3);
+  auto o = profile_options();
+  // 1 ns: out of time before the first Newton step of the first coupled round (the isolated
+  // contacts and the coarse prediction take far longer), so the outcome does not depend on the
+  // machine.
+  o.time_limit = 1e-9;
+  const auto r = pu::solve_profile(ps, o);
+  CAPTURE(r.diagnostics.status);
+  CHECK(r.diagnostics.code == pu::status_code::not_converged);
+  CHECK(r.diagnostics.status.find("time limit of 1e-09 s (solve_options::time_limit)") != std::string::npos);
+  CHECK(r.diagnostics.iterations == 0);
+  // The same search without the limit (the cosine bumps of the test above) is ok.
+  o.time_limit = 0;
+  CHECK(pu::solve_profile(ps, o).diagnostics.code == pu::status_code::ok);
+  for (const double bad : {-1.0, std::nan(""), HUGE_VAL}) {
+    o.time_limit = bad;
+    CAPTURE(bad);
+    CHECK_THROWS_AS(pu::solve_profile(ps, o), std::invalid_argument);
+  }
+}
+
 TEST_CASE("solve_profile refuses bad input naming the field") {
   pu::profile_scene ps;
   ps.profile.x = {0, 1, 2, 3, 4};

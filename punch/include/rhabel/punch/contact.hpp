@@ -285,6 +285,13 @@ struct solve_options {
   /// work of a solve stays on the calling thread; callers that solve many scenes at once (rhabel
   /// sweep) keep 1 and run scenes in parallel instead.
   std::size_t threads = 1;
+  /// Seconds after which a coupled solve (several contacts; the sampled profile's contact search)
+  /// stops and reports what it reached with status_code::not_converged and a message naming the
+  /// limit; 0 = no limit. Checked before each Newton step and each round of the contact search, so
+  /// a solve ends within about one step of it (a step costs milliseconds to a second). A one-contact
+  /// solve, which takes milliseconds, does not check it. The work done by a given time depends on
+  /// the machine: a result stopped by the limit is not reproducible, one that finished is.
+  double time_limit = 0;
 };
 
 /// What a result's evidence says (indentor_result::code, scene_result::diagnostics_t::code). A
