@@ -34,6 +34,7 @@
 
 #include <cerrno>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -205,6 +206,8 @@ void write_stdout(const run_outcome& outcome, bool compact) {
 
 int run(const solve_arguments& args) {
   if (args.csv && args.csv_prefix.empty()) throw input_error("solve: --csv needs a non-empty PREFIX");
+  // (CLI::Range lets NaN through: every comparison with it is false.)
+  if (!std::isfinite(args.time_limit)) throw input_error("solve: --time-limit must be a number of seconds in [0, 1e9]");
   const std::string source = args.scene_path == "-" ? "(stdin)" : "'" + args.scene_path + "'";
   // A relative "master_curve" path is relative to the scene file (to the working directory for stdin).
   const std::string base_dir =

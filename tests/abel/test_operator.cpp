@@ -257,6 +257,7 @@ TEST_CASE("cached Gauss-Jacobi rules: shared per (n, p, q), identical to a fresh
 // at n up to 2000 (degrees of solve_union) and alpha from 0 (lambda_n = lambda_0) to 0.999
 // ((1-alpha)_n/n! ~ n^(-alpha)/Gamma(1-alpha): 5e-7 at n = 2000), the oracle at every n < 64
 // and every 31st n beyond.
+#if RHABEL_TEST_MULTIPRECISION  // 50 digits: not in the sanitize build (tests/CMakeLists.txt)
 TEST_CASE("abel_operator::eigenvalues: ratio recurrence == single value == Gamma form, n <= 2000") {
   using mp = boost::multiprecision::cpp_bin_float_50;
   const std::size_t count = 2001;
@@ -293,3 +294,4 @@ TEST_CASE("abel_operator::eigenvalues: ratio recurrence == single value == Gamma
   const abel_operator<double> op(0.3, 0.3, -1.0, 1.0);
   CHECK(op.eigenvalues(0, op.exponents(edge::bounded, edge::bounded)).empty());
 }
+#endif  // RHABEL_TEST_MULTIPRECISION

@@ -230,6 +230,11 @@ done
 # bad options
 "$rhabel" solve "$tmp/scene.json" --grid 1 > "$tmp/stdout" 2> "$tmp/stderr"; rc=$?
 [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && grep -q -- "--grid" "$tmp/stderr" || fail "--grid 1: rc $rc, $(cat "$tmp/stderr")"
+for limit in -1 nan inf; do
+  "$rhabel" solve "$tmp/good.json" --time-limit "$limit" > "$tmp/stdout" 2> "$tmp/stderr"; rc=$?
+  [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && grep -q -- "--time-limit" "$tmp/stderr" \
+    || fail "--time-limit $limit: rc $rc, $(cat "$tmp/stderr")"
+done
 # unwritable CSV prefix: exit 2, nothing on stdout, no stray file
 "$rhabel" solve "$tmp/good.json" --csv "$tmp/no-such-dir/x" > "$tmp/stdout" 2> "$tmp/stderr"; rc=$?
 [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && grep -q -- "--csv" "$tmp/stderr" || fail "unwritable --csv: rc $rc, $(cat "$tmp/stderr")"

@@ -414,6 +414,7 @@ TEST_CASE("gauss_jacobi: mapped to [lo, hi], including tiny and huge intervals")
   }
 }
 
+#if RHABEL_TEST_MULTIPRECISION  // 50 digits: not in the sanitize build (tests/CMakeLists.txt)
 TEST_CASE("gauss_jacobi: cpp_bin_float_50 run of the recurrence path against the 60-digit table") {
   using mp = boost::multiprecision::cpp_bin_float_50;
   // Newton stops at a phase step below sqrt(eps)/16, leaving O(eps/256) in phase; the
@@ -445,6 +446,7 @@ TEST_CASE("gauss_jacobi: cpp_bin_float_50 run of the recurrence path against the
                                                     << " eps_50 (" << where << ")");
   CHECK(worst <= mp_tolerance);
 }
+#endif  // RHABEL_TEST_MULTIPRECISION
 
 TEST_CASE("gauss_jacobi: bad input throws std::domain_error naming the parameter") {
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -465,9 +467,11 @@ TEST_CASE("gauss_jacobi: bad input throws std::domain_error naming the parameter
   CHECK(message_of([] { gauss_jacobi<double>(5, 0.0, 0.0, 2.0, 1.0); }).find("hi = 1") != std::string::npos);
   CHECK(message_of([&] { gauss_jacobi<double>(5, 0.0, 0.0, nan, 1.0); }).find("lo = nan") != std::string::npos);
   CHECK(message_of([] { gauss_jacobi<double>(5, 0.0, 0.0, 0.0, HUGE_VAL); }).find("hi = inf") != std::string::npos);
+#if RHABEL_TEST_MULTIPRECISION  // 50 digits: not in the sanitize build (tests/CMakeLists.txt)
   CHECK_THROWS_AS(gauss_jacobi<boost::multiprecision::cpp_bin_float_50>(
                       3, 0, 0, gauss_jacobi_options{gauss_jacobi_method::asymptotic}),
                   std::invalid_argument);
+#endif  // RHABEL_TEST_MULTIPRECISION
 }
 
 TEST_CASE("gauss_jacobi: regression issue 14, exponents beyond 30 are refused (weights 0, NaN, inf, no convergence)") {
@@ -497,9 +501,11 @@ TEST_CASE("gauss_jacobi: regression issue 14, exponents beyond 30 are refused (w
             .find("p = 31") != std::string::npos);
   CHECK(message_of([] { gauss_jacobi<double>(50, 0.0, 31.0, -2.0, 5.0); }).find("q = 31") != std::string::npos);
   CHECK(message_of([] { gauss_jacobi<float>(3, 40.0f, 0.0f); }).find("p = 40") != std::string::npos);
+#if RHABEL_TEST_MULTIPRECISION  // 50 digits: not in the sanitize build (tests/CMakeLists.txt)
   CHECK(message_of([] {
           gauss_jacobi<boost::multiprecision::cpp_bin_float_50>(3, 0, 31);
         }).find("q = 31") != std::string::npos);
+#endif  // RHABEL_TEST_MULTIPRECISION
   // The limit itself is inside: n = 1, 2 closed forms above, the table at (30, *) and (*, 30).
   CHECK(gauss_jacobi<double>(3, 30.0, 30.0).size() == 3);
 }
@@ -603,6 +609,7 @@ TEST_CASE("gauss_jacobi: detail::tridiagonal_eigenvalues (Golub-Welsch starting 
   }
 }
 
+#if RHABEL_TEST_MULTIPRECISION  // 50 digits: not in the sanitize build (tests/CMakeLists.txt)
 TEST_CASE("gauss_jacobi: weight constants K_n / P_n(1)^2 on both sides of the product switch (n = 128 | 129)") {
   // Oracle: 2^(p+q+1) Gamma(p+1)^2 n! Gamma(n+q+1) / (Gamma(n+p+1) Gamma(n+p+q+1)) from
   // Boost's tgamma at 50 digits, each factor separately (the constants use products, glibc's
@@ -637,6 +644,7 @@ TEST_CASE("gauss_jacobi: weight constants K_n / P_n(1)^2 on both sides of the pr
     }
   }
 }
+#endif  // RHABEL_TEST_MULTIPRECISION
 
 // ---------------------------------------------------------------------------------------------
 // detail::endpoint_power: s^a c^b for a batch (anchor + series), against long double powl.

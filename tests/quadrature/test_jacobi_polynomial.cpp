@@ -96,6 +96,7 @@ TEST_CASE("jacobi_p_all agrees with jacobi_p, and Clenshaw with the direct sum")
   CHECK(std::abs(rq::jacobi_clenshaw(c, p, q, x) - direct) <= 64 * eps * magnitude);  // two O(K eps) sums
 }
 
+#if RHABEL_TEST_MULTIPRECISION  // 50 digits: not in the sanitize build (tests/CMakeLists.txt)
 TEST_CASE("orthogonality and norms by Gauss-Jacobi quadrature, 50 digits") {
   const bf50 tolerance = 1e-40;  // the rule is exact for degree 2n-1; 50-digit arithmetic
   for (auto [p, q] : std::vector<std::pair<double, double>>{{-0.5, 0.5}, {0.0, 0.0}, {5.0, 0.5}, {-0.999, 30.0}}) {
@@ -115,7 +116,9 @@ TEST_CASE("orthogonality and norms by Gauss-Jacobi quadrature, 50 digits") {
       }
   }
 }
+#endif  // RHABEL_TEST_MULTIPRECISION
 
+#if RHABEL_TEST_MULTIPRECISION  // 50 digits: not in the sanitize build (tests/CMakeLists.txt)
 TEST_CASE("Christoffel-Darboux identity, 50 digits") {
   // sum_{k<=n} P_k(x) P_k(y) / h_k = (P_{n+1}(x) P_n(y) - P_n(x) P_{n+1}(y)) / (A_n h_n (x - y)),
   // A_n = k_{n+1}/k_n = (2n+p+q+1)(2n+p+q+2) / (2 (n+1)(n+p+q+1)).
@@ -131,7 +134,9 @@ TEST_CASE("Christoffel-Darboux identity, 50 digits") {
                      (A * rq::jacobi_norm_squared(n, p, q) * (x - y));
   CHECK(abs(sum - right) <= bf50(1e-44) * abs(sum));
 }
+#endif  // RHABEL_TEST_MULTIPRECISION
 
+#if RHABEL_TEST_MULTIPRECISION  // 50 digits: not in the sanitize build (tests/CMakeLists.txt)
 TEST_CASE("derivative: (2n+p+q)(1-x^2) P_n' = n[(p-q) - (2n+p+q)x] P_n + 2(n+p)(n+q) P_{n-1}") {
   // DLMF 18.9.17 rearranged; independent of the formula P_n' = (n+p+q+1)/2 P_{n-1}^(p+1,q+1) used by the code.
   const bf50 p = bf50(-1) / 2, q = bf50(5);
@@ -145,6 +150,7 @@ TEST_CASE("derivative: (2n+p+q)(1-x^2) P_n' = n[(p-q) - (2n+p+q)x] P_n + 2(n+p)(
       CHECK(abs(left - right) <= bf50(1e-42) * (abs(left) + abs(right) + 1));
     }
 }
+#endif  // RHABEL_TEST_MULTIPRECISION
 
 TEST_CASE("connection and lowering identities, and the series versions") {
   const double p = 0.25, q = -0.999;
@@ -205,6 +211,7 @@ TEST_CASE("jacobi_coefficients: exact for polynomials, spectral for exp") {
   CHECK(max_abs(e) < 10);
 }
 
+#if RHABEL_TEST_MULTIPRECISION  // 50 digits: not in the sanitize build (tests/CMakeLists.txt)
 TEST_CASE("jacobi_integral_below: Rodrigues formula vs quadrature on [-1, x0], incomplete beta") {
   // Oracle: Gauss-Jacobi on [-1, x0] with weight (t + 1)^q and (1 - t)^p evaluated at the nodes,
   // exact up to the smooth factor (1-t)^p (high order rule, 50 digits).
@@ -233,7 +240,9 @@ TEST_CASE("jacobi_integral_below: Rodrigues formula vs quadrature on [-1, x0], i
   const double below = rq::jacobi_integral_below(0, 0.5, 0.0, tail, 2.0 - tail);
   CHECK(std::abs(below - 2 * std::sqrt(8.0) / 3) <= 4 * eps * below);
 }
+#endif  // RHABEL_TEST_MULTIPRECISION
 
+#if RHABEL_TEST_MULTIPRECISION  // 50 digits: not in the sanitize build (tests/CMakeLists.txt)
 TEST_CASE("jacobi_step_coefficients and jacobi_ramp_coefficients reproduce the functions") {
   // The step series converges in L2_w; check the moments instead: the coefficients are exact moments.
   const double p = 0.5, q = -0.5, x0 = 0.3;
@@ -253,6 +262,7 @@ TEST_CASE("jacobi_step_coefficients and jacobi_ramp_coefficients reproduce the f
     CHECK(std::abs(ramp[m] - static_cast<double>(r) / h) <= 64 * eps * (1 + std::abs(ramp[m])));
   }
 }
+#endif  // RHABEL_TEST_MULTIPRECISION
 
 TEST_CASE("bad input names function, parameter and value") {
   CHECK_THROWS_AS(rq::jacobi_p(3, -1.0, 0.0, 0.2), std::domain_error);
@@ -267,6 +277,7 @@ TEST_CASE("bad input names function, parameter and value") {
                                            {"jacobi_ramp_coefficients", "one_minus_x0 = 2.5", "[0, 2]"});
 }
 
+#if RHABEL_TEST_MULTIPRECISION  // 50 digits: not in the sanitize build (tests/CMakeLists.txt)
 namespace {
 
 // Independent 50-digit oracle for the switch tests: the plain recurrence in the undivided
@@ -285,7 +296,9 @@ bf50 recurrence_oracle(std::size_t n, const bf50& p, const bf50& q, const bf50& 
 }
 
 }  // namespace
+#endif  // RHABEL_TEST_MULTIPRECISION
 
+#if RHABEL_TEST_MULTIPRECISION  // 50 digits: not in the sanitize build (tests/CMakeLists.txt)
 TEST_CASE("jacobi_p and jacobi_clenshaw on both sides of their algorithm switches") {
   // Switches: |x| = 1/2 (plain recurrence / difference form; Clenshaw / forward sum) and
   // n^2 (1 -+ x)/2 = 1 (difference form / endpoint series). Tolerance 8 (n + 10) eps relative
@@ -316,6 +329,7 @@ TEST_CASE("jacobi_p and jacobi_clenshaw on both sides of their algorithm switche
     }
   }
 }
+#endif  // RHABEL_TEST_MULTIPRECISION
 
 TEST_CASE("jacobi_weight: regression, complements above 2 and NaN are rejected (the message said [0, 2])") {
   using rhabel::quadrature::jacobi_weight;
