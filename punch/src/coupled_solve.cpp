@@ -77,6 +77,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <exception>
 #include <functional>
@@ -404,6 +405,16 @@ struct problem {
   std::size_t fixed_degree = 0;
   // The far field's tree, kept across evaluations (copies of the problem share it).
   std::shared_ptr<far_tree> tree = std::make_shared<far_tree>();
+  // The degree the last adaptive evaluation needed (copies share it). The next one starts its
+  // ladder one rung (x 2/3) below, so that the degree can also fall: the edges move little
+  // between evaluations, and near contacts need high degrees (gap 1e-3 L: ~400 at 1e-12), which
+  // the ladder from 16 reaches after 9 solves, each with its residual (measured at that gap:
+  // 190 ms an evaluation from 16, 145 ms from the hint; starting AT the hint, the degree only
+  // grows, and one overshoot toward a merge kept every later evaluation at the cap of 600).
+  std::shared_ptr<std::atomic<std::size_t>> degree_hint = std::make_shared<std::atomic<std::size_t>>(0);
+  // > the requested tolerance: the accuracy to which an evaluation solves the correction (an
+  // inexact Newton step far from the solution; see newton_iteration).
+  double accuracy = 0;
 };
 
 bool is_loaded(const problem& pb, std::size_t i) { return i < pb.loaded.size() && pb.loaded[i]; }
@@ -492,16 +503,19 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
   if (!any_coupling && !any_face) return out;
   // Residual tolerance of the correction relative to ITS data, so that the error relative to the
   // original data is ~ the tolerance: a weak coupling (D small) needs less relative accuracy.
-  const double tol = cx.options.tolerance;
+  const double tol = std::max(cx.options.tolerance, pb.accuracy);
   o.residual_tolerance = std::clamp(10 * tol / std::max(worst_ratio, 1e-300), 10 * tol, 1e-4);
-  o.degree = pb.fixed_degree > 0 ? pb.fixed_degree : 16;
+  constexpr std::size_t first_degree = 16;
+  o.degree = pb.fixed_degree > 0 ? pb.fixed_degree : std::max(first_degree, 2 * pb.degree_hint->load() / 3);
   o.residual_points = pb.fixed_degree > 0 ? 0 : 8;
   const std::size_t K = intervals.size();
   // Memory: at most 1 GiB for the union's system (the far route's estimate when it is used).
   o.max_memory_bytes = std::size_t(1) << 30;
   const std::size_t memory_degree = far ? abel::detail::union_far_degree_limit(*far->field(), o.max_memory_bytes)
                                         : abel::detail::union_degree_limit<double>(K, o.max_memory_bytes);
-  o.max_degree = pb.fixed_degree > 0 ? 0 : std::max<std::size_t>(o.degree, std::min<std::size_t>(600, memory_degree));
+  const std::size_t top_degree = std::max(first_degree, std::min<std::size_t>(600, memory_degree));
+  if (pb.fixed_degree == 0) o.degree = std::min(o.degree, top_degree);
+  o.max_degree = pb.fixed_degree > 0 ? 0 : std::max(o.degree, top_degree);
   o.homogeneous = false;  // the loads are imposed through o.loads; the homogeneous solutions are not used
   // From iterative_from contacts: GMRES, with the far part through the particulars' far field
   // (the same intervals): 11-19 products for rows of 10-300 parabolas 1.5 L apart.
@@ -509,6 +523,7 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
   if (far) o.far_field = far->field();
   const auto sol = abel::solve_union(cx.par, intervals, data, o);
   out.degree = sol.degree;
+  if (pb.fixed_degree == 0) pb.degree_hint->store(sol.degree);
   out.correction_residual = sol.residual * std::max(worst_ratio, 0.0);
   out.correction_converged = sol.status == abel::solve_status::converged;
   for (std::size_t k = 0; k < K; ++k) {
@@ -927,9 +942,21 @@ newton_result newton(const problem& pb, const edges& start) {
   }
 }
 
+/// Inexact Newton: far from the solution the conditions need not be evaluated to the tolerance. An
+/// evaluation solves the correction to inexact_ratio times the largest condition at the last
+/// accepted point (at most first_accuracy, at least the tolerance): the error it makes in the
+/// conditions is then a small fraction of their size, and near the solution it is the tolerance.
+/// The correction's degree follows (gap 1e-3 L: ~400 points per contact at 1e-10, fewer at 1e-5).
+constexpr double inexact_ratio = 1e-3;
+constexpr double first_accuracy = 1e-5;
+constexpr double trust_factor = 10;
+
 newton_result newton_iteration(const problem& pb, const edges& start) {
   const unknowns u = list_unknowns(pb);
-  const double tol = pb.cx->options.tolerance;
+  const double tol = std::max(pb.cx->options.tolerance, pb.accuracy);
+  const auto accuracy_for = [&](double r) { return std::max(tol, std::min(first_accuracy, inexact_ratio * r)); };
+  problem q = pb;  // the evaluations' problem: pb at the accuracy of the current step
+  q.accuracy = u.state.empty() ? pb.accuracy : accuracy_for(std::numeric_limits<double>::infinity());
   newton_result out;
   out.x = start;
   for (std::size_t i = 0; i < pb.roles.size(); ++i)
@@ -940,8 +967,22 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
     return out;
   }
   evaluation ev;
+  // Conditions evaluated at an accuracy are trusted when they exceed trust_factor times it;
+  // below, the point is evaluated again, more accurately, until they do or the accuracy is the
+  // tolerance (a superlinear step can land far below the accuracy it was evaluated at; compared
+  // with that value, the next, accurate evaluation would never show a decrease).
+  double ev_accuracy = q.accuracy;
+  const auto sharpen = [&](const edges& x) {
+    while (ev_accuracy > tol && ev.r.lpNorm<Eigen::Infinity>() < trust_factor * ev_accuracy) {
+      q.accuracy = accuracy_for(ev.r.lpNorm<Eigen::Infinity>());  // at most inexact_ratio trust_factor ev_accuracy
+      ev = evaluate(q, u, x.a, x.b);
+      ev_accuracy = q.accuracy;
+    }
+  };
   try {
-    ev = evaluate(pb, u, out.x.a, out.x.b);
+    ev = evaluate(q, u, out.x.a, out.x.b);
+    ev_accuracy = q.accuracy;
+    if (!u.state.empty()) sharpen(out.x);
   } catch (const merge_error& m) {
     out.failure = m.what();
     out.merged = std::make_pair(m.first, m.second);
@@ -1001,10 +1042,11 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
     bool accepted = false;
     evaluation next;
     edges y;
+    q.accuracy = accuracy_for(ev.r.lpNorm<Eigen::Infinity>());
     for (int tries = 0; tries < 12; ++tries) {
       y = moved(pb, u, out.x, t * dx);
       try {
-        next = evaluate(pb, u, y.a, y.b);
+        next = evaluate(q, u, y.a, y.b);
         accepted = next.r.allFinite() &&
                    next.r.lpNorm<Eigen::Infinity>() < (1 - 1e-4 * t) * ev.r.lpNorm<Eigen::Infinity>() + 1e-14;
       } catch (const merge_error& m) {
@@ -1043,6 +1085,8 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
     out.x = y;
     const double reduction = next.r.lpNorm<Eigen::Infinity>() / ev.r.lpNorm<Eigen::Infinity>();
     ev = std::move(next);
+    ev_accuracy = q.accuracy;
+    sharpen(out.x);
     ++since_fresh;
     if (reduction > flat_gain && step > 10 * tol) {
       if (++flat == flat_steps && !refreshed_in_flat) {
@@ -1083,11 +1127,13 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
       out.failure = "the edge iteration stalled";
       break;
     }
-    // Otherwise (coloured Jacobian, 2 full_width evaluations): Broyden's updates from a start
-    // far from the solution crawl (rows of 100 parabolas: the condition fell by less than half per
-    // step for 12 steps, then converged in 2 after a new Jacobian); a new one when a step gains
-    // less than a factor 2 two steps after the last.
-    if (colouring && reduction > 0.5 && since_fresh >= 2 && step > 10 * tol) {
+    // Otherwise Broyden's updates from a start far from the solution crawl (rows of 100
+    // parabolas: the condition fell by less than half per step for 12 steps, then converged in 2
+    // after a new Jacobian; two parabolas 1e-3 L apart, the Jacobian taken at the continuation's
+    // last gap of 1e-2 L: 12 steps each gaining ~ a factor 1.5); a new one when a step gains less
+    // than a factor 2 two steps after the last. Its columns are differenced at a fixed degree
+    // without a residual: 2 full_width evaluations when coloured, else one per unknown.
+    if (reduction > 0.5 && (colouring || t == 1) && since_fresh >= 2 && step > 10 * tol) {
       J.reset(jacobian(pb, u, out.x, ev));
       fresh = true;
       since_fresh = 0;
@@ -1100,7 +1146,8 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
         break;
       }
     }
-    if (step <= 10 * tol) {
+    // Converged when the step is within the tolerance and the point was evaluated to it.
+    if (step <= 10 * tol && ev_accuracy <= tol) {
       out.converged = true;
       break;
     }
