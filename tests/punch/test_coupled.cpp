@@ -239,6 +239,44 @@ TEST_CASE("close contacts are solved, not refused") {
   }
 }
 
+TEST_CASE("nearly touching contacts: the inexact Newton iteration ends on an evaluation at the tolerance") {
+  // Two parabolas (alpha 0.3, R = 1, loads 0.3 pi/2 Gamma(1 - alpha)) whose coupled contacts are
+  // ~1e-2 and ~1e-3 of a contact length apart (apex distances from study_multi_contact). Far
+  // from the solution the conditions are evaluated only to 1e-3 of their size (at most 1e-5); the
+  // result must still be the solution at the tolerance. Oracle: the same scene at a tolerance ten
+  // times tighter (self-convergence; the reference's own error is <= 3e-11 L at these gaps,
+  // studies/README.md), and the report's independent residual of (8).
+  // The iteration count guards the re-evaluation of a point whose conditions came out below the
+  // accuracy they were evaluated at (without it, alpha 0.7 at 1e-3 L stalled in every continuation
+  // step: 212 iterations instead of 68).
+  struct close_case {
+    double alpha, D, gap;
+  };
+  constexpr double self_convergence_tol = 1e-10;  // of L: 100 x the tolerance, above the reference's error
+  for (const close_case c : {close_case{0.3, 0.258122412302, 1e-2}, close_case{0.7, 0.00985230297261, 1e-3}}) {
+    CAPTURE(c.alpha);
+    if (c.gap < 1e-2 && punch_test::bem::sanitizer_build) continue;  // 1.6 s in Release, ~20 s under ASan
+    const double load = 0.3 * pi / 2 * boost::math::tgamma(1 - c.alpha);
+    const scene s = two(material{c.alpha, 1.0, 0.0, 0.0}, indentor{parabolic{1.0}, load, 0.0},
+                        indentor{parabolic{1.0}, load, c.D});
+    solve_options tight;
+    tight.tolerance = 1e-13;
+    const auto r = solve(s), ref = solve(s, tight);
+    REQUIRE(r.diagnostics.code == status_code::ok);
+    REQUIRE(ref.diagnostics.code == status_code::ok);
+    const double L = std::min(r.indentors[0].contact_length, r.indentors[1].contact_length);
+    const double gap = r.indentors[1].a - r.indentors[0].b;
+    CHECK(gap > 0.5 * c.gap * L);
+    CHECK(gap < 2 * c.gap * L);
+    for (std::size_t i = 0; i < 2; ++i) {
+      CHECK(std::abs(r.indentors[i].a - ref.indentors[i].a) < self_convergence_tol * L);
+      CHECK(std::abs(r.indentors[i].b - ref.indentors[i].b) < self_convergence_tol * L);
+    }
+    CHECK(r.diagnostics.residual < 1e-10);
+    CHECK(r.diagnostics.iterations < 100);
+  }
+}
+
 TEST_CASE("solve_options::time_limit stops a coupled solve with not_converged and says so") {
   const material m{0.3, 1.0, 0.3, 0.0};
   const indentor lone{parabolic{1.0}, 0.1, 0.0};
