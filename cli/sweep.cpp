@@ -304,7 +304,7 @@ std::string row_prefix(const sweep_spec& sweep, std::size_t row, row_format form
   return out;
 }
 
-std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format format, bool& ok) {
+std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format format, bool& ok, double time_limit) {
   const auto columns = row_columns(sweep);
   const std::size_t first_output = 1 + sweep.axes.size();
   std::vector<std::string> fields(columns.size() - first_output);  // status .. message, as text ("" = empty)
@@ -324,7 +324,9 @@ std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format forma
       throw;
     }
     std::string warning;
-    const run_outcome outcome = run_scene_with_material(scene, run_request{}, &warning);
+    run_request request;
+    request.time_limit = time_limit;
+    const run_outcome outcome = run_scene_with_material(scene, request, &warning);
     const auto& r = outcome.result;
     const auto& diag = r.at("diagnostics");
     status = diag.at("status").get<std::string>();

@@ -1,4 +1,4 @@
-// rhabel sweep SWEEP.json --out FILE.csv [--jsonl] [--threads N] [--print-scenes] [--quiet]
+// rhabel sweep SWEEP.json --out FILE.csv [--jsonl] [--threads N] [--time-limit S] [--print-scenes] [--quiet]
 //
 // Solves every scene of a sweep (cli/sweep.hpp) and writes one row per scene: CSV with a header, or
 // JSON lines (--jsonl: one object per line, the same keys). Rows: row, the swept values, status,
@@ -21,6 +21,10 @@
 // their lines to rank 0, the only one that touches FILE, so the output is the same as one process's
 // (same rows, same order, same bits but the seconds column).
 //
+// --time-limit S: each row's solve of several contacts stops after S seconds and its row reports
+// what it reached (status not_converged; punch::solve_options::time_limit), so one slow scene does
+// not hold up a long sweep. Such a row depends on the machine's speed.
+//
 // Progress (rows done, rate, remaining time) goes to stderr only when stderr is a terminal
 // (--quiet silences it). Exit codes: 0 every row ok, 3 every row written but some not ok, 2 bad
 // sweep file, arguments, a FILE from another sweep, or a failed write. Under mpirun only rank 0
@@ -33,6 +37,7 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <cmath>
 #include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
@@ -65,6 +70,7 @@ struct sweep_arguments {
   std::string out;
   bool jsonl = false;
   std::size_t threads = 0;
+  double time_limit = 0;  // seconds per row's solve; 0 = none
   bool print_scenes = false;
   bool quiet = false;
 };
@@ -205,8 +211,9 @@ struct finished_row {
 
 class work_pool {
  public:
-  work_pool(const sweep_spec& sweep, row_format format, std::vector<std::size_t> rows, std::size_t threads)
-      : sweep_(sweep), format_(format), rows_(std::move(rows)) {
+  work_pool(const sweep_spec& sweep, row_format format, std::vector<std::size_t> rows, std::size_t threads,
+            double time_limit)
+      : sweep_(sweep), format_(format), rows_(std::move(rows)), time_limit_(time_limit) {
     threads = std::max<std::size_t>(1, std::min(threads, rows_.size()));
     if (rows_.empty()) return;
     for (std::size_t t = 0; t < threads; ++t) workers_.emplace_back([this] { work(); });
@@ -230,7 +237,7 @@ class work_pool {
       const std::size_t k = next_.fetch_add(1);
       if (k >= rows_.size() || stop_) return;
       bool ok = false;
-      std::string line = solve_row(sweep_, rows_[k], format_, ok);
+      std::string line = solve_row(sweep_, rows_[k], format_, ok, time_limit_);
       {
         std::lock_guard lock(mutex_);
         done_.push_back({rows_[k], std::move(line)});
@@ -241,6 +248,7 @@ class work_pool {
   const sweep_spec& sweep_;
   row_format format_;
   std::vector<std::size_t> rows_;
+  double time_limit_ = 0;
   std::atomic<std::size_t> next_{0};
   std::atomic<bool> stop_{false};
   std::mutex mutex_;
@@ -292,6 +300,8 @@ int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
     return exit_ok;
   }
   if (args.out.empty()) throw input_error("sweep: --out FILE is required (or --print-scenes)");
+  // (CLI::Range lets NaN through: every comparison with it is false.)
+  if (!std::isfinite(args.time_limit)) throw input_error("sweep: --time-limit must be a number of seconds in [0, 1e9]");
   const std::string header = header_line(sweep, format);
 
   // Rank 0 reads what is there and decides what is missing; the list goes to every rank.
@@ -345,7 +355,7 @@ int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
   std::map<std::size_t, std::string> lines = std::move(existing.lines);
   std::size_t received = 0;
   {
-    work_pool pool(sweep, format, mine, threads);
+    work_pool pool(sweep, format, mine, threads, args.time_limit);
     std::size_t local_done = 0;
     auto store = [&](finished_row&& r) {  // rank 0 only
       write_all(fd, r.line, args.out);
@@ -416,6 +426,10 @@ void add_sweep_command(CLI::App& app, command_action& action) {
   cmd->add_option("--out", args->out, "output file (rows appended as they complete, sorted at the end)");
   cmd->add_flag("--jsonl", args->jsonl, "write JSON lines instead of CSV");
   cmd->add_option("--threads", args->threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+  cmd->add_option("--time-limit", args->time_limit,
+                  "seconds after which a row's solve of several contacts stops and its row reports what it "
+                  "reached, status not_converged (default 0: no limit)")
+      ->check(CLI::Range(0.0, 1e9));
   cmd->add_flag("--print-scenes", args->print_scenes, "print each row's scene as one JSON line and stop");
   cmd->add_flag("--quiet", args->quiet, "no progress bar");
   cmd->callback([&action, args] {

@@ -189,6 +189,30 @@ printf 'omega,E_storage,E_loss\n1,1,0\n2,2,0\n2,3,0\n' > "$tmp/broken_curve.csv"
 bad_sweep bad_curve "row 4, column 1 (omega)" "{\"scene\": {\"material\": {\"master_curve\": \"broken_curve.csv\", \"nu\": 0.5, \"coulomb\": 0}, \"speed\": 1, \"indentors\": [{\"shape\": \"flat\", \"width\": 0.01, \"load\": 1}]}, \"axes\": [{\"path\": \"speed\", \"values\": [1]}]}"
 bad_sweep unknown "sweeps is not a known field" "{\"scene\": $scene, \"sweeps\": 1, \"axes\": [{\"path\": \"speed\", \"values\": [1]}]}"
 
+# --- --time-limit: every row of several contacts stops there, and says so; bad values refused -----
+cat > "$tmp/two.json" <<'JSON'
+{"scene": {"material": {"alpha": 0.3, "E1": 1.0, "nu": 0.0, "coulomb": 0.0}, "speed": 1.0,
+           "indentors": [{"shape": "parabolic", "radius": 1.0, "load": 0.6, "apex": 0.0},
+                         {"shape": "parabolic", "radius": 1.0, "load": 0.6, "apex": 0.9}]},
+ "axes": [{"path": "material.alpha", "values": [0.3, 0.5]}]}
+JSON
+"$rhabel" sweep "$tmp/two.json" --out "$tmp/limited.csv" --time-limit 1e-9 2> "$tmp/err"; rc=$?
+[ "$rc" -eq 3 ] || fail "--time-limit 1e-9: exit $rc, expected 3 ($(cat "$tmp/err"))"
+"$py" - "$tmp/limited.csv" <<'PY' || fail "--time-limit 1e-9: rows (see above)"
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1], newline="")))
+assert len(rows) == 2, rows
+for r in rows:
+    assert r["status"] == "not_converged" and "time limit" in r["message"], r
+PY
+"$rhabel" sweep "$tmp/two.json" --out "$tmp/unlimited.csv" --time-limit 0 2> "$tmp/err" \
+  || fail "--time-limit 0: exit $? ($(cat "$tmp/err"))"
+for limit in -1 nan inf; do
+  "$rhabel" sweep "$tmp/two.json" --out "$tmp/bad_limit.csv" --time-limit "$limit" > /dev/null 2> "$tmp/err"; rc=$?
+  [ "$rc" -eq 2 ] && grep -q -- "--time-limit" "$tmp/err" && [ ! -e "$tmp/bad_limit.csv" ] \
+    || fail "--time-limit $limit: rc $rc, $(cat "$tmp/err")"
+done
+
 # --- the shipped example runs ---------------------------------------------------------------------
 "$rhabel" sweep "$src/examples/friction_speed_sweep.json" --out "$tmp/friction.csv" 2> "$tmp/err" \
   || fail "examples/friction_speed_sweep.json: exit $? ($(cat "$tmp/err"))"
