@@ -35,7 +35,8 @@ friction-map: build
 	@build/bin/rhabel sweep examples/friction_speed_sweep.json --out out/friction_speed.csv --quiet
 	@/usr/bin/python3 scripts/plot_sweep.py out/friction_speed.csv out/friction_speed.png
 
-# Address + undefined-behaviour sanitizers over the whole suite (CI runs this too).
+# Address + undefined-behaviour sanitizers over the whole suite (CI runs this too; the header-only
+# modules' tests with ASan alone, tests/CMakeLists.txt).
 test-sanitize: deps
 	@cmake --preset sanitize >/dev/null
 	@cmake --build --preset sanitize -j $(JOBS)
