@@ -164,12 +164,13 @@
 //     ~0.3 ms (65 points), the 1000 samples ~0.11 ms (their series summed four points at a time,
 //     quadrature::jacobi_series::evaluate), the independent
 //     residual 0.1-0.3 ms. Several indentors (build/bin/study_multi_contact, studies/README.md; two
-//     parabolas, all `ok`, edges and C_f to ~1e-12): gap ~ L 3-10 ms, 0.1 L 48-610 ms, 0.01 L
-//     0.6-2.4 s, 1e-3 L 3-18 s (the correction's degree grows like sqrt(L/gap) and each Newton
-//     evaluation is a dense solve); parabola + wedge 30 ms - 1 s; rows of N parabolas 1.5 L apart
-//     (alpha 0.3, tolerance 1e-10; loads imposed above 5 contacts; build/bin/study_multi_contact
-//     --rows-only, studies/README.md): N = 5 21 ms (14 Newton iterations), 10 41 ms (13), 40 0.22 s
-//     (10), 100 0.83 s (12), 300 4.3 s (24), 1000 23 s (22; peak RSS 172 MB). From 6 contacts on,
+//     parabolas, all `ok`, edges and C_f to ~1e-12): gap ~ L 1.6-2.7 ms, 0.1 L 12-81 ms, 0.01 L
+//     81-225 ms, 1e-3 L 0.83-3.6 s (the correction's degree grows like sqrt(L/gap) and each Newton
+//     evaluation is a dense solve; far from the solution it is solved inexactly); parabola + wedge
+//     30-400 ms; rows of N parabolas 1.5 L apart (alpha 0.3, tolerance 1e-10; loads imposed above 5
+//     contacts; build/bin/study_multi_contact --rows-only, studies/README.md): N = 5 15 ms (10
+//     Newton iterations), 10 28 ms (13), 40 0.16 s (10), 100 0.51 s (12), 300 2.7 s (24), 1000 16 s
+//     (22; peak RSS 194 MB). From 6 contacts on,
 //     separated contacts act through abel's far field (abel/detail/far_field.hpp: the coupling
 //     data, the union's GMRES products without an assembled matrix, the residuals, the surface
 //     displacement), so an evaluation costs O(N) and memory O(N). Against the
