@@ -17,7 +17,10 @@ build: deps
 	@cmake --preset release >/dev/null
 	@cmake --build --preset release -j $(JOBS)
 
-demo: build
+# The demo builds the command line only (the suite, studies and Python package are `make test`'s).
+demo: deps
+	@cmake --preset release >/dev/null
+	@cmake --build --preset release -j $(JOBS) --target rhabel_cli
 	@bash scripts/demo.sh
 
 # make test also builds `rhabel sweep` with MPI (RHABEL_WITH_MPI) and runs it under mpirun
