@@ -15,7 +15,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdlib>
 #include <functional>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -71,6 +73,27 @@ inline std::string one_line(std::string_view text) {
     }
   }
   return out;
+}
+
+/// The check of a floating-point option: a number in [lo, hi] (with lo_open, in (lo, hi]). Unlike
+/// CLI::Range and CLI::PositiveNumber it refuses NaN (every comparison with NaN is false, so those
+/// let it through to the solver, where it surfaced as a non-ok result or an internal parameter's
+/// message); CLI11 reports the failure naming the option (exit code 2).
+inline CLI::Validator number_in(double lo, double hi, bool lo_open = false) {
+  const bool bounded = hi < std::numeric_limits<double>::max();
+  const std::string range = bounded ? (lo_open ? "(" : "[") + CLI::detail::to_string(lo) + ", " +
+                                          CLI::detail::to_string(hi) + "]"
+                                    : std::string(lo_open ? "> " : ">= ") + CLI::detail::to_string(lo);
+  return CLI::Validator(
+      [lo, hi, lo_open, bounded, range](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0') return "Value " + text + " is not a number";
+        const bool above_lo = lo_open ? v > lo : v >= lo;
+        if (!(above_lo && v <= hi)) return "Value " + text + (bounded ? " not in " : " not ") + range;
+        return {};
+      },
+      bounded ? "FLOAT in " + range : "FLOAT " + range);
 }
 
 /// What a subcommand runs once the command line has been parsed; returns the exit code.

@@ -18,6 +18,7 @@
 #include <cstring>
 #include <iostream>
 #include <memory>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -109,14 +110,14 @@ void add_fit_material_command(CLI::App& app, command_action& action) {
       "f_hz,E_storage,E_loss or omega,E_abs,tan_delta) at omega0 = U/L.");
   cmd->footer(exit_code_help);
   cmd->add_option("CURVE", args->curve_path, "master curve (CSV)")->required();
-  cmd->add_option("--speed", args->speed, "sliding speed U")->required()->check(CLI::PositiveNumber);
-  cmd->add_option("--length", args->length, "contact length L (omega0 = U/L)")->required()->check(CLI::PositiveNumber);
+  cmd->add_option("--speed", args->speed, "sliding speed U")->required()->check(number_in(0.0, std::numeric_limits<double>::max(), true));
+  cmd->add_option("--length", args->length, "contact length L (omega0 = U/L)")->required()->check(number_in(0.0, std::numeric_limits<double>::max(), true));
   auto* temperature = cmd->add_option("--temperature", args->temperature, "temperature (needs --wlf)");
   cmd->add_option("--wlf", args->wlf, "WLF constants C1,C2,T_ref of the curve")->delimiter(',')->expected(3);
   cmd->add_option("--window-decades", args->window, "half width of the fit window in decades (default 0.5)")
-      ->check(CLI::Range(0.01, 5.0));
+      ->check(number_in(0.01, 5.0));
   cmd->add_option("--threshold", args->threshold, "warning threshold on |alpha_slope - alpha_tan_delta| (default 0.05)")
-      ->check(CLI::Range(1e-6, 1.0));
+      ->check(number_in(1e-6, 1.0));
   cmd->add_flag("--json", args->json, "print JSON");
   cmd->callback([&action, args, temperature] {
     args->has_temperature = temperature->count() > 0;

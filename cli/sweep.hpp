@@ -70,6 +70,6 @@ std::string row_prefix(const sweep_spec& sweep, std::size_t row, row_format form
 /// Solves row i and returns its whole line (with '\n'); never throws for a failed scene (the row
 /// then carries its status and message). `ok` is set to whether the status is "ok". time_limit:
 /// punch::solve_options::time_limit of each row's solve (seconds, 0 = none).
-std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format format, bool& ok, double time_limit = 0);
+std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format format, bool& ok, double time_limit);
 
 }  // namespace rhabel::cli

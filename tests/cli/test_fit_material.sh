@@ -81,6 +81,15 @@ rm -f "$tmp/missing.csv"
 [ "$rc" -eq 2 ] && grep -q "cannot read master curve" "$tmp/err" || fail "missing file: exit $rc, $(cat "$tmp/err")"
 "$rhabel" fit-material "$tmp/exact.csv" --speed 1e9 --length 1e-3 > /dev/null 2> "$tmp/err"; rc=$?
 [ "$rc" -eq 2 ] && grep -q "outside the master curve's range" "$tmp/err" || fail "omega0 out of range: exit $rc, $(cat "$tmp/err")"
+# Non-numbers and numbers outside an option's range: exit 2, the option named (NaN too, which
+# CLI11's own range checks let through).
+for opt in "--speed nan" "--speed 0" "--speed inf" "--length nan" "--length -1" "--window-decades nan" "--threshold nan"; do
+  set -- $opt
+  args=(--speed 0.02 --length 1e-3)
+  case "$1" in --speed) args=(--speed "$2" --length 1e-3) ;; --length) args=(--speed 0.02 --length "$2") ;; *) args+=("$1" "$2") ;; esac
+  "$rhabel" fit-material "$tmp/exact.csv" "${args[@]}" > /dev/null 2> "$tmp/err"; rc=$?
+  [ "$rc" -eq 2 ] && grep -q -- "$1" "$tmp/err" || fail "$opt: exit $rc, $(cat "$tmp/err")"
+done
 "$rhabel" fit-material "$tmp/exact.csv" --speed 1 --length 1 --temperature 40 > /dev/null 2> "$tmp/err"; rc=$?
 [ "$rc" -eq 2 ] || fail "--temperature without --wlf: exit $rc"
 

@@ -235,6 +235,11 @@ for limit in -1 nan inf; do
   [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && grep -q -- "--time-limit" "$tmp/stderr" \
     || fail "--time-limit $limit: rc $rc, $(cat "$tmp/stderr")"
 done
+for acceptance in nan 1 0 abc; do
+  "$rhabel" solve "$tmp/good.json" --acceptance "$acceptance" > "$tmp/stdout" 2> "$tmp/stderr"; rc=$?
+  [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && grep -q -- "--acceptance" "$tmp/stderr" \
+    || fail "--acceptance $acceptance: rc $rc, $(cat "$tmp/stderr")"
+done
 # unwritable CSV prefix: exit 2, nothing on stdout, no stray file
 "$rhabel" solve "$tmp/good.json" --csv "$tmp/no-such-dir/x" > "$tmp/stdout" 2> "$tmp/stderr"; rc=$?
 [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && grep -q -- "--csv" "$tmp/stderr" || fail "unwritable --csv: rc $rc, $(cat "$tmp/stderr")"
