@@ -5,7 +5,7 @@
 MAKEFLAGS += --no-print-directory
 JOBS ?= $(shell nproc 2>/dev/null || echo 2)
 
-.PHONY: demo test deps deps-mpi build build-mpi sanitize test-sanitize test-fuzz studies bench friction-map clean
+.PHONY: demo test deps deps-mpi configure build build-mpi sanitize test-sanitize test-fuzz studies bench friction-map clean
 
 deps:
 	@bash scripts/install-deps.sh
@@ -13,13 +13,14 @@ deps:
 deps-mpi:
 	@bash scripts/install-deps.sh --mpi
 
-build: deps
+configure: deps
 	@cmake --preset release >/dev/null
+
+build: configure
 	@cmake --build --preset release -j $(JOBS)
 
 # The demo builds the command line only (the suite, studies and Python package are `make test`'s).
-demo: deps
-	@cmake --preset release >/dev/null
+demo: configure
 	@cmake --build --preset release -j $(JOBS) --target rhabel_cli
 	@bash scripts/demo.sh
 
