@@ -63,6 +63,7 @@
 #include "rhabel/quadrature/gauss_jacobi.hpp"
 #include "rhabel/quadrature/jacobi_polynomial.hpp"
 
+#include <Eigen/Dense>
 #include <boost/math/constants/constants.hpp>
 #include <boost/math/special_functions/beta.hpp>
 #include <boost/math/special_functions/gamma.hpp>
@@ -72,6 +73,7 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 namespace rhabel::abel {
@@ -386,57 +388,44 @@ class abel_operator {
       r_gam_ = boost::math::tgamma(1 + alpha) * exp(-alpha * E_gam_);
     }
 
+    /// A g(s) for g = w S. S is called as S(x), or as S(x, 1 + x, 1 - x) when it takes three
+    /// arguments (the distances to the ends without the rounding of x: a factor with a pole at
+    /// distance d beyond an end needs them to ~eps relative instead of eps/d). beyond_lo,
+    /// beyond_hi (reference units, default none): distances beyond x = -1 and x = +1 of
+    /// singularities of S (the poles of detail/layered_union.hpp); the panels are graded toward
+    /// them as toward s. Used inside [lo, hi] only.
     template <class S>
-    Real operator()(S&& smooth, const Real& s) const {
-      using std::log;
-      using std::pow;
+    Real operator()(S&& smooth_in, const Real& s, const Real& beyond_lo = std::numeric_limits<Real>::infinity(),
+                    const Real& beyond_hi = std::numeric_limits<Real>::infinity()) const {
+      const auto smooth3 = [&](const Real& x, const Real& one_plus_x, const Real& one_minus_x) -> Real {
+        if constexpr (std::is_invocable_v<S&, const Real&, const Real&, const Real&>)
+          return smooth_in(x, one_plus_x, one_minus_x);
+        else
+          return smooth_in(x);
+      };
       const abel_operator& op = op_;
       if (!(s > op.lo_) || !(s < op.hi_)) {
         if (s == op.lo_ || s == op.hi_)
           detail::throw_bad_parameter("abel_operator::apply_by_quadrature", "s", s,
                                       "s != lo, hi (the one-sided integrals are singular at the ends)");
-        return op.apply_outside(smooth, gam_, del_, degree_hint_, s);
+        return op.apply_outside([&](const Real& x) { return smooth3(x, 1 + x, 1 - x); }, gam_, del_, degree_hint_, s);
       }
-      const Real alpha = op.par_.alpha(), kappa = op.par_.kappa();
-      const Real gam = gam_, del = del_;
-      const Real h = op.half_length();
-      const Real one_plus_y = (s - op.lo_) / h, one_minus_y = (op.hi_ - s) / h;
-      const Real y = one_plus_y <= one_minus_y ? one_plus_y - 1 : 1 - one_minus_y;
-      const Real S_y = smooth(y);
-      const Real inf = std::numeric_limits<Real>::infinity();
-      if (!subtract_) {
-        // alpha >= 0.05: Gauss-Jacobi with the kernel (x-y)^(alpha-1) as weight, no subtraction
-        // (each one-sided integral is O(1/alpha) <= 20 x the result: at most ~1.3 digits lost).
-        const Real R = right_.integrate(one_minus_y, one_plus_y, inf, [&](const Real& u, const Real& v) {
-          const Real x = u <= v ? y + u : 1 - v;  // u = x - y, v = 1 - x
-          return pow(one_plus_y + u, gam) * smooth(x);
-        });
-        const Real Lft = left_.integrate(one_plus_y, inf, one_minus_y, [&](const Real& u, const Real& v) {
-          const Real x = u <= v ? u - 1 : y - v;  // u = x + 1, v = y - x
-          return pow(one_minus_y + v, del) * smooth(x);
-        });
-        return pow(h, alpha) * (R - kappa * Lft);
-      }
-      // Right: int_y^1 (1-x)^del (x-y)^alpha [h(x) - h(y)]/(x - y) dx,  h = (1+x)^gam S.
-      const Real h_y = pow(one_plus_y, gam) * S_y;
-      const Real R = right_.integrate(one_minus_y, one_plus_y, inf, [&](const Real& u, const Real& v) {
-        const Real x = u <= v ? y + u : 1 - v;  // u = x - y, v = 1 - x
-        return (pow(one_plus_y + u, gam) * smooth(x) - h_y) / u;
-      });
-      // Left: int_{-1}^y (1+x)^gam (y-x)^alpha [k(x) - k(y)]/(y - x) dx,  k = (1-x)^del S.
-      const Real k_y = pow(one_minus_y, del) * S_y;
-      const Real Lft = left_.integrate(one_plus_y, inf, one_minus_y, [&](const Real& u, const Real& v) {
-        const Real x = u <= v ? u - 1 : y - v;  // u = x + 1, v = y - x
-        return (pow(one_minus_y + v, del) * smooth(x) - k_y) / v;
-      });
-      // Closed-form part g(y) C(y), C = [(1-y)^alpha r(del) - kappa (1+y)^alpha r(gam)]/alpha,
-      // r(c) = Gamma(1+alpha) Gamma(c+1)/Gamma(c+1+alpha) = Gamma(1+alpha) exp(-alpha E(c)),
-      // = (1+y)^alpha r(gam) [exprel(alpha z) z + (1 - kappa)/alpha], z = log((1-y)/(1+y)) - E(del) + E(gam).
-      const Real z = log(one_minus_y / one_plus_y) - E_del_ + E_gam_;
-      const Real C = pow(one_plus_y, alpha) * r_gam_ *
-                     (detail::exprel(alpha * z) * z + op.par_.one_minus_kappa_over_alpha());
-      const Real g_y = pow(one_minus_y, del) * h_y;
-      return pow(h, alpha) * (R - kappa * Lft + g_y * C);
+      return inside<Real>(smooth3, s, beyond_lo, beyond_hi);
+    }
+
+    /// A (w S_k)(s), k = 1 ... K, for lo < s < hi in ONE pass over the nodes: values(x, 1 + x,
+    /// 1 - x) returns the K factors there as an Eigen::Array<Real, Eigen::Dynamic, 1>. The same
+    /// rule as operator() (bit for bit per factor when K = 1); the panels are graded toward
+    /// beyond_lo, beyond_hi, which must be the nearest singularities of all the S_k.
+    template <class S>
+    Eigen::Array<Real, Eigen::Dynamic, 1> many(S&& values, const Real& s,
+                                               const Real& beyond_lo = std::numeric_limits<Real>::infinity(),
+                                               const Real& beyond_hi = std::numeric_limits<Real>::infinity()) const {
+      if (!(s > op_.lo_) || !(s < op_.hi_))
+        detail::throw_bad_parameter("abel_operator::quadrature_evaluator::many", "s", s, "(lo, hi)");
+      using V = Eigen::Array<Real, Eigen::Dynamic, 1>;
+      return inside<V>([&](const Real& x, const Real& p, const Real& m) -> V { return values(x, p, m); }, s, beyond_lo,
+                       beyond_hi);
     }
 
     /// operator() for the smooth factor given as a series, with the same value bit for bit but the
@@ -457,6 +446,68 @@ class abel_operator {
       return (*this)([&](const Real&) { return sums[next++]; }, s);
     }
 
+   private:
+    static Real zero_like(const Real&) { return Real(0); }
+    static Eigen::Array<Real, Eigen::Dynamic, 1> zero_like(const Eigen::Array<Real, Eigen::Dynamic, 1>& v) {
+      return Eigen::Array<Real, Eigen::Dynamic, 1>::Zero(v.size());
+    }
+    /// panel_integrator::integrate for a value type V (Real: the same sum, in the same order).
+    template <class V, class F>
+    static V integrate(const detail::panel_integrator<Real>& rule, const Real& len, const Real& d_left,
+                       const Real& d_right, const V& zero, F&& f) {
+      V sum = zero;
+      rule.for_each_node(len, d_left, d_right, [&](const Real& u, const Real& v, const Real& weight) { sum += weight * f(u, v); });
+      return sum;
+    }
+    /// operator() and many() at lo < s < hi (V = Real or an Eigen array of factors).
+    template <class V, class S3>
+    V inside(const S3& smooth3, const Real& s, const Real& beyond_lo, const Real& beyond_hi) const {
+      using std::log;
+      using std::pow;
+      const abel_operator& op = op_;
+      const Real alpha = op.par_.alpha(), kappa = op.par_.kappa();
+      const Real gam = gam_, del = del_;
+      const Real h = op.half_length();
+      const Real one_plus_y = (s - op.lo_) / h, one_minus_y = (op.hi_ - s) / h;
+      const Real y = one_plus_y <= one_minus_y ? one_plus_y - 1 : 1 - one_minus_y;
+      const V S_y = smooth3(y, one_plus_y, one_minus_y);
+      const V zero = zero_like(S_y);
+      if (!subtract_) {
+        // alpha >= 0.05: Gauss-Jacobi with the kernel (x-y)^(alpha-1) as weight, no subtraction
+        // (each one-sided integral is O(1/alpha) <= 20 x the result: at most ~1.3 digits lost).
+        const V R = integrate(right_, one_minus_y, one_plus_y, beyond_hi, zero, [&](const Real& u, const Real& v) -> V {
+          const Real x = u <= v ? y + u : 1 - v;  // u = x - y, v = 1 - x
+          return pow(one_plus_y + u, gam) * smooth3(x, one_plus_y + u, v);
+        });
+        const V Lft = integrate(left_, one_plus_y, beyond_lo, one_minus_y, zero, [&](const Real& u, const Real& v) -> V {
+          const Real x = u <= v ? u - 1 : y - v;  // u = x + 1, v = y - x
+          return pow(one_minus_y + v, del) * smooth3(x, u, one_minus_y + v);
+        });
+        return V(pow(h, alpha) * (R - kappa * Lft));
+      }
+      // Right: int_y^1 (1-x)^del (x-y)^alpha [h(x) - h(y)]/(x - y) dx,  h = (1+x)^gam S.
+      const V h_y = pow(one_plus_y, gam) * S_y;
+      const V R = integrate(right_, one_minus_y, one_plus_y, beyond_hi, zero, [&](const Real& u, const Real& v) -> V {
+        const Real x = u <= v ? y + u : 1 - v;  // u = x - y, v = 1 - x
+        return (pow(one_plus_y + u, gam) * smooth3(x, one_plus_y + u, v) - h_y) / u;
+      });
+      // Left: int_{-1}^y (1+x)^gam (y-x)^alpha [k(x) - k(y)]/(y - x) dx,  k = (1-x)^del S.
+      const V k_y = pow(one_minus_y, del) * S_y;
+      const V Lft = integrate(left_, one_plus_y, beyond_lo, one_minus_y, zero, [&](const Real& u, const Real& v) -> V {
+        const Real x = u <= v ? u - 1 : y - v;  // u = x + 1, v = y - x
+        return (pow(one_minus_y + v, del) * smooth3(x, u, one_minus_y + v) - k_y) / v;
+      });
+      // Closed-form part g(y) C(y), C = [(1-y)^alpha r(del) - kappa (1+y)^alpha r(gam)]/alpha,
+      // r(c) = Gamma(1+alpha) Gamma(c+1)/Gamma(c+1+alpha) = Gamma(1+alpha) exp(-alpha E(c)),
+      // = (1+y)^alpha r(gam) [exprel(alpha z) z + (1 - kappa)/alpha], z = log((1-y)/(1+y)) - E(del) + E(gam).
+      const Real z = log(one_minus_y / one_plus_y) - E_del_ + E_gam_;
+      const Real C = pow(one_plus_y, alpha) * r_gam_ *
+                     (detail::exprel(alpha * z) * z + op.par_.one_minus_kappa_over_alpha());
+      const V g_y = pow(one_minus_y, del) * h_y;
+      return V(pow(h, alpha) * (R - kappa * Lft + g_y * C));
+    }
+
+   public:
     /// Below this alpha the one-sided integrals are combined analytically (subtraction of g(s)).
     static Real subtraction_threshold() { return Real(1) / 20; }
 

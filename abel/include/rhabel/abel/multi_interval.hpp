@@ -172,6 +172,55 @@ struct multi_solve_options {
   /// caller has one (the punch layer builds it for its data anyway); null: solve_union builds it
   /// with order_for(residual_tolerance / 1000) points per box.
   std::shared_ptr<const detail::far_field<Real>> far_field;
+  /// > 0: the boundary-layer route (detail/layered_union.hpp) for nearly touching intervals:
+  /// every end whose neighbour is nearer than the interval's half-length gets simple poles
+  /// beyond it, this many per decade of distance from gap/2 to 2 lengths, and the system is
+  /// solved in the least-squares sense; the densities are then densities[i] + layers[i].
+  /// Dense only (iterative_from is not used). 0: the polynomial route.
+  std::size_t layer_poles_per_decade = 0;
+};
+
+/// The boundary-layer part of a density on [lo, hi] (layer_poles_per_decade > 0):
+/// g(t) = (1 - x)^del (1 + x)^gam [ sum_k a_k d_k/(d_k + 1 + x) + sum_k b_k e_k/(e_k + 1 - x) ],
+/// poles at x = -1 - d_k (lo_distances) and x = 1 + e_k (hi_distances), reference units.
+/// The whole density of interval i is multi_solution::densities[i] + layers[i].
+template <class Real>
+struct layer_density {
+  Real lo = -1, hi = 1;
+  Real gam = 0, del = 0;
+  std::vector<Real> lo_distances, lo_coefficients;
+  std::vector<Real> hi_distances, hi_coefficients;
+
+  Real half_length() const { return (hi - lo) / 2; }
+  bool empty() const { return lo_distances.empty() && hi_distances.empty(); }
+  Real nearest_lo() const { return lo_distances.empty() ? std::numeric_limits<Real>::infinity() : lo_distances.front(); }
+  Real nearest_hi() const { return hi_distances.empty() ? std::numeric_limits<Real>::infinity() : hi_distances.front(); }
+  /// The bracket at 1 + x, 1 - x (accurate next to either end).
+  Real factor_at_distance(const Real& one_plus_x, const Real& one_minus_x) const {
+    Real sum = 0;
+    for (std::size_t k = 0; k < lo_distances.size(); ++k) sum += lo_coefficients[k] * lo_distances[k] / (lo_distances[k] + one_plus_x);
+    for (std::size_t k = 0; k < hi_distances.size(); ++k) sum += hi_coefficients[k] * hi_distances[k] / (hi_distances[k] + one_minus_x);
+    return sum;
+  }
+  /// g at the point with distances u = t - lo, v = hi - t.
+  Real value_at_distance(const Real& u, const Real& v) const {
+    using std::pow;
+    if (empty()) return Real(0);
+    const Real h = half_length();
+    return pow(v / h, del) * pow(u / h, gam) * factor_at_distance(u / h, v / h);
+  }
+  /// g(t) for lo < t < hi (0 outside).
+  Real operator()(const Real& t) const {
+    if (!(t > lo) || !(t < hi)) return Real(0);
+    return value_at_distance(t - lo, hi - t);
+  }
+  /// int_lo^hi g by Gauss-Jacobi panels graded toward the nearest poles (~ eps relative).
+  Real integral() const {
+    if (empty()) return Real(0);
+    const detail::panel_integrator<Real> rule(del, gam, 24);
+    return half_length() * rule.integrate(Real(2), nearest_lo(), nearest_hi(),
+                                          [&](const Real& u, const Real& v) { return factor_at_distance(u, v); });
+  }
 };
 
 template <class Real>
@@ -185,6 +234,14 @@ struct multi_solution {
   /// 1-norm condition number of the collocation matrix: Eigen's rcond estimate for float and
   /// double, exact for other types (see the header).
   Real condition = 0;
+  /// Boundary-layer parts (options.layer_poles_per_decade > 0; else empty): g_i = densities[i] +
+  /// layers[i]; homogeneous_layers[k][i] likewise for homogeneous[k][i].
+  std::vector<layer_density<Real>> layers;
+  std::vector<std::vector<layer_density<Real>>> homogeneous_layers;
+  /// int g_i: densities[i].integral() plus the layer's.
+  Real load(std::size_t i) const {
+    return densities[i].integral() + (i < layers.size() ? layers[i].integral() : Real(0));
+  }
   std::size_t degree = 0;                            ///< collocation points per interval of the returned solve
   /// not_converged: residual > options.residual_tolerance (typically nearly touching intervals,
   /// see the header); converged otherwise, or when no residual was computed.
@@ -226,6 +283,18 @@ Real apply_union(const abel_parameters<Real>& par, const std::vector<jacobi_dens
 }
 
 namespace detail {
+
+/// The density of class e on the interval with n zero coefficients (to be filled by a solve).
+template <class Real>
+jacobi_density<Real> zero_density(const interval_spec<Real>& iv, const edge_exponents<Real>& e, std::size_t n) {
+  jacobi_density<Real> g;
+  g.lo = iv.lo;
+  g.hi = iv.hi;
+  g.gam = e.gam;
+  g.del = e.del;
+  g.coefficients.assign(n, Real(0));
+  return g;
+}
 
 /// Signed distance bookkeeping of a collocation/residual point s of I_j: distances to lo_j and hi_j.
 template <class Real>
@@ -332,13 +401,7 @@ std::optional<multi_solution<Real>> solve_union_at_degree(const abel_parameters<
     sol.exponents.push_back(e);
     n_basis[i] = e.nu == -1 ? M - 1 : (e.nu == 0 ? M : M + 1);
     offset[i] = i * M;
-    jacobi_density<Real> g;
-    g.lo = intervals[i].lo;
-    g.hi = intervals[i].hi;
-    g.gam = e.gam;
-    g.del = e.del;
-    g.coefficients.assign(n_basis[i], Real(0));
-    sol.densities.push_back(g);
+    sol.densities.push_back(zero_density(intervals[i], e, n_basis[i]));
   }
   const std::size_t total = K * M;
   // Column of c^i_n within interval i's block (-1: the fixed c_0 of nu = +1).
@@ -570,6 +633,20 @@ std::optional<multi_solution<Real>> solve_union_at_degree(const abel_parameters<
   return sol;
 }
 
+/// sum_q weight_q K(t_q - s) value_q: the action on a point s of I_j of a density of I_i given by
+/// its values at `nodes` (i_right_of_j: I_i lies to the right; dist: distance of s to the end of
+/// I_j facing I_i; t - s formed from the distances, without cancellation).
+template <class Real>
+Real cross_sum(const abel_parameters<Real>& par, const cross_nodes<Real>& nodes, const std::vector<Real>& values,
+               bool i_right_of_j, const Real& gap, const Real& dist) {
+  Real sum = 0;
+  for (std::size_t q = 0; q < nodes.x.size(); ++q) {
+    const Real t_minus_s = i_right_of_j ? nodes.t_minus_lo[q] + gap + dist : -(nodes.hi_minus_t[q] + gap + dist);
+    sum += nodes.weight[q] * cross_kernel(par, t_minus_s) * values[q];
+  }
+  return sum;
+}
+
 /// Independent residual of the original equation (see the header): max over the intervals of
 /// max_s |A g(s) - (F(s) - h^alpha d_j)| / max_s |F(s)|, at Chebyshev points of another power of
 /// 2 than the collocation grid and at points graded toward every facing end.
@@ -641,16 +718,8 @@ Real union_residual(const abel_parameters<Real>& par, const std::vector<interval
     for (const auto& pt : pts) {
       Real value = own([&](const Real& x) { return gj_series(x); }, pt.s);
       if (far) value += far->interpolate(local[j], pt.from_lo <= pt.to_hi ? pt.from_lo / h - 1 : 1 - pt.to_hi / h);
-      for (std::size_t i = 0; i < K; ++i) {
-        if (!coupled(j, i)) continue;
-        const bool right = i > j;
-        const Real gap = union_gap(intervals, i, j);
-        for (std::size_t qn = 0; qn < nodes[i].x.size(); ++qn) {
-          const Real t_minus_s = right ? (nodes[i].t_minus_lo[qn] + gap + pt.to_hi)
-                                       : -(nodes[i].hi_minus_t[qn] + gap + pt.from_lo);
-          value += nodes[i].weight[qn] * cross_kernel(par, t_minus_s) * series[i][qn];
-        }
-      }
+      for (std::size_t i = 0; i < K; ++i)
+        if (coupled(j, i)) value += cross_sum(par, nodes[i], series[i], i > j, union_gap(intervals, i, j), i > j ? pt.to_hi : pt.from_lo);
       const Real Fs = F[j](pt.s);
       worst_j = max(worst_j, abs(value - (Fs - defect)));
       scale_j = max(scale_j, abs(Fs));
@@ -661,6 +730,13 @@ Real union_residual(const abel_parameters<Real>& par, const std::vector<interval
 }
 
 }  // namespace detail
+
+}  // namespace rhabel::abel
+
+// The boundary-layer route (options.layer_poles_per_decade): uses the types and helpers above.
+#include "rhabel/abel/detail/layered_union.hpp"
+
+namespace rhabel::abel {
 
 /// Solves the coupled system (paper 41) on the union of `intervals` (sorted, disjoint) with data
 /// F[j] on interval j. See the header comment for the method, the evidence returned and the
@@ -692,6 +768,18 @@ multi_solution<Real> solve_union(const abel_parameters<Real>& par, const std::ve
                                 "> 0 when options.max_degree > options.degree (the residual drives the degree)");
   std::size_t M = std::max<std::size_t>(options.degree, 2);
   const std::size_t M_max = std::max(M, options.max_degree);
+  // The boundary-layer route (detail/layered_union.hpp): small dense least-squares systems.
+  if (options.layer_poles_per_decade > 0) {
+    for (;;) {
+      auto sol = detail::solve_union_layered(par, intervals, F, options, M);
+      if (options.residual_points == 0) return sol;
+      sol.residual = detail::union_layered_residual(par, intervals, F, sol, options.residual_points);
+      if (sol.residual <= options.residual_tolerance) return sol;
+      sol.status = solve_status::not_converged;
+      if (M >= M_max) return sol;
+      M = std::min(M_max, M + M / 2);
+    }
+  }
   // Many intervals: the far field (header, "Many intervals"), for the solves and the residual.
   std::shared_ptr<const detail::far_field<Real>> far;
   if (std::is_floating_point_v<Real> && K > 1 && options.iterative_from > 1 && K >= options.iterative_from) {

@@ -273,7 +273,11 @@ class panel_integrator {
     for (std::size_t k = from_right.size(); k-- > 0;) pts.push_back({len - from_right[k], from_right[k]});
     for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
       const point a = pts[k], b = pts[k + 1];
-      const Real width = b.left - a.left;
+      // The width from the distances to the nearer end: the breaks graded toward len are exact as
+      // distances from len and rounded as distances from 0, so b.left - a.left would be off by
+      // ~eps len there, ~eps len/d relative next to a singularity at distance d from len (the
+      // quadrature of A g at 1e-8 from an unbounded end was off by 1e-6 relative at alpha = 0).
+      const Real width = b.right < a.left ? a.right - b.right : b.left - a.left;
       if (!(width > 0)) continue;
       const bool touches_left = k == 0, touches_right = k + 2 == pts.size();
       const auto& rule = *(touches_left ? (touches_right ? both_ : left_) : (touches_right ? right_ : legendre_));

@@ -1,0 +1,444 @@
+// rhabel/abel/detail/layered_union.hpp: the boundary-layer route of abel::solve_union
+// (multi_interval.hpp, options.layer_poles_per_decade > 0), for nearly touching intervals.
+//
+// Why. Next to a neighbour at distance `gap`, the data of I_j carries the neighbour's edge
+// behaviour: a branch point at distance gap beyond the facing end. The density then has a layer
+// of width ~ gap there, and a polynomial of degree M resolves it only once M sqrt(gap/L) is
+// large (the degree grows like sqrt(L/gap): ~10^3 at gap 1e-4 L, ~10^4 at 1e-6 L).
+//
+// Basis. On each interval the density is w (S + sum_k a_k d_k/(d_k + 1 - x) + ...), S a
+// polynomial of degree < M in the Jacobi basis (as on the polynomial route) and one simple pole
+// beyond every facing end at each distance d_k (reference units), the d_k in geometric
+// progression from gap/(2h) to 4 with layer_poles_per_decade of them per decade
+// (layer_pole_distances). This is the "lightning" idea (Gopal and Trefethen, PNAS 116 (2019)
+// 10223; SIAM J. Numer. Anal. 57 (2019) 2074): rational functions with poles clustered
+// exponentially toward a branch point approximate it root-exponentially, uniformly in its
+// distance, so the unknowns grow like log(L/gap) instead of sqrt(L/gap). The pole columns'
+// own images are computed by the operator's independent quadrature (abel_operator::
+// quadrature_evaluator, panels graded toward the pole), the polynomial columns' by the spectral
+// relation, the cross terms by quadrature on panels graded toward both ends of the source.
+//
+// System. Rational bases are redundant, so the equations are imposed in the least-squares sense
+// at more points than unknowns: on every interval 2 x (unknowns) Chebyshev points plus points at
+// distances gap/2 x 1.2^k from every facing end (the layer), columns scaled to unit norm, solved
+// by column-pivoted Householder QR (Eigen::ColPivHouseholderQR). The nu = -1 defects and the
+// nu = +1 fixed constants enter as on the polynomial route; the homogeneous solutions are more
+// right-hand sides of the same factorisation.
+//
+// Evidence: union_layered_residual, the residual of the ORIGINAL equation at points of other
+// grids (Chebyshev of another size, distances 0.37 gap 3^k from the facing ends), own term by
+// quadrature_evaluator with another node count, cross terms by panel_integrator nodes of another
+// count than the assembly's. Measured (tests/abel/test_layered_union.cpp) below.
+//
+// Not a standalone header: multi_interval.hpp includes it after its own types (interval_spec,
+// multi_solve_options, layer_density, multi_solution) and helpers (union_points, union_gap,
+// zero_density, cross_sum).
+#pragma once
+
+#include "rhabel/abel/abel_operator.hpp"
+#include "rhabel/abel/detail/far_field.hpp"
+#include "rhabel/abel/detail/numerics.hpp"
+#include "rhabel/abel/detail/union_assembly.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <vector>
+
+namespace rhabel::abel::detail {
+
+/// Pole distances (reference units beyond an end) for a facing end at `gap_over_h` (gap / h of
+/// the interval): geometric from gap_over_h / 2 to 4, per_decade per decade, at least 4.
+template <class Real>
+std::vector<Real> layer_pole_distances(const Real& gap_over_h, std::size_t per_decade) {
+  using std::log10;
+  using std::pow;
+  const Real lo = gap_over_h / 2, hi = Real(4);
+  const auto count = std::max<std::size_t>(
+      4, static_cast<std::size_t>(std::ceil(static_cast<double>(per_decade) * static_cast<double>(log10(hi / lo)))) + 1);
+  std::vector<Real> out(count);
+  for (std::size_t k = 0; k < count; ++k) out[k] = lo * pow(hi / lo, Real(k) / Real(count - 1));
+  return out;
+}
+
+/// Nodes on I_i (cross_nodes, multi_interval.hpp) for the cross integrals when the density has
+/// poles: panel_integrator's nodes (one count for every panel) graded toward both ends, each
+/// toward the nearest singularity beyond it (kernel or pole).
+template <class Real>
+cross_nodes<Real> make_layered_nodes(const Real& h, const Real& gam, const Real& del, const Real& beyond_lo,
+                                     const Real& beyond_hi, std::size_t count) {
+  cross_nodes<Real> out;
+  const panel_integrator<Real> rule(del, gam, count);
+  rule.for_each_node(Real(2), beyond_lo, beyond_hi, [&](const Real& u, const Real& v, const Real& weight) {
+    out.x.push_back(u <= v ? u - 1 : 1 - v);
+    out.weight.push_back(h * weight);
+    out.t_minus_lo.push_back(h * u);
+    out.hi_minus_t.push_back(h * v);
+  });
+  return out;
+}
+
+/// Value of the smooth factor of g_i (series + poles) at a node given by 1 + x and 1 - x;
+/// series: g_i.series_evaluator().
+template <class Real>
+Real layered_factor(const rhabel::quadrature::jacobi_series<Real>& series, const layer_density<Real>& layer,
+                    const Real& one_plus_x, const Real& one_minus_x) {
+  const Real x = one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x;
+  return series(x) + layer.factor_at_distance(one_plus_x, one_minus_x);
+}
+
+/// Poles of interval i of a sorted union: beyond lo when the left neighbour is nearer than h_i,
+/// beyond hi likewise (none for a separated neighbour: the polynomial resolves its action).
+template <class Real>
+layer_density<Real> layer_for(const std::vector<interval_spec<Real>>& intervals, std::size_t i,
+                              const edge_exponents<Real>& e, std::size_t per_decade) {
+  layer_density<Real> out;
+  out.lo = intervals[i].lo;
+  out.hi = intervals[i].hi;
+  out.gam = e.gam;
+  out.del = e.del;
+  const Real h = out.half_length();
+  if (i > 0) {
+    const Real gap = union_gap(intervals, i - 1, i);
+    if (gap < h) out.lo_distances = layer_pole_distances(gap / h, per_decade);
+  }
+  if (i + 1 < intervals.size()) {
+    const Real gap = union_gap(intervals, i + 1, i);
+    if (gap < h) out.hi_distances = layer_pole_distances(gap / h, per_decade);
+  }
+  out.lo_coefficients.assign(out.lo_distances.size(), Real(0));
+  out.hi_coefficients.assign(out.hi_distances.size(), Real(0));
+  return out;
+}
+
+/// A row of the layered system: interval j, reference point by 1 + x and 1 - x (no cancellation
+/// next to an end), physical s.
+template <class Real>
+struct layered_row {
+  std::size_t j;
+  Real one_plus_x, one_minus_x, s;
+};
+
+/// Rows of interval j: `chebyshev` Chebyshev points and the layer points at distances
+/// first x ratio^k (times the gap, k of either sign) from every facing end with poles, between
+/// gap/100 and h.
+template <class Real>
+std::vector<layered_row<Real>> layered_rows(const std::vector<interval_spec<Real>>& intervals,
+                                            const layer_density<Real>& layer, std::size_t j, std::size_t chebyshev,
+                                            const Real& first, const Real& ratio) {
+  std::vector<layered_row<Real>> out;
+  const interval_spec<Real>& iv = intervals[j];
+  const Real h = (iv.hi - iv.lo) / 2;
+  // The distances to the ends from the rounded s (exact differences next to an end), so that
+  // the own term (quadrature_evaluator, which takes s) and the cross terms (distances) see the
+  // same point: a mismatch of one rounding of s is ~ eps/gap relative in the cross term.
+  auto add = [&](const Real& s) { out.push_back({j, (s - iv.lo) / h, (iv.hi - s) / h, s}); };
+  for (const auto& p : union_points(iv, chebyshev_grid<Real>(chebyshev))) add(p.s);
+  for (int side = 0; side < 2; ++side) {
+    const bool at_lo = side == 0;
+    if ((at_lo ? layer.lo_distances : layer.hi_distances).empty()) continue;
+    const Real gap = at_lo ? union_gap(intervals, j - 1, j) : union_gap(intervals, j + 1, j);
+    // Outward from first x gap to h, and inward to gap/100 (inside the layer the density of an
+    // unbounded end varies on the scale of its distance to the end).
+    for (Real d = first * gap; d < h; d *= ratio) add(at_lo ? iv.lo + d : iv.hi - d);
+    for (Real d = first * gap / ratio; d > gap / 100; d /= ratio) add(at_lo ? iv.lo + d : iv.hi - d);
+  }
+  return out;
+}
+
+/// One least-squares solve of the layered system at M polynomial unknowns per interval (the
+/// top of this header). options.layer_poles_per_decade > 0.
+template <class Real>
+multi_solution<Real> solve_union_layered(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
+                                         const std::vector<std::function<Real(Real)>>& F,
+                                         const multi_solve_options<Real>& options, std::size_t M) {
+  using std::pow;
+  using matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
+  const std::size_t K = intervals.size();
+  const Real alpha = par.alpha();
+  const Real inf = std::numeric_limits<Real>::infinity();
+  multi_solution<Real> sol;
+  sol.degree = M;
+  sol.condition = std::numeric_limits<Real>::quiet_NaN();
+  std::vector<abel_operator<Real>> ops;
+  // Unknowns of interval i, from offset[i]: M polynomial ones as on the polynomial route (the
+  // coefficients, c_0 excluded for nu = +1, and the defect for nu = -1, last), then the poles
+  // beyond lo, then those beyond hi.
+  std::vector<std::size_t> n_basis(K), offset(K + 1, 0);
+  for (std::size_t i = 0; i < K; ++i) {
+    ops.emplace_back(par, intervals[i].lo, intervals[i].hi);
+    const auto e = par.exponents(intervals[i].leading, intervals[i].trailing);
+    sol.exponents.push_back(e);
+    n_basis[i] = e.nu == -1 ? M - 1 : (e.nu == 0 ? M : M + 1);
+    sol.densities.push_back(zero_density(intervals[i], e, n_basis[i]));
+    sol.layers.push_back(layer_for(intervals, i, e, options.layer_poles_per_decade));
+    offset[i + 1] = offset[i] + M + sol.layers[i].lo_distances.size() + sol.layers[i].hi_distances.size();
+  }
+  auto poly_column = [&](std::size_t i, std::size_t n) -> long {  // -1: the fixed c_0 of nu = +1
+    if (sol.exponents[i].nu == 1) return n == 0 ? -1 : static_cast<long>(offset[i] + n - 1);
+    return static_cast<long>(offset[i] + n);
+  };
+  auto pole_column = [&](std::size_t i, bool at_lo, std::size_t k) {
+    return offset[i] + M + (at_lo ? 0 : sol.layers[i].lo_distances.size()) + k;
+  };
+  // Rows: 2 x (unknowns of j) Chebyshev points plus the layer points (gap/2 x 1.2^k).
+  std::vector<layered_row<Real>> rows;
+  for (std::size_t j = 0; j < K; ++j) {
+    const auto r = layered_rows(intervals, sol.layers[j], j, 2 * (offset[j + 1] - offset[j]), Real(0.5), Real(1.2));
+    rows.insert(rows.end(), r.begin(), r.end());
+  }
+  const auto R = static_cast<Eigen::Index>(rows.size()), N = static_cast<Eigen::Index>(offset[K]);
+  // Right-hand sides: the data, then one per nu = +1 interval (its homogeneous solution).
+  std::vector<std::size_t> plus_one;
+  for (std::size_t i = 0; i < K; ++i)
+    if (sol.exponents[i].nu == 1 && options.homogeneous) plus_one.push_back(i);
+  matrix A = matrix::Zero(R, N), B = matrix::Zero(R, static_cast<Eigen::Index>(1 + plus_one.size()));
+  matrix c0_columns = matrix::Zero(R, static_cast<Eigen::Index>(K));  // image of c_0 = 1 (nu = +1)
+  std::vector<Real> scale(K);
+  for (std::size_t j = 0; j < K; ++j) scale[j] = pow(ops[j].half_length(), -alpha);
+  // Own blocks: polynomial columns by the spectral relation, poles by quadrature.
+  for (std::size_t j = 0; j < K; ++j) {
+    const auto& e = sol.exponents[j];
+    const auto& layer = sol.layers[j];
+    const std::vector<Real> lambda = ops[j].eigenvalues(n_basis[j], e);
+    const typename abel_operator<Real>::quadrature_evaluator own(ops[j], e.gam, e.del, 32);
+    for (Eigen::Index r = 0; r < R; ++r) {
+      const auto& row = rows[static_cast<std::size_t>(r)];
+      if (row.j != j) continue;
+      const Real x = row.one_plus_x <= row.one_minus_x ? row.one_plus_x - 1 : 1 - row.one_minus_x;
+      const auto image = jacobi_values_any(M, e.gam + Real(e.nu), e.del + Real(e.nu), x);
+      for (std::size_t n = 0; n < n_basis[j]; ++n) {
+        const long m = static_cast<long>(n) - e.nu;
+        if (m < 0) continue;  // nu = +1, n = 0: image 0
+        const long c = poly_column(j, n);
+        const Real v = lambda[n] * image[static_cast<std::size_t>(m)];
+        if (c >= 0) A(r, c) += v; else c0_columns(r, static_cast<Eigen::Index>(j)) += v;
+      }
+      if (e.nu == -1) A(r, static_cast<Eigen::Index>(offset[j] + M - 1)) += Real(1);
+      if (layer.empty()) continue;
+      // All poles of I_j in one pass over the nodes (graded toward the nearest at each end).
+      const std::size_t n_lo = layer.lo_distances.size(), n_poles = n_lo + layer.hi_distances.size();
+      const auto images = own.many(
+          [&](const Real&, const Real& p, const Real& m) {
+            Eigen::Array<Real, Eigen::Dynamic, 1> out(static_cast<Eigen::Index>(n_poles));
+            for (std::size_t k = 0; k < n_lo; ++k) out[static_cast<Eigen::Index>(k)] = layer.lo_distances[k] / (layer.lo_distances[k] + p);
+            for (std::size_t k = n_lo; k < n_poles; ++k)
+              out[static_cast<Eigen::Index>(k)] = layer.hi_distances[k - n_lo] / (layer.hi_distances[k - n_lo] + m);
+            return out;
+          },
+          row.s, layer.nearest_lo(), layer.nearest_hi());
+      for (std::size_t k = 0; k < n_poles; ++k)
+        A(r, static_cast<Eigen::Index>(pole_column(j, k < n_lo, k < n_lo ? k : k - n_lo))) += scale[j] * images[static_cast<Eigen::Index>(k)];
+    }
+  }
+  // Cross blocks: source i on the rows of j, by quadrature on nodes graded toward both ends of
+  // I_i (the kernel's singularity and i's poles), one matrix product per block.
+  for (std::size_t i = 0; i < K; ++i) {
+    const auto& gi = sol.densities[i];
+    const auto& li = sol.layers[i];
+    const Real hi_ = gi.half_length();
+    for (std::size_t j = 0; j < K; ++j) {
+      if (i == j) continue;
+      const bool right = i > j;  // I_i to the right of I_j: it faces j with its lo end
+      const Real gap = union_gap(intervals, i, j);
+      const Real d_lo = std::min(li.nearest_lo(), right ? gap / hi_ : inf);
+      const Real d_hi = std::min(li.nearest_hi(), right ? inf : gap / hi_);
+      const auto nodes = make_layered_nodes(hi_, gi.gam, gi.del, d_lo, d_hi, M / 2 + 20);
+      const auto Q = static_cast<Eigen::Index>(nodes.x.size());
+      std::vector<Eigen::Index> row_index;
+      for (Eigen::Index r = 0; r < R; ++r)
+        if (rows[static_cast<std::size_t>(r)].j == j) row_index.push_back(r);
+      const auto Rj = static_cast<Eigen::Index>(row_index.size());
+      const Real hj = ops[j].half_length();
+      matrix kernel(Rj, Q);
+      for (Eigen::Index a = 0; a < Rj; ++a) {
+        const auto& row = rows[static_cast<std::size_t>(row_index[static_cast<std::size_t>(a)])];
+        const Real ds = right ? hj * row.one_minus_x : hj * row.one_plus_x;  // to j's end facing i
+        for (Eigen::Index q = 0; q < Q; ++q) {
+          const auto qs = static_cast<std::size_t>(q);
+          const Real t_minus_s = right ? nodes.t_minus_lo[qs] + gap + ds : -(nodes.hi_minus_t[qs] + gap + ds);
+          kernel(a, q) = scale[j] * nodes.weight[qs] * cross_kernel(par, t_minus_s);
+        }
+      }
+      const auto n_cols = static_cast<Eigen::Index>(n_basis[i] + li.lo_distances.size() + li.hi_distances.size());
+      matrix basis(Q, n_cols);
+      for (Eigen::Index q = 0; q < Q; ++q) {
+        const auto qs = static_cast<std::size_t>(q);
+        const Real u = nodes.t_minus_lo[qs] / hi_, v = nodes.hi_minus_t[qs] / hi_;  // 1 + x, 1 - x
+        const Real x = nodes.x[qs];
+        const auto P = rhabel::quadrature::jacobi_p_all(n_basis[i] - 1, gi.del, gi.gam, x);
+        Eigen::Index c = 0;
+        for (std::size_t n = 0; n < n_basis[i]; ++n) basis(q, c++) = P[n];
+        for (const Real& d : li.lo_distances) basis(q, c++) = d / (d + u);
+        for (const Real& d : li.hi_distances) basis(q, c++) = d / (d + v);
+      }
+      const matrix block = kernel * basis;
+      for (Eigen::Index a = 0; a < Rj; ++a) {
+        const Eigen::Index r = row_index[static_cast<std::size_t>(a)];
+        Eigen::Index c = 0;
+        for (std::size_t n = 0; n < n_basis[i]; ++n, ++c) {
+          const long col = poly_column(i, n);
+          if (col >= 0) A(r, col) += block(a, c); else c0_columns(r, static_cast<Eigen::Index>(i)) += block(a, c);
+        }
+        for (std::size_t k = 0; k < li.lo_distances.size(); ++k, ++c) A(r, static_cast<Eigen::Index>(pole_column(i, true, k))) += block(a, c);
+        for (std::size_t k = 0; k < li.hi_distances.size(); ++k, ++c) A(r, static_cast<Eigen::Index>(pole_column(i, false, k))) += block(a, c);
+      }
+    }
+  }
+  // Right-hand sides.
+  std::vector<Real> c0(K, Real(0));
+  for (std::size_t i = 0; i < K; ++i)
+    if (sol.exponents[i].nu == 1 && i < options.loads.size() && options.loads[i]) {
+      const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[i].del, sol.exponents[i].gam);
+      c0[i] = *options.loads[i] / (ops[i].half_length() * h0);
+    }
+  for (Eigen::Index r = 0; r < R; ++r) {
+    const auto& row = rows[static_cast<std::size_t>(r)];
+    const Real v = F[row.j](row.s);
+    check_finite_value("rhabel::abel::solve_union", v, row.s);
+    B(r, 0) = scale[row.j] * v;
+  }
+  std::vector<Real> unit_c0(K, Real(0));
+  for (std::size_t i = 0; i < K; ++i) {
+    if (sol.exponents[i].nu != 1) continue;
+    const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[i].del, sol.exponents[i].gam);
+    unit_c0[i] = 1 / (ops[i].half_length() * h0);
+    B.col(0) -= c0[i] * c0_columns.col(static_cast<Eigen::Index>(i));
+  }
+  for (std::size_t k = 0; k < plus_one.size(); ++k)
+    B.col(static_cast<Eigen::Index>(k + 1)) = -unit_c0[plus_one[k]] * c0_columns.col(static_cast<Eigen::Index>(plus_one[k]));
+  // nu = +1: the load fixes the WHOLE integral, c_0 h h_0 + sum_k a_k int w phi_k, so c_0 is
+  // eliminated: c_0 = c0[i] - unit_c0[i] sum_k a_k I_k (c0[i], unit_c0[i]: the constant for the
+  // load and per unit integral), and every pole column takes -unit_c0[i] I_k x c_0's column.
+  std::vector<std::vector<Real>> pole_integrals(K);
+  for (std::size_t i = 0; i < K; ++i) {
+    if (sol.exponents[i].nu != 1) continue;
+    const auto& li = sol.layers[i];
+    const Real hi_ = li.half_length();
+    const panel_integrator<Real> rule(li.del, li.gam, 24);
+    for (int side = 0; side < 2; ++side) {
+      const bool at_lo = side == 0;
+      const auto& d = at_lo ? li.lo_distances : li.hi_distances;
+      for (std::size_t k = 0; k < d.size(); ++k) {
+        const Real dk = d[k];
+        const Real I = hi_ * rule.integrate(Real(2), at_lo ? dk : inf, at_lo ? inf : dk, [&](const Real& u, const Real& v) {
+          return dk / (dk + (at_lo ? u : v));
+        });
+        pole_integrals[i].push_back(I);
+        A.col(static_cast<Eigen::Index>(pole_column(i, at_lo, k))) -= unit_c0[i] * I * c0_columns.col(static_cast<Eigen::Index>(i));
+      }
+    }
+  }
+  // Column-scaled least squares (rational bases are redundant: pivoted QR).
+  Eigen::Matrix<Real, Eigen::Dynamic, 1> norms = A.colwise().norm();
+  for (Eigen::Index c = 0; c < N; ++c)
+    if (norms[c] > 0) A.col(c) /= norms[c]; else norms[c] = 1;
+  const Eigen::ColPivHouseholderQR<matrix> qr(A);
+  matrix X = qr.solve(B);
+  for (Eigen::Index c = 0; c < N; ++c) X.row(c) /= norms[c];
+  // Unpack one solution (column of X) with the fixed constants c0s.
+  auto unpack = [&](Eigen::Index col, const std::vector<Real>& c0s, std::vector<jacobi_density<Real>>& g,
+                    std::vector<layer_density<Real>>& layers, std::vector<Real>& defects) {
+    g = sol.densities;
+    layers = sol.layers;
+    defects.assign(K, Real(0));
+    for (std::size_t i = 0; i < K; ++i) {
+      for (std::size_t n = 0; n < n_basis[i]; ++n) {
+        const long c = poly_column(i, n);
+        g[i].coefficients[n] = c >= 0 ? X(c, col) : c0s[i];
+      }
+      if (sol.exponents[i].nu == -1) defects[i] = X(static_cast<Eigen::Index>(offset[i] + M - 1), col);
+      for (std::size_t k = 0; k < layers[i].lo_distances.size(); ++k)
+        layers[i].lo_coefficients[k] = X(static_cast<Eigen::Index>(pole_column(i, true, k)), col);
+      for (std::size_t k = 0; k < layers[i].hi_distances.size(); ++k)
+        layers[i].hi_coefficients[k] = X(static_cast<Eigen::Index>(pole_column(i, false, k)), col);
+      if (sol.exponents[i].nu == 1 && !g[i].coefficients.empty()) {  // c_0 eliminated above
+        const std::size_t n_lo = layers[i].lo_distances.size();
+        for (std::size_t k = 0; k < pole_integrals[i].size(); ++k)
+          g[i].coefficients[0] -= unit_c0[i] * pole_integrals[i][k] *
+                                  (k < n_lo ? layers[i].lo_coefficients[k] : layers[i].hi_coefficients[k - n_lo]);
+      }
+    }
+  };
+  std::vector<jacobi_density<Real>> g;
+  std::vector<layer_density<Real>> layers;
+  std::vector<Real> defects;
+  unpack(0, c0, g, layers, defects);
+  sol.homogeneous.assign(K, {});
+  sol.homogeneous_layers.assign(K, {});
+  sol.homogeneous_defects.assign(K, std::vector<Real>(K, Real(0)));
+  for (std::size_t k = 0; k < plus_one.size(); ++k) {
+    std::vector<Real> c0k(K, Real(0));
+    c0k[plus_one[k]] = unit_c0[plus_one[k]];
+    unpack(static_cast<Eigen::Index>(k + 1), c0k, sol.homogeneous[plus_one[k]], sol.homogeneous_layers[plus_one[k]],
+           sol.homogeneous_defects[plus_one[k]]);
+  }
+  sol.densities = std::move(g);
+  sol.layers = std::move(layers);
+  sol.solvability_defects = std::move(defects);
+  return sol;
+}
+
+/// Independent residual of a layered solution (the top of this header): max over the intervals
+/// of max |A g - (F - h^alpha d_j)| / max |F| at Chebyshev points of another size than the
+/// rows' and at 0.37 gap 3^k from every facing end; own term by quadrature_evaluator (another
+/// node count than the assembly's), cross terms on panel_integrator nodes of another count.
+template <class Real>
+Real union_layered_residual(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
+                            const std::vector<std::function<Real(Real)>>& F, const multi_solution<Real>& sol,
+                            std::size_t points) {
+  using std::abs;
+  using std::max;
+  using std::pow;
+  const std::size_t K = intervals.size();
+  const Real inf = std::numeric_limits<Real>::infinity();
+  const std::size_t M = sol.degree;
+  Real worst = 0;
+  for (std::size_t j = 0; j < K; ++j) {
+    const auto& gj = sol.densities[j];
+    const auto& lj = sol.layers[j];
+    const abel_operator<Real> op(par, intervals[j].lo, intervals[j].hi);
+    // degree hint M + 24: M/2 + 24 nodes a panel, against the assembly's 28 at M <= 32.
+    const typename abel_operator<Real>::quadrature_evaluator own(op, gj.gam, gj.del, M + 24);
+    const auto gj_series = gj.series_evaluator();
+    const Real h = op.half_length();
+    const Real defect = sol.exponents[j].nu == -1 ? pow(h, par.alpha()) * sol.solvability_defects[j] : Real(0);
+    const std::size_t unknowns = M + lj.lo_distances.size() + lj.hi_distances.size();
+    const auto rows = layered_rows(intervals, lj, j, residual_grid_size(std::max(points, unknowns) + 3, 2 * unknowns),
+                                   Real(0.37), Real(3));
+    std::vector<cross_nodes<Real>> nodes(K);
+    std::vector<std::vector<Real>> factor(K);
+    for (std::size_t i = 0; i < K; ++i) {
+      if (i == j) continue;
+      const auto& gi = sol.densities[i];
+      const auto& li = sol.layers[i];
+      const Real gap = union_gap(intervals, i, j), hi_ = gi.half_length();
+      const Real d_lo = std::min(li.nearest_lo(), i > j ? gap / hi_ : inf);
+      const Real d_hi = std::min(li.nearest_hi(), i > j ? inf : gap / hi_);
+      nodes[i] = make_layered_nodes(hi_, gi.gam, gi.del, d_lo, d_hi, M / 2 + 28);
+      const auto gi_series = gi.series_evaluator();
+      for (std::size_t q = 0; q < nodes[i].x.size(); ++q)
+        factor[i].push_back(layered_factor(gi_series, li, nodes[i].t_minus_lo[q] / hi_, nodes[i].hi_minus_t[q] / hi_));
+    }
+    Real worst_j = 0, scale_j = 0;
+    for (const auto& row : rows) {
+      Real value = own([&](const Real&, const Real& p, const Real& m) { return layered_factor(gj_series, lj, p, m); },
+                       row.s, lj.nearest_lo(), lj.nearest_hi());
+      for (std::size_t i = 0; i < K; ++i)
+        if (i != j)
+          value += cross_sum(par, nodes[i], factor[i], i > j, union_gap(intervals, i, j),
+                             i > j ? h * row.one_minus_x : h * row.one_plus_x);
+      const Real Fs = F[j](row.s);
+      worst_j = max(worst_j, abs(value - (Fs - defect)));
+      scale_j = max(scale_j, abs(Fs));
+    }
+    worst = max(worst, scale_j > 0 ? worst_j / scale_j : worst_j);
+  }
+  return worst;
+}
+
+}  // namespace rhabel::abel::detail
