@@ -25,12 +25,14 @@ build_dir="$(cd "${RHABEL_BUILD_DIR:-build}" 2>/dev/null && pwd)" || {
   exit 1
 }
 # The committed results: name and arguments, default runs (about 16 min on two shared cores, 13 of
-# them study_multi_contact's; its --quick run, ~25 s, has the usual BEM at one alpha only).
+# them study_multi_contact's; its --quick run, ~25 s, has the usual BEM at one alpha only), and
+# solve_union's two routes for nearly touching intervals side by side (union_convergence.csv).
 RECORDED=(
   "quadrature_convergence"
   "gauss_jacobi_timing"
   "riemann_convergence"
   "multi_contact"
+  "union_convergence - 1024 layered"
 )
 
 record=0

@@ -1,5 +1,5 @@
 // Convergence study of abel::solve_union (paper 41) for nearly touching intervals. Writes CSV to
-// stdout (or to the file named by argv[1]):
+// stdout (or to the file named by argv[1]; "-": stdout):
 //   intervals,gap,alpha,beta,classes,degree,residual,status,load_error,condition,seconds,loads
 //
 // Configuration: intervals of length 1, [-1, 0], [gap, 1] (and [1 + gap, 2] for three), F = -s
@@ -82,8 +82,9 @@ std::vector<interval_spec<double>> case_intervals(std::size_t count, double gap,
 
 int main(int argc, char** argv) {
   std::ofstream file;
-  if (argc > 1) file.open(argv[1]);
-  std::ostream& out = argc > 1 ? static_cast<std::ostream&>(file) : std::cout;
+  const bool to_file = argc > 1 && std::string(argv[1]) != "-";  // "-": standard output
+  if (to_file) file.open(argv[1]);
+  std::ostream& out = to_file ? static_cast<std::ostream&>(file) : std::cout;
   const std::size_t top = argc > 2 ? static_cast<std::size_t>(std::atol(argv[2])) : 1024;
   if (argc > 3 && std::string(argv[3]) == "gauss_seidel") {
     out << "gap,alpha,beta,sweeps,load,ratio\n";

@@ -12,7 +12,10 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <optional>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 using namespace rhabel::abel;
@@ -201,4 +204,23 @@ TEST_CASE("gap 1e-6: too few poles give not_converged with the residual that sho
   CHECK(poor.status == solve_status::not_converged);
   CHECK(poor.residual > 1e-10);
   CHECK(poor.residual > error / 10);
+}
+
+// Bad input: a basis that would not fit in options.max_memory_bytes (10^5 or SIZE_MAX poles a
+// decade; 8 a decade at a gap of 1e-300 of the length, ~2400 poles, under a 1 MiB bound) is
+// refused before anything is allocated, naming the option.
+TEST_CASE("layered route: a basis beyond max_memory_bytes is refused, naming the option") {
+  const abel_parameters<double> par(0.3, 0.2);
+  multi_solve_options<double> options = layered(24, 100000);
+  try {
+    (void)solve_union(par, pair_at(1e-6, edge::bounded, edge::bounded), minus_s(), options);
+    FAIL("no exception");
+  } catch (const std::domain_error& e) {
+    CHECK(std::string(e.what()).find("layer_poles_per_decade") != std::string::npos);
+  }
+  options = layered(24, std::numeric_limits<std::size_t>::max());  // no allocation of 1e20 poles first
+  CHECK_THROWS_AS(solve_union(par, pair_at(1e-6, edge::bounded, edge::bounded), minus_s(), options), std::domain_error);
+  options = layered(24, 8);
+  options.max_memory_bytes = std::size_t(1) << 20;
+  CHECK_THROWS_AS(solve_union(par, pair_at(1e-300, edge::bounded, edge::bounded), minus_s(), options), std::domain_error);
 }

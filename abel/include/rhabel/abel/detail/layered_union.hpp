@@ -19,16 +19,32 @@
 // relation, the cross terms by quadrature on panels graded toward both ends of the source.
 //
 // System. Rational bases are redundant, so the equations are imposed in the least-squares sense
-// at more points than unknowns: on every interval 2 x (unknowns) Chebyshev points plus points at
-// distances gap/2 x 1.2^k from every facing end (the layer), columns scaled to unit norm, solved
-// by column-pivoted Householder QR (Eigen::ColPivHouseholderQR). The nu = -1 defects and the
+// at more points than unknowns: on every interval 2 M + 8 Chebyshev points plus points at
+// distances gap/2 x 1.2^k (k of either sign, from gap/100 to h) from every facing end (the
+// layer: ~2 per pole), columns scaled to unit norm, solved by column-pivoted Householder QR
+// (Eigen::ColPivHouseholderQR). The nu = -1 defects and the
 // nu = +1 fixed constants enter as on the polynomial route; the homogeneous solutions are more
 // right-hand sides of the same factorisation.
 //
 // Evidence: union_layered_residual, the residual of the ORIGINAL equation at points of other
 // grids (Chebyshev of another size, distances 0.37 gap 3^k from the facing ends), own term by
 // quadrature_evaluator with another node count, cross terms by panel_integrator nodes of another
-// count than the assembly's. Measured (tests/abel/test_layered_union.cpp) below.
+// count than the assembly's. An estimate, not a bound.
+//
+// Measured (study_union_convergence - 1024 layered, studies/results/union_convergence.csv: F = -s
+// on [-1, 0], [gap, 1] (, [1 + gap, 2]), alpha in {0, 0.25, 0.5, 0.9}, beta in {0, 0.3}, classes
+// nu = 0 and -1; one core). At M = 24 and 8 poles a decade:
+//   two intervals, gap 1e-2 / 1e-4 / 1e-6: 46 / 62 / 78 unknowns an interval, residual <= 6.3e-13
+//   / 2.7e-12 / 6.1e-12, 5-11 / 12-21 / 31-37 ms with the residual;
+//   three intervals, gap 1e-6: 132 unknowns on the middle one, residual <= 8.4e-12, 77-126 ms;
+//   int g within 1.6e-12 of (M, poles a decade) = (32, 12), and within 1.1e-10 of the polynomial
+//   route where that converges (gap 1e-4: degree 546-1024, 0.65-3.6 s).
+// Tests (tests/abel/test_layered_union.cpp): the converged polynomial route at gap 1e-2 (every
+// class), its recorded degree-1536 int g at gap 1e-4, densities given in advance at gap 1e-6,
+// the alpha = 0 closed form of the two-interval null space at gap 1e-6 (5e-11).
+// Limits: unbounded facing ends with imposed loads (nu = +1) leave residuals of ~1e-8 ... 1e-7 of
+// the data at gap 1e-6 (the terms next to the gap are ~1e3 times the data); the solve is dense
+// (no far field: the intervals' count should be small); tested in double only.
 //
 // Not a standalone header: multi_interval.hpp includes it after its own types (interval_spec,
 // multi_solve_options, layer_density, multi_solution) and helpers (union_points, union_gap,
@@ -47,19 +63,25 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <sstream>
 #include <vector>
 
 namespace rhabel::abel::detail {
 
-/// Pole distances (reference units beyond an end) for a facing end at `gap_over_h` (gap / h of
-/// the interval): geometric from gap_over_h / 2 to 4, per_decade per decade, at least 4.
+/// Number of poles for a facing end at `gap_over_h` (gap / h of the interval): per_decade a
+/// decade from gap_over_h / 2 to 4, at least 4 (a double: checked against memory before use).
+template <class Real>
+double layer_pole_count(const Real& gap_over_h, std::size_t per_decade) {
+  return std::max(4.0, std::ceil(double(per_decade) * std::log10(8 / double(gap_over_h))) + 1);
+}
+
+/// Pole distances (reference units beyond an end) for a facing end at `gap_over_h`: geometric
+/// from gap_over_h / 2 to 4, layer_pole_count of them.
 template <class Real>
 std::vector<Real> layer_pole_distances(const Real& gap_over_h, std::size_t per_decade) {
-  using std::log10;
   using std::pow;
   const Real lo = gap_over_h / 2, hi = Real(4);
-  const auto count = std::max<std::size_t>(
-      4, static_cast<std::size_t>(std::ceil(static_cast<double>(per_decade) * static_cast<double>(log10(hi / lo)))) + 1);
+  const auto count = static_cast<std::size_t>(layer_pole_count(gap_over_h, per_decade));
   std::vector<Real> out(count);
   for (std::size_t k = 0; k < count; ++k) out[k] = lo * pow(hi / lo, Real(k) / Real(count - 1));
   return out;
@@ -164,6 +186,30 @@ multi_solution<Real> solve_union_layered(const abel_parameters<Real>& par, const
   multi_solution<Real> sol;
   sol.degree = M;
   sol.condition = std::numeric_limits<Real>::quiet_NaN();
+  // Memory guard, before anything is allocated: the system (R x N, QR in a copy: twice) and the
+  // right-hand sides with the images of c_0 (R x (K + 2)), R and N estimated from the pole counts
+  // (layer rows: ~log(2 h/gap)/log 1.2 + log 50/log 1.2 an end).
+  double N_est = 0, R_est = 0;
+  for (std::size_t i = 0; i < K; ++i) {
+    const Real h = (intervals[i].hi - intervals[i].lo) / 2;
+    N_est += double(M);
+    R_est += double(2 * M + 8);
+    for (const std::size_t other : {i - 1, i + 1}) {
+      if ((other == i - 1 && i == 0) || other >= K) continue;
+      const double gap_over_h = double(union_gap(intervals, other, i) / h);
+      if (!(gap_over_h < 1)) continue;
+      N_est += layer_pole_count(gap_over_h, options.layer_poles_per_decade);
+      R_est += (std::log(4 / gap_over_h) + std::log(50.0)) / std::log(1.2) + 2;
+    }
+  }
+  const double bytes = double(sizeof(Real)) * R_est * (2 * N_est + double(K) + 2);
+  if (bytes > double(options.max_memory_bytes)) {
+    std::ostringstream range;
+    range << "a smaller value or wider gaps: ~" << N_est << " unknowns at ~" << R_est << " points would need ~"
+          << bytes << " bytes > options.max_memory_bytes = " << options.max_memory_bytes;
+    throw_bad_parameter("rhabel::abel::solve_union", "options.layer_poles_per_decade",
+                        double(options.layer_poles_per_decade), range.str().c_str());
+  }
   std::vector<abel_operator<Real>> ops;
   // Unknowns of interval i, from offset[i]: M polynomial ones as on the polynomial route (the
   // coefficients, c_0 excluded for nu = +1, and the defect for nu = -1, last), then the poles
@@ -185,10 +231,12 @@ multi_solution<Real> solve_union_layered(const abel_parameters<Real>& par, const
   auto pole_column = [&](std::size_t i, bool at_lo, std::size_t k) {
     return offset[i] + M + (at_lo ? 0 : sol.layers[i].lo_distances.size()) + k;
   };
-  // Rows: 2 x (unknowns of j) Chebyshev points plus the layer points (gap/2 x 1.2^k).
+  // Rows: 2 M + 8 Chebyshev points (the poles act in the layer, which has its own points: 2 x the
+  // unknowns instead gave the same residuals, measured, at 1.3x the time) plus the layer points
+  // (gap/2 x 1.2^k, k of either sign).
   std::vector<layered_row<Real>> rows;
   for (std::size_t j = 0; j < K; ++j) {
-    const auto r = layered_rows(intervals, sol.layers[j], j, 2 * (offset[j + 1] - offset[j]), Real(0.5), Real(1.2));
+    const auto r = layered_rows(intervals, sol.layers[j], j, 2 * M + 8, Real(0.5), Real(1.2));
     rows.insert(rows.end(), r.begin(), r.end());
   }
   const auto R = static_cast<Eigen::Index>(rows.size()), N = static_cast<Eigen::Index>(offset[K]);
@@ -205,7 +253,9 @@ multi_solution<Real> solve_union_layered(const abel_parameters<Real>& par, const
     const auto& e = sol.exponents[j];
     const auto& layer = sol.layers[j];
     const std::vector<Real> lambda = ops[j].eigenvalues(n_basis[j], e);
-    const typename abel_operator<Real>::quadrature_evaluator own(ops[j], e.gam, e.del, 32);
+    // Degree hint 8: 16 nodes a panel (the poles are smooth on the panels graded toward them;
+    // panel_integrator: ~1e-24 a panel at 16), against the residual's M/2 + 24.
+    const typename abel_operator<Real>::quadrature_evaluator own(ops[j], e.gam, e.del, 8);
     for (Eigen::Index r = 0; r < R; ++r) {
       const auto& row = rows[static_cast<std::size_t>(r)];
       if (row.j != j) continue;
@@ -407,9 +457,9 @@ Real union_layered_residual(const abel_parameters<Real>& par, const std::vector<
     const auto gj_series = gj.series_evaluator();
     const Real h = op.half_length();
     const Real defect = sol.exponents[j].nu == -1 ? pow(h, par.alpha()) * sol.solvability_defects[j] : Real(0);
-    const std::size_t unknowns = M + lj.lo_distances.size() + lj.hi_distances.size();
-    const auto rows = layered_rows(intervals, lj, j, residual_grid_size(std::max(points, unknowns) + 3, 2 * unknowns),
-                                   Real(0.37), Real(3));
+    // Chebyshev points of another size than the rows' 2 M + 8 (residual_grid_size), and the layer
+    // at 0.37 gap 3^k (k of either sign).
+    const auto rows = layered_rows(intervals, lj, j, residual_grid_size(std::max(points, M) + 3, 2 * M + 8), Real(0.37), Real(3));
     std::vector<cross_nodes<Real>> nodes(K);
     std::vector<std::vector<Real>> factor(K);
     for (std::size_t i = 0; i < K; ++i) {
