@@ -8,8 +8,8 @@
 //
 // Basis. On each interval the density is w (S + sum_k a_k d_k/(d_k + 1 - x) + ...), S a
 // polynomial of degree < M in the Jacobi basis (as on the polynomial route) and one simple pole
-// beyond every facing end at each distance d_k (reference units), the d_k in geometric
-// progression from gap/(2h) to 4 with layer_poles_per_decade of them per decade
+// beyond every facing end at each distance d_k (reference units) of the fixed geometric ladder
+// 4 x 10^(-k/layer_poles_per_decade), k = 0, 1, ..., down to the first at or below gap/(2h)
 // (layer_pole_distances). This is the "lightning" idea (Gopal and Trefethen, PNAS 116 (2019)
 // 10223; SIAM J. Numer. Anal. 57 (2019) 2074): rational functions with poles clustered
 // exponentially toward a branch point approximate it root-exponentially, uniformly in its
@@ -20,9 +20,12 @@
 //
 // System. Rational bases are redundant, so the equations are imposed in the least-squares sense
 // at more points than unknowns: on every interval 2 M + 8 Chebyshev points plus points at
-// distances gap/2 x 1.2^k (k of either sign, from gap/100 to h) from every facing end (the
-// layer: ~2 per pole), columns scaled to unit norm, solved by column-pivoted Householder QR
-// (Eigen::ColPivHouseholderQR). The nu = -1 defects and the
+// distances 0.9 h x 1.2^(-k) down to gap/100 from every facing end (the layer: ~2 per pole),
+// columns scaled to unit norm, solved by column-pivoted Householder QR
+// (Eigen::ColPivHouseholderQR). Both ladders are fixed relative to h (the gap only says where
+// they stop), so the poles' own images at the layer points depend on the material, the class
+// and the degree alone: they could be computed once for all the solves of a Newton iteration
+// (not done yet; they are about half of a solve's time). The nu = -1 defects and the
 // nu = +1 fixed constants enter as on the polynomial route; the homogeneous solutions are more
 // right-hand sides of the same factorisation.
 //
@@ -34,14 +37,14 @@
 // Measured (study_union_convergence - 1024 layered, studies/results/union_convergence.csv: F = -s
 // on [-1, 0], [gap, 1] (, [1 + gap, 2]), alpha in {0, 0.25, 0.5, 0.9}, beta in {0, 0.3}, classes
 // nu = 0 and -1; one core). At M = 24 and 8 poles a decade:
-//   two intervals, gap 1e-2 / 1e-4 / 1e-6: 46 / 62 / 78 unknowns an interval, residual <= 6.3e-13
-//   / 2.7e-12 / 6.1e-12, 5-11 / 12-21 / 31-37 ms with the residual;
-//   three intervals, gap 1e-6: 132 unknowns on the middle one, residual <= 8.4e-12, 77-126 ms;
-//   int g within 1.6e-12 of (M, poles a decade) = (32, 12), and within 1.1e-10 of the polynomial
-//   route where that converges (gap 1e-4: degree 546-1024, 0.65-3.6 s).
+//   two intervals, gap 1e-2 / 1e-4 / 1e-6: 46 / 62 / 78 unknowns an interval, residual <= 7.6e-13
+//   / 1.2e-11 / 4.1e-12, 5-7 / 12-18 / 21-25 ms with the residual;
+//   three intervals, gap 1e-6: 132 unknowns on the middle one, residual <= 3.2e-12, 79-88 ms;
+//   int g within 8.7e-13 of (M, poles a decade) = (32, 12), and within 1.1e-10 of the polynomial
+//   route where that converges (gap 1e-4: degree 546-1024, 0.55-3.4 s).
 // Tests (tests/abel/test_layered_union.cpp): the converged polynomial route at gap 1e-2 (every
 // class), its recorded degree-1536 int g at gap 1e-4, densities given in advance at gap 1e-6,
-// the alpha = 0 closed form of the two-interval null space at gap 1e-6 (5e-11).
+// the alpha = 0 closed form of the two-interval null space at gap 1e-6 (3e-12).
 // Limits: unbounded facing ends with imposed loads (nu = +1) leave residuals of ~1e-8 ... 1e-7 of
 // the data at gap 1e-6 (the terms next to the gap are ~1e3 times the data); the solve is dense
 // (no far field: the intervals' count should be small); tested in double only.
@@ -68,22 +71,26 @@
 
 namespace rhabel::abel::detail {
 
-/// Number of poles for a facing end at `gap_over_h` (gap / h of the interval): per_decade a
-/// decade from gap_over_h / 2 to 4, at least 4 (a double: checked against memory before use).
+/// Number of poles for a facing end at `gap_over_h` (gap / h of the interval): the ladder of
+/// layer_pole_distances down to gap_over_h / 2, at least 4 (a double: checked against memory
+/// before use).
 template <class Real>
 double layer_pole_count(const Real& gap_over_h, std::size_t per_decade) {
   return std::max(4.0, std::ceil(double(per_decade) * std::log10(8 / double(gap_over_h))) + 1);
 }
 
-/// Pole distances (reference units beyond an end) for a facing end at `gap_over_h`: geometric
-/// from gap_over_h / 2 to 4, layer_pole_count of them.
+/// Pole distances (reference units beyond an end), nearest first: the fixed ladder
+/// 4 x 10^(-k/per_decade), k = 0, 1, ..., down to the first at or below gap_over_h / 2
+/// (layer_pole_count of them). The ladder does not depend on the gap (only where it stops), so
+/// the poles' own images at the fixed rows of layered_rows depend on the material and the class
+/// alone.
 template <class Real>
 std::vector<Real> layer_pole_distances(const Real& gap_over_h, std::size_t per_decade) {
   using std::pow;
-  const Real lo = gap_over_h / 2, hi = Real(4);
   const auto count = static_cast<std::size_t>(layer_pole_count(gap_over_h, per_decade));
   std::vector<Real> out(count);
-  for (std::size_t k = 0; k < count; ++k) out[k] = lo * pow(hi / lo, Real(k) / Real(count - 1));
+  for (std::size_t k = 0; k < count; ++k)
+    out[count - 1 - k] = 4 * pow(Real(10), -Real(k) / Real(std::max<std::size_t>(per_decade, 1)));
   return out;
 }
 
@@ -146,8 +153,7 @@ struct layered_row {
 };
 
 /// Rows of interval j: `chebyshev` Chebyshev points and the layer points at distances
-/// first x ratio^k (times the gap, k of either sign) from every facing end with poles, between
-/// gap/100 and h.
+/// first x h x ratio^(-k), k = 0, 1, ..., down to gap/100, from every facing end with poles.
 template <class Real>
 std::vector<layered_row<Real>> layered_rows(const std::vector<interval_spec<Real>>& intervals,
                                             const layer_density<Real>& layer, std::size_t j, std::size_t chebyshev,
@@ -164,10 +170,10 @@ std::vector<layered_row<Real>> layered_rows(const std::vector<interval_spec<Real
     const bool at_lo = side == 0;
     if ((at_lo ? layer.lo_distances : layer.hi_distances).empty()) continue;
     const Real gap = at_lo ? union_gap(intervals, j - 1, j) : union_gap(intervals, j + 1, j);
-    // Outward from first x gap to h, and inward to gap/100 (inside the layer the density of an
-    // unbounded end varies on the scale of its distance to the end).
-    for (Real d = first * gap; d < h; d *= ratio) add(at_lo ? iv.lo + d : iv.hi - d);
-    for (Real d = first * gap / ratio; d > gap / 100; d /= ratio) add(at_lo ? iv.lo + d : iv.hi - d);
+    // From first x h inward by the ratio down to gap/100 (inside the layer the density of an
+    // unbounded end varies on the scale of its distance to the end): a ladder fixed relative to
+    // h, so the rows do not depend on the gap (only where they stop).
+    for (Real d = first * h; d > gap / 100; d /= ratio) add(at_lo ? iv.lo + d : iv.hi - d);
   }
   return out;
 }
@@ -233,10 +239,10 @@ multi_solution<Real> solve_union_layered(const abel_parameters<Real>& par, const
   };
   // Rows: 2 M + 8 Chebyshev points (the poles act in the layer, which has its own points: 2 x the
   // unknowns instead gave the same residuals, measured, at 1.3x the time) plus the layer points
-  // (gap/2 x 1.2^k, k of either sign).
+  // (0.9 h x 1.2^(-k) down to gap/100).
   std::vector<layered_row<Real>> rows;
   for (std::size_t j = 0; j < K; ++j) {
-    const auto r = layered_rows(intervals, sol.layers[j], j, 2 * M + 8, Real(0.5), Real(1.2));
+    const auto r = layered_rows(intervals, sol.layers[j], j, 2 * M + 8, Real(0.9), Real(1.2));
     rows.insert(rows.end(), r.begin(), r.end());
   }
   const auto R = static_cast<Eigen::Index>(rows.size()), N = static_cast<Eigen::Index>(offset[K]);
@@ -459,7 +465,7 @@ Real union_layered_residual(const abel_parameters<Real>& par, const std::vector<
     const Real defect = sol.exponents[j].nu == -1 ? pow(h, par.alpha()) * sol.solvability_defects[j] : Real(0);
     // Chebyshev points of another size than the rows' 2 M + 8 (residual_grid_size), and the layer
     // at 0.37 gap 3^k (k of either sign).
-    const auto rows = layered_rows(intervals, lj, j, residual_grid_size(std::max(points, M) + 3, 2 * M + 8), Real(0.37), Real(3));
+    const auto rows = layered_rows(intervals, lj, j, residual_grid_size(std::max(points, M) + 3, 2 * M + 8), Real(0.77), Real(3));
     std::vector<cross_nodes<Real>> nodes(K);
     std::vector<std::vector<Real>> factor(K);
     for (std::size_t i = 0; i < K; ++i) {
