@@ -17,8 +17,8 @@
 //  * loads: int g_i of every interval, %.17g, separated by ';' (tests/abel/test_multi_interval.cpp
 //    records the gap 1e-4 row at degree 1536 as its reference: run with argv[2] = 1536).
 //
-// With argv[3] = "layered" it writes instead the boundary-layer route (options.
-// layer_poles_per_decade, abel/detail/layered_union.hpp) side by side with the polynomial route,
+// With argv[3] = "layered" it writes instead the boundary-layer route (abel::solve_union_layered,
+// abel/detail/layered_union.hpp) side by side with the polynomial route,
 // for the same cases, measured in one run:
 //   intervals,gap,alpha,beta,classes,route,degree,poles_per_decade,unknowns,residual,status,
 //   load_error,seconds,loads
@@ -130,17 +130,18 @@ int main(int argc, char** argv) {
         double seconds;
       };
       std::vector<result> results;
-      auto timed = [&](const multi_solve_options<double>& options) {
+      // per_decade 0: the polynomial route (solve_union), else solve_union_layered.
+      auto timed = [&](const multi_solve_options<double>& options, std::size_t per_decade) {
         const auto start = std::chrono::steady_clock::now();
-        auto sol = solve_union(par, intervals, F, options);
+        auto sol = per_decade > 0 ? solve_union_layered(par, intervals, F, options, per_decade)
+                                  : solve_union(par, intervals, F, options);
         return std::make_pair(std::move(sol), std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       };
       for (const auto& [degree, per_decade] : {std::pair<std::size_t, std::size_t>{16, 6}, {24, 8}, {32, 12}}) {
         multi_solve_options<double> options;
         options.degree = degree;
-        options.layer_poles_per_decade = per_decade;
         options.residual_points = 16;
-        auto [sol, seconds] = timed(options);
+        auto [sol, seconds] = timed(options, per_decade);
         std::size_t unknowns = 0;
         for (const auto& l : sol.layers)
           unknowns = std::max(unknowns, degree + l.lo_distances.size() + l.hi_distances.size());
@@ -151,7 +152,7 @@ int main(int argc, char** argv) {
         options.degree = 32;
         options.max_degree = gap >= 1e-2 ? 256 : (gap >= 1e-4 ? top : 512);
         options.residual_points = 16;
-        auto [sol, seconds] = timed(options);
+        auto [sol, seconds] = timed(options, 0);
         const std::size_t degree = sol.degree;
         results.push_back({"polynomial", degree, 0, degree, std::move(sol), seconds});
       }

@@ -1,5 +1,5 @@
-// Tests of the boundary-layer route of rhabel/abel/multi_interval.hpp (options.
-// layer_poles_per_decade > 0, detail/layered_union.hpp): nearly touching intervals down to a gap
+// Tests of the boundary-layer route of rhabel/abel/multi_interval.hpp (solve_union_layered,
+// detail/layered_union.hpp): nearly touching intervals down to a gap
 // of 1e-6 of their length with a few dozen unknowns each. Oracles that share no code with the
 // route: the polynomial route where it converges (gap 1e-2, every class), its recorded degree-1536
 // value at gap 1e-4, the alpha = 0 closed form of the two-interval null space, densities given in
@@ -31,13 +31,20 @@ std::vector<std::function<double(double)>> minus_s() {
   return std::vector<std::function<double(double)>>(2, [](double s) { return -s; });
 }
 
-multi_solve_options<double> layered(std::size_t degree, std::size_t per_decade) {
+/// The tests' options: `degree`, 16 residual points, loads 1 and 0.5 (used by nu = +1 only).
+multi_solve_options<double> with_degree(std::size_t degree) {
   multi_solve_options<double> options;
   options.degree = degree;
-  options.layer_poles_per_decade = per_decade;
   options.residual_points = 16;
-  options.loads = {1.0, 0.5};  // nu = +1 only
+  options.loads = {1.0, 0.5};
   return options;
+}
+
+/// solve_union_layered at `degree` and `per_decade` poles a decade.
+multi_solution<double> layered(const abel_parameters<double>& par, const std::vector<interval_spec<double>>& intervals,
+                               const std::vector<std::function<double(double)>>& F, std::size_t degree,
+                               std::size_t per_decade) {
+  return solve_union_layered(par, intervals, F, with_degree(degree), per_decade);
 }
 
 /// g_i(t) of a solution (polynomial part plus layer).
@@ -57,10 +64,9 @@ TEST_CASE("gap 1e-2: the layered route agrees with the converged polynomial rout
   };
   for (const cls c : {cls{edge::bounded, edge::bounded}, cls{edge::bounded, edge::unbounded},
                       cls{edge::unbounded, edge::unbounded}}) {
-    multi_solve_options<double> polynomial = layered(160, 0);
-    const auto reference = solve_union(par, pair_at(gap, c.leading, c.trailing), minus_s(), polynomial);
+    const auto reference = solve_union(par, pair_at(gap, c.leading, c.trailing), minus_s(), with_degree(160));
     REQUIRE(reference.residual < 1e-12);
-    const auto sol = solve_union(par, pair_at(gap, c.leading, c.trailing), minus_s(), layered(24, 12));
+    const auto sol = layered(par, pair_at(gap, c.leading, c.trailing), minus_s(), 24, 12);
     INFO("classes " << int(c.leading) << int(c.trailing) << ": residual " << sol.residual);
     CHECK(sol.status == solve_status::converged);
     CHECK(sol.residual < 1e-12);
@@ -89,7 +95,7 @@ TEST_CASE("gap 1e-2: the layered route agrees with the converged polynomial rout
 // records int g at degree 1536); the layered route reaches it at 24 + ~45 unknowns an interval.
 TEST_CASE("gap 1e-4, alpha 0.25, beta 0.3, bounded ends: int g of the degree-1536 polynomial solve") {
   const abel_parameters<double> par(0.25, 0.3);
-  const auto sol = solve_union(par, pair_at(1e-4, edge::bounded, edge::bounded), minus_s(), layered(24, 8));
+  const auto sol = layered(par, pair_at(1e-4, edge::bounded, edge::bounded), minus_s(), 24, 8);
   const double reference[2] = {0.40988240595917425, 0.23221830030750071};  // test_multi_interval.cpp
   INFO("residual " << sol.residual);
   CHECK(sol.status == solve_status::converged);
@@ -117,7 +123,7 @@ TEST_CASE("gap 1e-6: forward/inverse, the densities behind the data come back") 
     }
     std::vector<std::function<double(double)>> F;
     for (std::size_t j = 0; j < 2; ++j) F.push_back([&par, &g](double s) { return apply_union(par, g, s); });
-    const auto sol = solve_union(par, intervals, F, layered(24, 8));
+    const auto sol = layered(par, intervals, F, 24, 8);
     INFO("alpha " << alpha << ": residual " << sol.residual);
     CHECK(sol.status == solve_status::converged);
     CHECK(sol.residual < 1e-10);
@@ -132,8 +138,8 @@ TEST_CASE("gap 1e-6, bounded ends: converged, and int g independent of the basis
   for (const double alpha : {0.0, 0.3, 0.9}) {
     const abel_parameters<double> par(alpha, 0.2);
     const auto intervals = pair_at(1e-6, edge::bounded, edge::bounded);
-    const auto coarse = solve_union(par, intervals, minus_s(), layered(24, 8));
-    const auto fine = solve_union(par, intervals, minus_s(), layered(32, 12));
+    const auto coarse = layered(par, intervals, minus_s(), 24, 8);
+    const auto fine = layered(par, intervals, minus_s(), 32, 12);
     INFO("alpha " << alpha << ": residuals " << coarse.residual << ", " << fine.residual);
     CHECK(coarse.status == solve_status::converged);
     CHECK(coarse.residual < 1e-11);
@@ -154,10 +160,10 @@ TEST_CASE("gap 1e-6, alpha 0, beta 0: the coupled homogeneous density is (c0 + c
   const std::vector<interval_spec<double>> intervals{{a1, b1, edge::unbounded, edge::unbounded},
                                                      {a2, b2, edge::unbounded, edge::unbounded}};
   const std::vector<std::function<double(double)>> F{[](double) { return 0.0; }, [](double) { return 0.0; }};
-  multi_solve_options<double> options = layered(24, 12);
+  multi_solve_options<double> options = with_degree(24);
   options.loads = {};
   options.residual_points = 0;  // the closed form is the oracle
-  const auto sol = solve_union(par, intervals, F, options);
+  const auto sol = solve_union_layered(par, intervals, F, options, 12);
   REQUIRE(sol.homogeneous[0].size() == 2);
   REQUIRE(sol.homogeneous_layers[0].size() == 2);
   const auto& H = sol.homogeneous[0];
@@ -197,8 +203,8 @@ TEST_CASE("gap 1e-6, alpha 0, beta 0: the coupled homogeneous density is (c0 + c
 TEST_CASE("gap 1e-6: too few poles give not_converged with the residual that shows it") {
   const abel_parameters<double> par(0.3, 0.2);
   const auto intervals = pair_at(1e-6, edge::bounded, edge::bounded);
-  const auto poor = solve_union(par, intervals, minus_s(), layered(8, 1));
-  const auto good = solve_union(par, intervals, minus_s(), layered(24, 8));
+  const auto poor = layered(par, intervals, minus_s(), 8, 1);
+  const auto good = layered(par, intervals, minus_s(), 24, 8);
   const double error = std::abs(poor.load(0) / good.load(0) - 1);
   INFO("residual " << poor.residual << ", int g error " << error);
   CHECK(poor.status == solve_status::not_converged);
@@ -208,19 +214,21 @@ TEST_CASE("gap 1e-6: too few poles give not_converged with the residual that sho
 
 // Bad input: a basis that would not fit in options.max_memory_bytes (10^5 or SIZE_MAX poles a
 // decade; 8 a decade at a gap of 1e-300 of the length, ~2400 poles, under a 1 MiB bound) is
-// refused before anything is allocated, naming the option.
-TEST_CASE("layered route: a basis beyond max_memory_bytes is refused, naming the option") {
+// refused before anything is allocated, naming the parameter; so are 0 poles a decade.
+TEST_CASE("layered route: a basis beyond max_memory_bytes is refused, naming the parameter") {
   const abel_parameters<double> par(0.3, 0.2);
-  multi_solve_options<double> options = layered(24, 100000);
+  const auto pair = pair_at(1e-6, edge::bounded, edge::bounded);
   try {
-    (void)solve_union(par, pair_at(1e-6, edge::bounded, edge::bounded), minus_s(), options);
+    (void)layered(par, pair, minus_s(), 24, 100000);
     FAIL("no exception");
   } catch (const std::domain_error& e) {
-    CHECK(std::string(e.what()).find("layer_poles_per_decade") != std::string::npos);
+    CHECK(std::string(e.what()).find("poles_per_decade") != std::string::npos);
   }
-  options = layered(24, std::numeric_limits<std::size_t>::max());  // no allocation of 1e20 poles first
-  CHECK_THROWS_AS(solve_union(par, pair_at(1e-6, edge::bounded, edge::bounded), minus_s(), options), std::domain_error);
-  options = layered(24, 8);
+  // No allocation of 1e20 poles first.
+  CHECK_THROWS_AS(layered(par, pair, minus_s(), 24, std::numeric_limits<std::size_t>::max()), std::domain_error);
+  CHECK_THROWS_AS(layered(par, pair, minus_s(), 24, 0), std::domain_error);
+  multi_solve_options<double> options = with_degree(24);
   options.max_memory_bytes = std::size_t(1) << 20;
-  CHECK_THROWS_AS(solve_union(par, pair_at(1e-300, edge::bounded, edge::bounded), minus_s(), options), std::domain_error);
+  CHECK_THROWS_AS(solve_union_layered(par, pair_at(1e-300, edge::bounded, edge::bounded), minus_s(), options, 8),
+                  std::domain_error);
 }

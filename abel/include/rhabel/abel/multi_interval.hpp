@@ -100,7 +100,7 @@
 //             degree 512; at a decade per ~1000 degrees 1e-10 would need degree ~ 8e3 ... 1e4,
 //             i.e. a 1.6e4-unknown dense system (2 GB, minutes): out of reach of this method. The
 //             solver reports not_converged with that residual.
-// Boundary-layer route (options.layer_poles_per_decade > 0; detail/layered_union.hpp): the
+// Boundary-layer route (solve_union_layered; detail/layered_union.hpp): the
 // Jacobi series of every interval with a near neighbour is augmented by simple poles beyond the
 // facing end, clustered geometrically toward it, and the system is solved in least squares. The
 // unknowns grow like log(L/gap) instead of sqrt(L/gap): gap 1e-6 at ~80 unknowns an interval,
@@ -177,19 +177,9 @@ struct multi_solve_options {
   /// caller has one (the punch layer builds it for its data anyway); null: solve_union builds it
   /// with order_for(residual_tolerance / 1000) points per box.
   std::shared_ptr<const detail::far_field<Real>> far_field;
-  /// > 0: the boundary-layer route (detail/layered_union.hpp) for nearly touching intervals:
-  /// every end whose neighbour is nearer than the interval's half-length gets simple poles
-  /// beyond it, this many per decade of distance from 2 lengths down to gap/2, and the system is
-  /// solved in the least-squares sense; the densities are then densities[i] + layers[i]
-  /// (multi_solution::load(i) sums both). `degree` is the polynomial part's and adapts with
-  /// max_degree as on the polynomial route; the poles stay. Dense only (iterative_from and
-  /// far_field are not used); memory bounded by max_memory_bytes. 8 poles a decade at degree 24:
-  /// residual ~1e-12 at gaps down to 1e-6 of the length (detail/layered_union.hpp). 0: the
-  /// polynomial route.
-  std::size_t layer_poles_per_decade = 0;
 };
 
-/// The boundary-layer part of a density on [lo, hi] (layer_poles_per_decade > 0):
+/// The boundary-layer part of a density on [lo, hi] (solve_union_layered):
 /// g(t) = (1 - x)^del (1 + x)^gam [ sum_k a_k d_k/(d_k + 1 + x) + sum_k b_k e_k/(e_k + 1 - x) ],
 /// poles at x = -1 - d_k (lo_distances) and x = 1 + e_k (hi_distances), reference units.
 /// The whole density of interval i is multi_solution::densities[i] + layers[i].
@@ -243,7 +233,7 @@ struct multi_solution {
   /// 1-norm condition number of the collocation matrix: Eigen's rcond estimate for float and
   /// double, exact for other types (see the header).
   Real condition = 0;
-  /// Boundary-layer parts (options.layer_poles_per_decade > 0; else empty): g_i = densities[i] +
+  /// Boundary-layer parts (solve_union_layered; empty from solve_union): g_i = densities[i] +
   /// layers[i]; homogeneous_layers[k][i] likewise for homogeneous[k][i].
   std::vector<layer_density<Real>> layers;
   std::vector<std::vector<layer_density<Real>>> homogeneous_layers;
@@ -738,11 +728,34 @@ Real union_residual(const abel_parameters<Real>& par, const std::vector<interval
   return worst;
 }
 
+/// The argument checks of solve_union and solve_union_layered (their comments list them).
+template <class Real>
+void check_union_arguments(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
+                           const std::vector<std::function<Real(Real)>>& F, const multi_solve_options<Real>& options) {
+  const std::size_t K = intervals.size();
+  if (K == 0) throw_bad_parameter("rhabel::abel::solve_union", "number of intervals", 0, "[1, inf)");
+  if (F.size() != K)
+    throw_bad_parameter("rhabel::abel::solve_union", "number of data functions", F.size(), "equal to the number of intervals");
+  for (std::size_t i = 0; i < K; ++i) {
+    abel_operator<Real> check(par, intervals[i].lo, intervals[i].hi);  // validates lo < hi
+    (void)check;
+    if (i > 0 && !(intervals[i].lo > intervals[i - 1].hi))
+      throw_bad_parameter("rhabel::abel::solve_union", "interval lo", intervals[i].lo,
+                          "> hi of the previous interval (sorted, disjoint intervals)");
+  }
+  if (options.max_degree != 0 && options.max_degree < options.degree)
+    throw_bad_parameter("rhabel::abel::solve_union", "options.max_degree", options.max_degree,
+                        "0 (no adaptation) or >= options.degree");
+  if (options.max_degree > options.degree && options.residual_points == 0)
+    throw_bad_parameter("rhabel::abel::solve_union", "options.residual_points", 0,
+                        "> 0 when options.max_degree > options.degree (the residual drives the degree)");
+}
+
 }  // namespace detail
 
 }  // namespace rhabel::abel
 
-// The boundary-layer route (options.layer_poles_per_decade): uses the types and helpers above.
+// The boundary-layer route (solve_union_layered, below): uses the types and helpers above.
 #include "rhabel/abel/detail/layered_union.hpp"
 
 namespace rhabel::abel {
@@ -758,37 +771,9 @@ multi_solution<Real> solve_union(const abel_parameters<Real>& par, const std::ve
                                  const std::vector<std::function<Real(Real)>>& F,
                                  const multi_solve_options<Real>& options = {}) {
   const std::size_t K = intervals.size();
-  if (K == 0) detail::throw_bad_parameter("rhabel::abel::solve_union", "number of intervals", 0, "[1, inf)");
-  if (F.size() != K)
-    detail::throw_bad_parameter("rhabel::abel::solve_union", "number of data functions", F.size(),
-                                "equal to the number of intervals");
-  for (std::size_t i = 0; i < K; ++i) {
-    abel_operator<Real> check(par, intervals[i].lo, intervals[i].hi);  // validates lo < hi
-    (void)check;
-    if (i > 0 && !(intervals[i].lo > intervals[i - 1].hi))
-      detail::throw_bad_parameter("rhabel::abel::solve_union", "interval lo", intervals[i].lo,
-                                  "> hi of the previous interval (sorted, disjoint intervals)");
-  }
-  if (options.max_degree != 0 && options.max_degree < options.degree)
-    detail::throw_bad_parameter("rhabel::abel::solve_union", "options.max_degree", options.max_degree,
-                                "0 (no adaptation) or >= options.degree");
-  if (options.max_degree > options.degree && options.residual_points == 0)
-    detail::throw_bad_parameter("rhabel::abel::solve_union", "options.residual_points", 0,
-                                "> 0 when options.max_degree > options.degree (the residual drives the degree)");
+  detail::check_union_arguments(par, intervals, F, options);
   std::size_t M = std::max<std::size_t>(options.degree, 2);
   const std::size_t M_max = std::max(M, options.max_degree);
-  // The boundary-layer route (detail/layered_union.hpp): small dense least-squares systems.
-  if (options.layer_poles_per_decade > 0) {
-    for (;;) {
-      auto sol = detail::solve_union_layered(par, intervals, F, options, M);
-      if (options.residual_points == 0) return sol;
-      sol.residual = detail::union_layered_residual(par, intervals, F, sol, options.residual_points);
-      if (sol.residual <= options.residual_tolerance) return sol;
-      sol.status = solve_status::not_converged;
-      if (M >= M_max) return sol;
-      M = std::min(M_max, M + M / 2);
-    }
-  }
   // Many intervals: the far field (header, "Many intervals"), for the solves and the residual.
   std::shared_ptr<const detail::far_field<Real>> far;
   if (std::is_floating_point_v<Real> && K > 1 && options.iterative_from > 1 && K >= options.iterative_from) {
@@ -830,6 +815,38 @@ multi_solution<Real> solve_union(const abel_parameters<Real>& par, const std::ve
     sol.status = solve_status::not_converged;
     if (M >= M_max) return sol;
     M = std::min(M_max, M + M / 2);  // x 1.5: the last solve dominates the cost (~ M^3)
+  }
+}
+
+/// The boundary-layer route (detail/layered_union.hpp) for nearly touching intervals: the same
+/// system as solve_union, but every end whose neighbour is nearer than the interval's
+/// half-length gets simple poles beyond it, `poles_per_decade` a decade of distance from two
+/// lengths down to gap/2, and the system is solved in least squares. The densities are then
+/// densities[i] + layers[i] (multi_solution::load(i) sums both; homogeneous[k][i] +
+/// homogeneous_layers[k][i] likewise). options as for solve_union: `degree` is the polynomial
+/// part's and adapts with max_degree (the poles stay); the residual, its tolerance and status as
+/// there; iterative_from and far_field are not used (dense); max_memory_bytes bounds the system.
+/// 8 poles a decade at degree 24: residual ~1e-12 at gaps down to 1e-6 of the length (the
+/// detail header has the measurements). A separate function so that programs which do not use
+/// the route do not compile it. Throws std::domain_error as solve_union does, and for a basis
+/// beyond max_memory_bytes (naming poles_per_decade) or poles_per_decade = 0.
+template <class Real>
+multi_solution<Real> solve_union_layered(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
+                                         const std::vector<std::function<Real(Real)>>& F,
+                                         const multi_solve_options<Real>& options = {}, std::size_t poles_per_decade = 8) {
+  detail::check_union_arguments(par, intervals, F, options);
+  if (poles_per_decade == 0)
+    detail::throw_bad_parameter("rhabel::abel::solve_union_layered", "poles_per_decade", 0, "[1, inf)");
+  std::size_t M = std::max<std::size_t>(options.degree, 2);
+  const std::size_t M_max = std::max(M, options.max_degree);
+  for (;;) {
+    auto sol = detail::solve_union_layered(par, intervals, F, options, M, poles_per_decade);
+    if (options.residual_points == 0) return sol;
+    sol.residual = detail::union_layered_residual(par, intervals, F, sol, options.residual_points);
+    if (sol.residual <= options.residual_tolerance) return sol;
+    sol.status = solve_status::not_converged;
+    if (M >= M_max) return sol;
+    M = std::min(M_max, M + M / 2);  // as solve_union's ladder
   }
 }
 

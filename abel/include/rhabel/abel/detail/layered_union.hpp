@@ -1,5 +1,5 @@
 // rhabel/abel/detail/layered_union.hpp: the boundary-layer route of abel::solve_union
-// (multi_interval.hpp, options.layer_poles_per_decade > 0), for nearly touching intervals.
+// (abel::solve_union_layered, multi_interval.hpp), for nearly touching intervals.
 //
 // Why. Next to a neighbour at distance `gap`, the data of I_j carries the neighbour's edge
 // behaviour: a branch point at distance gap beyond the facing end. The density then has a layer
@@ -9,7 +9,7 @@
 // Basis. On each interval the density is w (S + sum_k a_k d_k/(d_k + 1 - x) + ...), S a
 // polynomial of degree < M in the Jacobi basis (as on the polynomial route) and one simple pole
 // beyond every facing end at each distance d_k (reference units) of the fixed geometric ladder
-// 4 x 10^(-k/layer_poles_per_decade), k = 0, 1, ..., down to the first at or below gap/(2h)
+// 4 x 10^(-k/poles_per_decade), k = 0, 1, ..., down to the first at or below gap/(2h)
 // (layer_pole_distances). This is the "lightning" idea (Gopal and Trefethen, PNAS 116 (2019)
 // 10223; SIAM J. Numer. Anal. 57 (2019) 2074): rational functions with poles clustered
 // exponentially toward a branch point approximate it root-exponentially, uniformly in its
@@ -178,23 +178,14 @@ std::vector<layered_row<Real>> layered_rows(const std::vector<interval_spec<Real
   return out;
 }
 
-/// One least-squares solve of the layered system at M polynomial unknowns per interval (the
-/// top of this header). options.layer_poles_per_decade > 0.
+/// Memory guard of the layered system, before anything is allocated: the system (R x N, QR in
+/// a copy: twice) and the right-hand sides with the images of c_0 (R x (K + 2)), R and N
+/// estimated from the pole counts (layer rows: ~log(2 h/gap)/log 1.2 + log 50/log 1.2 an end).
+/// Throws std::domain_error naming poles_per_decade.
 template <class Real>
-multi_solution<Real> solve_union_layered(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
-                                         const std::vector<std::function<Real(Real)>>& F,
-                                         const multi_solve_options<Real>& options, std::size_t M) {
-  using std::pow;
-  using matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
+void check_layered_memory(const std::vector<interval_spec<Real>>& intervals, const multi_solve_options<Real>& options,
+                          std::size_t M, std::size_t per_decade) {
   const std::size_t K = intervals.size();
-  const Real alpha = par.alpha();
-  const Real inf = std::numeric_limits<Real>::infinity();
-  multi_solution<Real> sol;
-  sol.degree = M;
-  sol.condition = std::numeric_limits<Real>::quiet_NaN();
-  // Memory guard, before anything is allocated: the system (R x N, QR in a copy: twice) and the
-  // right-hand sides with the images of c_0 (R x (K + 2)), R and N estimated from the pole counts
-  // (layer rows: ~log(2 h/gap)/log 1.2 + log 50/log 1.2 an end).
   double N_est = 0, R_est = 0;
   for (std::size_t i = 0; i < K; ++i) {
     const Real h = (intervals[i].hi - intervals[i].lo) / 2;
@@ -204,7 +195,7 @@ multi_solution<Real> solve_union_layered(const abel_parameters<Real>& par, const
       if ((other == i - 1 && i == 0) || other >= K) continue;
       const double gap_over_h = double(union_gap(intervals, other, i) / h);
       if (!(gap_over_h < 1)) continue;
-      N_est += layer_pole_count(gap_over_h, options.layer_poles_per_decade);
+      N_est += layer_pole_count(gap_over_h, per_decade);
       R_est += (std::log(4 / gap_over_h) + std::log(50.0)) / std::log(1.2) + 2;
     }
   }
@@ -213,182 +204,258 @@ multi_solution<Real> solve_union_layered(const abel_parameters<Real>& par, const
     std::ostringstream range;
     range << "a smaller value or wider gaps: ~" << N_est << " unknowns at ~" << R_est << " points would need ~"
           << bytes << " bytes > options.max_memory_bytes = " << options.max_memory_bytes;
-    throw_bad_parameter("rhabel::abel::solve_union", "options.layer_poles_per_decade",
-                        double(options.layer_poles_per_decade), range.str().c_str());
+    throw_bad_parameter("rhabel::abel::solve_union_layered", "poles_per_decade", double(per_decade), range.str().c_str());
   }
-  std::vector<abel_operator<Real>> ops;
-  // Unknowns of interval i, from offset[i]: M polynomial ones as on the polynomial route (the
-  // coefficients, c_0 excluded for nu = +1, and the defect for nu = -1, last), then the poles
-  // beyond lo, then those beyond hi.
-  std::vector<std::size_t> n_basis(K), offset(K + 1, 0);
-  for (std::size_t i = 0; i < K; ++i) {
-    ops.emplace_back(par, intervals[i].lo, intervals[i].hi);
-    const auto e = par.exponents(intervals[i].leading, intervals[i].trailing);
-    sol.exponents.push_back(e);
-    n_basis[i] = e.nu == -1 ? M - 1 : (e.nu == 0 ? M : M + 1);
-    sol.densities.push_back(zero_density(intervals[i], e, n_basis[i]));
-    sol.layers.push_back(layer_for(intervals, i, e, options.layer_poles_per_decade));
-    offset[i + 1] = offset[i] + M + sol.layers[i].lo_distances.size() + sol.layers[i].hi_distances.size();
+}
+
+/// The layered least-squares system of one solve at M polynomial unknowns per interval (the top
+/// of this header): its layout (unknowns and rows), its assembly and the unpacking of a solution.
+/// Unknowns of interval i, from offset[i]: M polynomial ones as on the polynomial route (the
+/// coefficients, c_0 excluded for nu = +1, and the defect for nu = -1, last), then the poles
+/// beyond lo, then those beyond hi. Rows: 2 M + 8 Chebyshev points (the poles act in the layer,
+/// which has its own points: 2 x the unknowns instead gave the same residuals, measured, at 1.3x
+/// the time) plus the layer points (0.9 h x 1.2^(-k) down to gap/100). Equations of interval j in
+/// units of h_j^alpha.
+template <class Real>
+class layered_system {
+ public:
+  using matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
+
+  layered_system(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals, std::size_t M,
+                 std::size_t per_decade)
+      : par_(par), intervals_(intervals), M_(M), K_(intervals.size()), n_basis_(K_), offset_(K_ + 1, 0) {
+    using std::pow;
+    skeleton_.degree = M;
+    skeleton_.condition = std::numeric_limits<Real>::quiet_NaN();
+    for (std::size_t i = 0; i < K_; ++i) {
+      ops_.emplace_back(par, intervals[i].lo, intervals[i].hi);
+      const auto e = par.exponents(intervals[i].leading, intervals[i].trailing);
+      skeleton_.exponents.push_back(e);
+      n_basis_[i] = e.nu == -1 ? M - 1 : (e.nu == 0 ? M : M + 1);
+      skeleton_.densities.push_back(zero_density(intervals[i], e, n_basis_[i]));
+      skeleton_.layers.push_back(layer_for(intervals, i, e, per_decade));
+      offset_[i + 1] = offset_[i] + M + skeleton_.layers[i].lo_distances.size() + skeleton_.layers[i].hi_distances.size();
+      scale_.push_back(pow(ops_[i].half_length(), -par.alpha()));
+      const auto r = layered_rows(intervals, skeleton_.layers[i], i, 2 * M + 8, Real(0.9), Real(1.2));
+      rows_.insert(rows_.end(), r.begin(), r.end());
+    }
   }
-  auto poly_column = [&](std::size_t i, std::size_t n) -> long {  // -1: the fixed c_0 of nu = +1
-    if (sol.exponents[i].nu == 1) return n == 0 ? -1 : static_cast<long>(offset[i] + n - 1);
-    return static_cast<long>(offset[i] + n);
-  };
-  auto pole_column = [&](std::size_t i, bool at_lo, std::size_t k) {
-    return offset[i] + M + (at_lo ? 0 : sol.layers[i].lo_distances.size()) + k;
-  };
-  // Rows: 2 M + 8 Chebyshev points (the poles act in the layer, which has its own points: 2 x the
-  // unknowns instead gave the same residuals, measured, at 1.3x the time) plus the layer points
-  // (0.9 h x 1.2^(-k) down to gap/100).
-  std::vector<layered_row<Real>> rows;
-  for (std::size_t j = 0; j < K; ++j) {
-    const auto r = layered_rows(intervals, sol.layers[j], j, 2 * M + 8, Real(0.9), Real(1.2));
-    rows.insert(rows.end(), r.begin(), r.end());
+
+  Eigen::Index rows() const { return static_cast<Eigen::Index>(rows_.size()); }
+  Eigen::Index unknowns() const { return static_cast<Eigen::Index>(offset_[K_]); }
+  const multi_solution<Real>& skeleton() const { return skeleton_; }
+  const std::vector<layered_row<Real>>& row_points() const { return rows_; }
+  Real scale(std::size_t j) const { return scale_[j]; }
+  Real half_length(std::size_t i) const { return ops_[i].half_length(); }
+
+  /// Column of c^i_n; -1 for the fixed c_0 of nu = +1.
+  long poly_column(std::size_t i, std::size_t n) const {
+    if (skeleton_.exponents[i].nu == 1) return n == 0 ? -1 : static_cast<long>(offset_[i] + n - 1);
+    return static_cast<long>(offset_[i] + n);
   }
-  const auto R = static_cast<Eigen::Index>(rows.size()), N = static_cast<Eigen::Index>(offset[K]);
+  Eigen::Index pole_column(std::size_t i, bool at_lo, std::size_t k) const {
+    return static_cast<Eigen::Index>(offset_[i] + M_ + (at_lo ? 0 : skeleton_.layers[i].lo_distances.size()) + k);
+  }
+  Eigen::Index defect_column(std::size_t i) const { return static_cast<Eigen::Index>(offset_[i] + M_ - 1); }
+
+  /// Own blocks: polynomial columns by the spectral relation, poles by quadrature; the image of
+  /// the fixed c_0 = 1 of a nu = +1 interval into c0_columns (zero: A w = 0 for that class).
+  void add_own(matrix& A, matrix& c0_columns) const {
+    for (std::size_t j = 0; j < K_; ++j) {
+      const auto& e = skeleton_.exponents[j];
+      const std::vector<Real> lambda = ops_[j].eigenvalues(n_basis_[j], e);
+      // Degree hint 8: 16 nodes a panel (the poles are smooth on the panels graded toward them;
+      // panel_integrator: ~1e-24 a panel at 16), against the residual's M/2 + 24.
+      const typename abel_operator<Real>::quadrature_evaluator own(ops_[j], e.gam, e.del, 8);
+      for (Eigen::Index r = 0; r < rows(); ++r) {
+        const auto& row = rows_[static_cast<std::size_t>(r)];
+        if (row.j != j) continue;
+        const Real x = row.one_plus_x <= row.one_minus_x ? row.one_plus_x - 1 : 1 - row.one_minus_x;
+        const auto image = jacobi_values_any(M_, e.gam + Real(e.nu), e.del + Real(e.nu), x);
+        for (std::size_t n = 0; n < n_basis_[j]; ++n) {
+          const long m = static_cast<long>(n) - e.nu;
+          if (m < 0) continue;  // nu = +1, n = 0: image 0
+          const long c = poly_column(j, n);
+          (c >= 0 ? A(r, c) : c0_columns(r, static_cast<Eigen::Index>(j))) += lambda[n] * image[static_cast<std::size_t>(m)];
+        }
+        if (e.nu == -1) A(r, defect_column(j)) += Real(1);
+        add_own_poles(A, own, j, r);
+      }
+    }
+  }
+
+  /// Cross blocks: source i on the rows of j, by quadrature on nodes graded toward both ends of
+  /// I_i (the kernel's singularity and i's poles), one matrix product per block.
+  void add_cross(matrix& A, matrix& c0_columns) const {
+    for (std::size_t i = 0; i < K_; ++i)
+      for (std::size_t j = 0; j < K_; ++j)
+        if (i != j) add_cross_block(A, c0_columns, i, j);
+  }
+
+  /// A solution (column `col` of X, in the unknowns) with the fixed constants c0s, after the
+  /// elimination of c_0 by the loads (pole_integrals, unit_c0: see solve_union_layered).
+  void unpack(const matrix& X, Eigen::Index col, const std::vector<Real>& c0s, const std::vector<Real>& unit_c0,
+              const std::vector<std::vector<Real>>& pole_integrals, std::vector<jacobi_density<Real>>& g,
+              std::vector<layer_density<Real>>& layers, std::vector<Real>& defects) const {
+    g = skeleton_.densities;
+    layers = skeleton_.layers;
+    defects.assign(K_, Real(0));
+    for (std::size_t i = 0; i < K_; ++i) {
+      for (std::size_t n = 0; n < n_basis_[i]; ++n) {
+        const long c = poly_column(i, n);
+        g[i].coefficients[n] = c >= 0 ? X(c, col) : c0s[i];
+      }
+      if (skeleton_.exponents[i].nu == -1) defects[i] = X(defect_column(i), col);
+      for (std::size_t k = 0; k < layers[i].lo_distances.size(); ++k) layers[i].lo_coefficients[k] = X(pole_column(i, true, k), col);
+      for (std::size_t k = 0; k < layers[i].hi_distances.size(); ++k) layers[i].hi_coefficients[k] = X(pole_column(i, false, k), col);
+      if (skeleton_.exponents[i].nu == 1 && !g[i].coefficients.empty()) {  // c_0 eliminated by the load
+        const std::size_t n_lo = layers[i].lo_distances.size();
+        for (std::size_t k = 0; k < pole_integrals[i].size(); ++k)
+          g[i].coefficients[0] -= unit_c0[i] * pole_integrals[i][k] *
+                                  (k < n_lo ? layers[i].lo_coefficients[k] : layers[i].hi_coefficients[k - n_lo]);
+      }
+    }
+  }
+
+ private:
+  /// All poles of I_j at row r in one pass over the nodes (graded toward the nearest at each end).
+  void add_own_poles(matrix& A, const typename abel_operator<Real>::quadrature_evaluator& own, std::size_t j,
+                     Eigen::Index r) const {
+    const auto& layer = skeleton_.layers[j];
+    if (layer.empty()) return;
+    const std::size_t n_lo = layer.lo_distances.size(), n_poles = n_lo + layer.hi_distances.size();
+    const auto images = own.many(
+        [&](const Real&, const Real& p, const Real& m) {
+          Eigen::Array<Real, Eigen::Dynamic, 1> out(static_cast<Eigen::Index>(n_poles));
+          for (std::size_t k = 0; k < n_lo; ++k) out[static_cast<Eigen::Index>(k)] = layer.lo_distances[k] / (layer.lo_distances[k] + p);
+          for (std::size_t k = n_lo; k < n_poles; ++k)
+            out[static_cast<Eigen::Index>(k)] = layer.hi_distances[k - n_lo] / (layer.hi_distances[k - n_lo] + m);
+          return out;
+        },
+        rows_[static_cast<std::size_t>(r)].s, layer.nearest_lo(), layer.nearest_hi());
+    for (std::size_t k = 0; k < n_poles; ++k)
+      A(r, pole_column(j, k < n_lo, k < n_lo ? k : k - n_lo)) += scale_[j] * images[static_cast<Eigen::Index>(k)];
+  }
+
+  void add_cross_block(matrix& A, matrix& c0_columns, std::size_t i, std::size_t j) const {
+    const Real inf = std::numeric_limits<Real>::infinity();
+    const auto& gi = skeleton_.densities[i];
+    const auto& li = skeleton_.layers[i];
+    const Real h_i = gi.half_length(), h_j = ops_[j].half_length();
+    const bool right = i > j;  // I_i to the right of I_j: it faces j with its lo end
+    const Real gap = union_gap(intervals_, i, j);
+    const auto nodes = make_layered_nodes(h_i, gi.gam, gi.del, std::min(li.nearest_lo(), right ? gap / h_i : inf),
+                                          std::min(li.nearest_hi(), right ? inf : gap / h_i), M_ / 2 + 20);
+    const auto Q = static_cast<Eigen::Index>(nodes.x.size());
+    std::vector<Eigen::Index> row_index;
+    for (Eigen::Index r = 0; r < rows(); ++r)
+      if (rows_[static_cast<std::size_t>(r)].j == j) row_index.push_back(r);
+    const auto Rj = static_cast<Eigen::Index>(row_index.size());
+    matrix kernel(Rj, Q);
+    for (Eigen::Index a = 0; a < Rj; ++a) {
+      const auto& row = rows_[static_cast<std::size_t>(row_index[static_cast<std::size_t>(a)])];
+      const Real ds = right ? h_j * row.one_minus_x : h_j * row.one_plus_x;  // to j's end facing i
+      for (Eigen::Index q = 0; q < Q; ++q) {
+        const auto qs = static_cast<std::size_t>(q);
+        const Real t_minus_s = right ? nodes.t_minus_lo[qs] + gap + ds : -(nodes.hi_minus_t[qs] + gap + ds);
+        kernel(a, q) = scale_[j] * nodes.weight[qs] * cross_kernel(par_, t_minus_s);
+      }
+    }
+    matrix basis(Q, static_cast<Eigen::Index>(n_basis_[i] + li.lo_distances.size() + li.hi_distances.size()));
+    for (Eigen::Index q = 0; q < Q; ++q) {
+      const auto qs = static_cast<std::size_t>(q);
+      const Real u = nodes.t_minus_lo[qs] / h_i, v = nodes.hi_minus_t[qs] / h_i;  // 1 + x, 1 - x
+      const auto P = rhabel::quadrature::jacobi_p_all(n_basis_[i] - 1, gi.del, gi.gam, nodes.x[qs]);
+      Eigen::Index c = 0;
+      for (std::size_t n = 0; n < n_basis_[i]; ++n) basis(q, c++) = P[n];
+      for (const Real& d : li.lo_distances) basis(q, c++) = d / (d + u);
+      for (const Real& d : li.hi_distances) basis(q, c++) = d / (d + v);
+    }
+    const matrix block = kernel * basis;
+    for (Eigen::Index a = 0; a < Rj; ++a) {
+      const Eigen::Index r = row_index[static_cast<std::size_t>(a)];
+      Eigen::Index c = 0;
+      for (std::size_t n = 0; n < n_basis_[i]; ++n, ++c) {
+        const long col = poly_column(i, n);
+        (col >= 0 ? A(r, col) : c0_columns(r, static_cast<Eigen::Index>(i))) += block(a, c);
+      }
+      for (std::size_t k = 0; k < li.lo_distances.size(); ++k, ++c) A(r, pole_column(i, true, k)) += block(a, c);
+      for (std::size_t k = 0; k < li.hi_distances.size(); ++k, ++c) A(r, pole_column(i, false, k)) += block(a, c);
+    }
+  }
+
+  const abel_parameters<Real>& par_;
+  const std::vector<interval_spec<Real>>& intervals_;
+  std::size_t M_, K_;
+  std::vector<abel_operator<Real>> ops_;
+  std::vector<std::size_t> n_basis_, offset_;
+  std::vector<Real> scale_;
+  std::vector<layered_row<Real>> rows_;
+  multi_solution<Real> skeleton_;  ///< exponents, zero densities and layers (their poles)
+};
+
+/// int_I w d/(d + 1 -/+ x) for every pole of the layer (poles beyond lo first), by panels graded
+/// toward the pole.
+template <class Real>
+std::vector<Real> layer_pole_integrals(const layer_density<Real>& layer) {
+  const Real inf = std::numeric_limits<Real>::infinity();
+  const panel_integrator<Real> rule(layer.del, layer.gam, 24);
+  std::vector<Real> out;
+  for (int side = 0; side < 2; ++side) {
+    const bool at_lo = side == 0;
+    for (const Real& d : at_lo ? layer.lo_distances : layer.hi_distances)
+      out.push_back(layer.half_length() * rule.integrate(Real(2), at_lo ? d : inf, at_lo ? inf : d,
+                                                         [&](const Real& u, const Real& v) { return d / (d + (at_lo ? u : v)); }));
+  }
+  return out;
+}
+
+/// One least-squares solve of the layered system at M polynomial unknowns per interval (the
+/// top of this header), per_decade poles a decade (> 0).
+template <class Real>
+multi_solution<Real> solve_union_layered(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
+                                         const std::vector<std::function<Real(Real)>>& F,
+                                         const multi_solve_options<Real>& options, std::size_t M, std::size_t per_decade) {
+  using matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
+  const std::size_t K = intervals.size();
+  check_layered_memory(intervals, options, M, per_decade);
+  const layered_system<Real> system(par, intervals, M, per_decade);
+  multi_solution<Real> sol = system.skeleton();
+  const Eigen::Index R = system.rows(), N = system.unknowns();
   // Right-hand sides: the data, then one per nu = +1 interval (its homogeneous solution).
   std::vector<std::size_t> plus_one;
   for (std::size_t i = 0; i < K; ++i)
     if (sol.exponents[i].nu == 1 && options.homogeneous) plus_one.push_back(i);
   matrix A = matrix::Zero(R, N), B = matrix::Zero(R, static_cast<Eigen::Index>(1 + plus_one.size()));
   matrix c0_columns = matrix::Zero(R, static_cast<Eigen::Index>(K));  // image of c_0 = 1 (nu = +1)
-  std::vector<Real> scale(K);
-  for (std::size_t j = 0; j < K; ++j) scale[j] = pow(ops[j].half_length(), -alpha);
-  // Own blocks: polynomial columns by the spectral relation, poles by quadrature.
-  for (std::size_t j = 0; j < K; ++j) {
-    const auto& e = sol.exponents[j];
-    const auto& layer = sol.layers[j];
-    const std::vector<Real> lambda = ops[j].eigenvalues(n_basis[j], e);
-    // Degree hint 8: 16 nodes a panel (the poles are smooth on the panels graded toward them;
-    // panel_integrator: ~1e-24 a panel at 16), against the residual's M/2 + 24.
-    const typename abel_operator<Real>::quadrature_evaluator own(ops[j], e.gam, e.del, 8);
-    for (Eigen::Index r = 0; r < R; ++r) {
-      const auto& row = rows[static_cast<std::size_t>(r)];
-      if (row.j != j) continue;
-      const Real x = row.one_plus_x <= row.one_minus_x ? row.one_plus_x - 1 : 1 - row.one_minus_x;
-      const auto image = jacobi_values_any(M, e.gam + Real(e.nu), e.del + Real(e.nu), x);
-      for (std::size_t n = 0; n < n_basis[j]; ++n) {
-        const long m = static_cast<long>(n) - e.nu;
-        if (m < 0) continue;  // nu = +1, n = 0: image 0
-        const long c = poly_column(j, n);
-        const Real v = lambda[n] * image[static_cast<std::size_t>(m)];
-        if (c >= 0) A(r, c) += v; else c0_columns(r, static_cast<Eigen::Index>(j)) += v;
-      }
-      if (e.nu == -1) A(r, static_cast<Eigen::Index>(offset[j] + M - 1)) += Real(1);
-      if (layer.empty()) continue;
-      // All poles of I_j in one pass over the nodes (graded toward the nearest at each end).
-      const std::size_t n_lo = layer.lo_distances.size(), n_poles = n_lo + layer.hi_distances.size();
-      const auto images = own.many(
-          [&](const Real&, const Real& p, const Real& m) {
-            Eigen::Array<Real, Eigen::Dynamic, 1> out(static_cast<Eigen::Index>(n_poles));
-            for (std::size_t k = 0; k < n_lo; ++k) out[static_cast<Eigen::Index>(k)] = layer.lo_distances[k] / (layer.lo_distances[k] + p);
-            for (std::size_t k = n_lo; k < n_poles; ++k)
-              out[static_cast<Eigen::Index>(k)] = layer.hi_distances[k - n_lo] / (layer.hi_distances[k - n_lo] + m);
-            return out;
-          },
-          row.s, layer.nearest_lo(), layer.nearest_hi());
-      for (std::size_t k = 0; k < n_poles; ++k)
-        A(r, static_cast<Eigen::Index>(pole_column(j, k < n_lo, k < n_lo ? k : k - n_lo))) += scale[j] * images[static_cast<Eigen::Index>(k)];
-    }
-  }
-  // Cross blocks: source i on the rows of j, by quadrature on nodes graded toward both ends of
-  // I_i (the kernel's singularity and i's poles), one matrix product per block.
-  for (std::size_t i = 0; i < K; ++i) {
-    const auto& gi = sol.densities[i];
-    const auto& li = sol.layers[i];
-    const Real hi_ = gi.half_length();
-    for (std::size_t j = 0; j < K; ++j) {
-      if (i == j) continue;
-      const bool right = i > j;  // I_i to the right of I_j: it faces j with its lo end
-      const Real gap = union_gap(intervals, i, j);
-      const Real d_lo = std::min(li.nearest_lo(), right ? gap / hi_ : inf);
-      const Real d_hi = std::min(li.nearest_hi(), right ? inf : gap / hi_);
-      const auto nodes = make_layered_nodes(hi_, gi.gam, gi.del, d_lo, d_hi, M / 2 + 20);
-      const auto Q = static_cast<Eigen::Index>(nodes.x.size());
-      std::vector<Eigen::Index> row_index;
-      for (Eigen::Index r = 0; r < R; ++r)
-        if (rows[static_cast<std::size_t>(r)].j == j) row_index.push_back(r);
-      const auto Rj = static_cast<Eigen::Index>(row_index.size());
-      const Real hj = ops[j].half_length();
-      matrix kernel(Rj, Q);
-      for (Eigen::Index a = 0; a < Rj; ++a) {
-        const auto& row = rows[static_cast<std::size_t>(row_index[static_cast<std::size_t>(a)])];
-        const Real ds = right ? hj * row.one_minus_x : hj * row.one_plus_x;  // to j's end facing i
-        for (Eigen::Index q = 0; q < Q; ++q) {
-          const auto qs = static_cast<std::size_t>(q);
-          const Real t_minus_s = right ? nodes.t_minus_lo[qs] + gap + ds : -(nodes.hi_minus_t[qs] + gap + ds);
-          kernel(a, q) = scale[j] * nodes.weight[qs] * cross_kernel(par, t_minus_s);
-        }
-      }
-      const auto n_cols = static_cast<Eigen::Index>(n_basis[i] + li.lo_distances.size() + li.hi_distances.size());
-      matrix basis(Q, n_cols);
-      for (Eigen::Index q = 0; q < Q; ++q) {
-        const auto qs = static_cast<std::size_t>(q);
-        const Real u = nodes.t_minus_lo[qs] / hi_, v = nodes.hi_minus_t[qs] / hi_;  // 1 + x, 1 - x
-        const Real x = nodes.x[qs];
-        const auto P = rhabel::quadrature::jacobi_p_all(n_basis[i] - 1, gi.del, gi.gam, x);
-        Eigen::Index c = 0;
-        for (std::size_t n = 0; n < n_basis[i]; ++n) basis(q, c++) = P[n];
-        for (const Real& d : li.lo_distances) basis(q, c++) = d / (d + u);
-        for (const Real& d : li.hi_distances) basis(q, c++) = d / (d + v);
-      }
-      const matrix block = kernel * basis;
-      for (Eigen::Index a = 0; a < Rj; ++a) {
-        const Eigen::Index r = row_index[static_cast<std::size_t>(a)];
-        Eigen::Index c = 0;
-        for (std::size_t n = 0; n < n_basis[i]; ++n, ++c) {
-          const long col = poly_column(i, n);
-          if (col >= 0) A(r, col) += block(a, c); else c0_columns(r, static_cast<Eigen::Index>(i)) += block(a, c);
-        }
-        for (std::size_t k = 0; k < li.lo_distances.size(); ++k, ++c) A(r, static_cast<Eigen::Index>(pole_column(i, true, k))) += block(a, c);
-        for (std::size_t k = 0; k < li.hi_distances.size(); ++k, ++c) A(r, static_cast<Eigen::Index>(pole_column(i, false, k))) += block(a, c);
-      }
-    }
-  }
-  // Right-hand sides.
-  std::vector<Real> c0(K, Real(0));
-  for (std::size_t i = 0; i < K; ++i)
-    if (sol.exponents[i].nu == 1 && i < options.loads.size() && options.loads[i]) {
-      const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[i].del, sol.exponents[i].gam);
-      c0[i] = *options.loads[i] / (ops[i].half_length() * h0);
-    }
+  system.add_own(A, c0_columns);
+  system.add_cross(A, c0_columns);
   for (Eigen::Index r = 0; r < R; ++r) {
-    const auto& row = rows[static_cast<std::size_t>(r)];
+    const auto& row = system.row_points()[static_cast<std::size_t>(r)];
     const Real v = F[row.j](row.s);
     check_finite_value("rhabel::abel::solve_union", v, row.s);
-    B(r, 0) = scale[row.j] * v;
+    B(r, 0) = system.scale(row.j) * v;
   }
-  std::vector<Real> unit_c0(K, Real(0));
-  for (std::size_t i = 0; i < K; ++i) {
-    if (sol.exponents[i].nu != 1) continue;
-    const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[i].del, sol.exponents[i].gam);
-    unit_c0[i] = 1 / (ops[i].half_length() * h0);
-    B.col(0) -= c0[i] * c0_columns.col(static_cast<Eigen::Index>(i));
-  }
-  for (std::size_t k = 0; k < plus_one.size(); ++k)
-    B.col(static_cast<Eigen::Index>(k + 1)) = -unit_c0[plus_one[k]] * c0_columns.col(static_cast<Eigen::Index>(plus_one[k]));
   // nu = +1: the load fixes the WHOLE integral, c_0 h h_0 + sum_k a_k int w phi_k, so c_0 is
   // eliminated: c_0 = c0[i] - unit_c0[i] sum_k a_k I_k (c0[i], unit_c0[i]: the constant for the
-  // load and per unit integral), and every pole column takes -unit_c0[i] I_k x c_0's column.
+  // load and per unit integral); the data lose c0[i] x c_0's column, every pole column
+  // unit_c0[i] I_k x c_0's column.
+  std::vector<Real> c0(K, Real(0)), unit_c0(K, Real(0));
   std::vector<std::vector<Real>> pole_integrals(K);
   for (std::size_t i = 0; i < K; ++i) {
     if (sol.exponents[i].nu != 1) continue;
-    const auto& li = sol.layers[i];
-    const Real hi_ = li.half_length();
-    const panel_integrator<Real> rule(li.del, li.gam, 24);
-    for (int side = 0; side < 2; ++side) {
-      const bool at_lo = side == 0;
-      const auto& d = at_lo ? li.lo_distances : li.hi_distances;
-      for (std::size_t k = 0; k < d.size(); ++k) {
-        const Real dk = d[k];
-        const Real I = hi_ * rule.integrate(Real(2), at_lo ? dk : inf, at_lo ? inf : dk, [&](const Real& u, const Real& v) {
-          return dk / (dk + (at_lo ? u : v));
-        });
-        pole_integrals[i].push_back(I);
-        A.col(static_cast<Eigen::Index>(pole_column(i, at_lo, k))) -= unit_c0[i] * I * c0_columns.col(static_cast<Eigen::Index>(i));
-      }
-    }
+    const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[i].del, sol.exponents[i].gam);
+    unit_c0[i] = 1 / (system.half_length(i) * h0);
+    if (i < options.loads.size() && options.loads[i]) c0[i] = *options.loads[i] * unit_c0[i];
+    const auto column = c0_columns.col(static_cast<Eigen::Index>(i));
+    B.col(0) -= c0[i] * column;
+    pole_integrals[i] = layer_pole_integrals(sol.layers[i]);
+    const std::size_t n_lo = sol.layers[i].lo_distances.size();
+    for (std::size_t k = 0; k < pole_integrals[i].size(); ++k)
+      A.col(system.pole_column(i, k < n_lo, k < n_lo ? k : k - n_lo)) -= unit_c0[i] * pole_integrals[i][k] * column;
   }
+  for (std::size_t k = 0; k < plus_one.size(); ++k)
+    B.col(static_cast<Eigen::Index>(k + 1)) = -unit_c0[plus_one[k]] * c0_columns.col(static_cast<Eigen::Index>(plus_one[k]));
   // Column-scaled least squares (rational bases are redundant: pivoted QR).
   Eigen::Matrix<Real, Eigen::Dynamic, 1> norms = A.colwise().norm();
   for (Eigen::Index c = 0; c < N; ++c)
@@ -396,46 +463,16 @@ multi_solution<Real> solve_union_layered(const abel_parameters<Real>& par, const
   const Eigen::ColPivHouseholderQR<matrix> qr(A);
   matrix X = qr.solve(B);
   for (Eigen::Index c = 0; c < N; ++c) X.row(c) /= norms[c];
-  // Unpack one solution (column of X) with the fixed constants c0s.
-  auto unpack = [&](Eigen::Index col, const std::vector<Real>& c0s, std::vector<jacobi_density<Real>>& g,
-                    std::vector<layer_density<Real>>& layers, std::vector<Real>& defects) {
-    g = sol.densities;
-    layers = sol.layers;
-    defects.assign(K, Real(0));
-    for (std::size_t i = 0; i < K; ++i) {
-      for (std::size_t n = 0; n < n_basis[i]; ++n) {
-        const long c = poly_column(i, n);
-        g[i].coefficients[n] = c >= 0 ? X(c, col) : c0s[i];
-      }
-      if (sol.exponents[i].nu == -1) defects[i] = X(static_cast<Eigen::Index>(offset[i] + M - 1), col);
-      for (std::size_t k = 0; k < layers[i].lo_distances.size(); ++k)
-        layers[i].lo_coefficients[k] = X(static_cast<Eigen::Index>(pole_column(i, true, k)), col);
-      for (std::size_t k = 0; k < layers[i].hi_distances.size(); ++k)
-        layers[i].hi_coefficients[k] = X(static_cast<Eigen::Index>(pole_column(i, false, k)), col);
-      if (sol.exponents[i].nu == 1 && !g[i].coefficients.empty()) {  // c_0 eliminated above
-        const std::size_t n_lo = layers[i].lo_distances.size();
-        for (std::size_t k = 0; k < pole_integrals[i].size(); ++k)
-          g[i].coefficients[0] -= unit_c0[i] * pole_integrals[i][k] *
-                                  (k < n_lo ? layers[i].lo_coefficients[k] : layers[i].hi_coefficients[k - n_lo]);
-      }
-    }
-  };
-  std::vector<jacobi_density<Real>> g;
-  std::vector<layer_density<Real>> layers;
-  std::vector<Real> defects;
-  unpack(0, c0, g, layers, defects);
   sol.homogeneous.assign(K, {});
   sol.homogeneous_layers.assign(K, {});
   sol.homogeneous_defects.assign(K, std::vector<Real>(K, Real(0)));
   for (std::size_t k = 0; k < plus_one.size(); ++k) {
     std::vector<Real> c0k(K, Real(0));
     c0k[plus_one[k]] = unit_c0[plus_one[k]];
-    unpack(static_cast<Eigen::Index>(k + 1), c0k, sol.homogeneous[plus_one[k]], sol.homogeneous_layers[plus_one[k]],
-           sol.homogeneous_defects[plus_one[k]]);
+    system.unpack(X, static_cast<Eigen::Index>(k + 1), c0k, unit_c0, pole_integrals, sol.homogeneous[plus_one[k]],
+                  sol.homogeneous_layers[plus_one[k]], sol.homogeneous_defects[plus_one[k]]);
   }
-  sol.densities = std::move(g);
-  sol.layers = std::move(layers);
-  sol.solvability_defects = std::move(defects);
+  system.unpack(X, 0, c0, unit_c0, pole_integrals, sol.densities, sol.layers, sol.solvability_defects);
   return sol;
 }
 
