@@ -180,7 +180,8 @@ std::vector<layered_row<Real>> layered_rows(const std::vector<interval_spec<Real
 
 /// Memory guard of the layered system, before anything is allocated: the system (R x N, QR in
 /// a copy: twice) and the right-hand sides with the images of c_0 (R x (K + 2)), R and N
-/// estimated from the pole counts (layer rows: ~log(2 h/gap)/log 1.2 + log 50/log 1.2 an end).
+/// estimated from the pole counts (layer rows: log(200 h/gap)/log 1.2 + 2 an end, above the
+/// log(90 h/gap)/log 1.2 of layered_rows' ladder 0.9 h ... gap/100).
 /// Throws std::domain_error naming poles_per_decade.
 template <class Real>
 void check_layered_memory(const std::vector<interval_spec<Real>>& intervals, const multi_solve_options<Real>& options,
@@ -192,7 +193,7 @@ void check_layered_memory(const std::vector<interval_spec<Real>>& intervals, con
     N_est += double(M);
     R_est += double(2 * M + 8);
     for (const std::size_t other : {i - 1, i + 1}) {
-      if ((other == i - 1 && i == 0) || other >= K) continue;
+      if (other >= K) continue;  // no neighbour (i - 1 wraps around for i = 0)
       const double gap_over_h = double(union_gap(intervals, other, i) / h);
       if (!(gap_over_h < 1)) continue;
       N_est += layer_pole_count(gap_over_h, per_decade);
