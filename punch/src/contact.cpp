@@ -356,6 +356,8 @@ void validate_options(const solve_options& options, const char* function) {
                                 " must be at most 1024 (0: every core)");
   if (!(options.time_limit >= 0) || !std::isfinite(options.time_limit))
     throw std::invalid_argument(std::string(function) + ": options.time_limit must be finite and >= 0 (0: no limit)");
+  if (!(options.layered_below >= 0) || !std::isfinite(options.layered_below))
+    throw std::invalid_argument(std::string(function) + ": options.layered_below must be finite and >= 0 (0: never)");
 }
 
 }  // namespace detail

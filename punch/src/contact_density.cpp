@@ -2,10 +2,12 @@
 // rhabel::abel::jacobi_density, the apex enrichment by rhabel::abel::enriched_density.
 #include "rhabel/punch/detail/contact_density.hpp"
 
+#include "rhabel/quadrature/gauss_jacobi.hpp"
 #include "rhabel/quadrature/jacobi_polynomial.hpp"
 
 #include <boost/math/special_functions/beta.hpp>
 
+#include <algorithm>
 #include <cmath>
 
 namespace rhabel::punch::detail {
@@ -34,13 +36,33 @@ double series_integral_from(const abel::jacobi_density<double>& j, double s) {
   }
   return h * total;
 }
+// The layer part's int_a^s (toward_lo) or int_s^b, by abel's panel rule graded toward the poles
+// beyond the end it starts from; the other end's weight rides in the integrand with its branch
+// point at the distance from s to that end.
+double layer_partial(const abel::layer_density<double>& layer, double s, bool toward_lo) {
+  if (layer.empty()) return 0;
+  const double h = layer.half_length();
+  const double one_plus = (s - layer.lo) / h, one_minus = (layer.hi - s) / h;
+  if (toward_lo) {
+    const abel::detail::panel_integrator<double> rule(0.0, layer.gam, 24);
+    return h * rule.integrate(one_plus, layer.nearest_lo(), one_minus, [&](double u, double rest) {
+      const double v = rest + one_minus;  // 1 - x
+      return std::pow(v, layer.del) * layer.factor_at_distance(u, v);
+    });
+  }
+  const abel::detail::panel_integrator<double> rule(0.0, layer.del, 24);
+  return h * rule.integrate(one_minus, layer.nearest_hi(), one_plus, [&](double v, double rest) {
+    const double u = rest + one_plus;  // 1 + x
+    return std::pow(u, layer.gam) * layer.factor_at_distance(u, v);
+  });
+}
 }  // namespace
 
 void contact_density::set_interval(double lo, double hi) {
   // int C phi scales with the half-length (phi lives on the reference axis).
   if (has_apex && length() > 0) apex_integral *= (hi - lo) / length();
-  jacobi.lo = apex.smooth.lo = lo;
-  jacobi.hi = apex.smooth.hi = hi;
+  jacobi.lo = apex.smooth.lo = layer.lo = lo;
+  jacobi.hi = apex.smooth.hi = layer.hi = hi;
 }
 
 void contact_density::scale(double factor) {
@@ -48,34 +70,85 @@ void contact_density::scale(double factor) {
   for (double& c : apex.smooth.coefficients) c *= factor;  // empty unless mapped
   apex.enrichment *= factor;
   apex_integral *= factor;
+  for (double& c : layer.lo_coefficients) c *= factor;
+  for (double& c : layer.hi_coefficients) c *= factor;
 }
 
 double contact_density::value(double t) const {
   if (line_load || !(t > a()) || !(t < b())) return 0;
-  const double regular = jacobi(t);
+  const double regular = jacobi(t) + layer(t);
   return has_apex ? regular + apex(t) : regular;
 }
 
 double contact_density::integral() const {
   if (line_load) return line_weight;
-  return has_apex ? jacobi.integral() + apex_integral : jacobi.integral();
+  const double regular = jacobi.integral() + layer.integral();
+  return has_apex ? regular + apex_integral : regular;
 }
 
 double contact_density::integral_to(double s) const {
   if (line_load) return s > a() ? line_weight : 0;
   if (!(s > a())) return 0;
   if (!(s < b())) return integral();
-  return has_apex ? jacobi.integral_to(s) + apex.integral_to(s) : jacobi.integral_to(s);
+  const double regular = jacobi.integral_to(s) + layer_partial(layer, s, true);
+  return has_apex ? regular + apex.integral_to(s) : regular;
 }
 
 double contact_density::integral_from(double s) const {
   if (line_load) return s <= a() ? line_weight : 0;
   if (!(s > a())) return integral();
   if (!(s < b())) return 0;
-  double sum = series_integral_from(jacobi, s);
+  double sum = series_integral_from(jacobi, s) + layer_partial(layer, s, false);
   // The enrichment's composite rule cut at s (integrate_between: pieces right of s only).
   if (has_apex) sum += apex.integral_from(s);
   return sum;
+}
+
+double contact_density::intensity(bool trailing) const {
+  double K = trailing ? jacobi.intensity_trailing() : jacobi.intensity_leading();
+  if (has_apex) K += trailing ? apex.intensity_trailing() : apex.intensity_leading();
+  if (!layer.empty()) {
+    // The layer's factor at the edge, in jacobi_density's normalisation (2/L)^exponent 2^other.
+    const double L = length();
+    K += trailing ? std::pow(2 / L, layer.del) * std::pow(2.0, layer.gam) * layer.factor_at_distance(2, 0)
+                  : std::pow(2 / L, layer.gam) * std::pow(2.0, layer.del) * layer.factor_at_distance(0, 2);
+  }
+  return K;
+}
+
+std::size_t contact_density::absorb_layer(double relative_accuracy) {
+  if (layer.empty()) return 0;
+  const double del = jacobi.del, gam = jacobi.gam;
+  // The density's scale: the series' largest coefficient and the layer's factor at the ends and
+  // at nine points between (not the pole weights, which a least-squares fit may leave large and
+  // cancelling).
+  double scale = 0;
+  for (double c : jacobi.coefficients) scale = std::max(scale, std::abs(c));
+  for (int k = 0; k <= 10; ++k) scale = std::max(scale, std::abs(layer.factor_at_distance(0.2 * k, 2 - 0.2 * k)));
+  const std::size_t poles = layer.lo_distances.size() + layer.hi_distances.size();
+  const double target = std::max(relative_accuracy, 1e-16) * scale / static_cast<double>(poles);
+  double needed = 32;
+  auto need = [&](const std::vector<double>& d, const std::vector<double>& a) {
+    for (std::size_t k = 0; k < d.size(); ++k)
+      if (std::abs(a[k]) > target)
+        needed = std::max(needed, std::log(std::abs(a[k]) / target) / std::log1p(d[k] + std::sqrt(d[k] * (d[k] + 2))));
+  };
+  need(layer.lo_distances, layer.lo_coefficients);
+  need(layer.hi_distances, layer.hi_coefficients);
+  const auto n = static_cast<std::size_t>(std::min(double(max_absorbed_degree), std::ceil(needed) + 16));
+  const auto rule = rhabel::quadrature::gauss_jacobi<double>(n, del, gam);
+  std::vector<double> c(n, 0.0);
+  for (std::size_t q = 0; q < n; ++q) {
+    // The factor from the rule's distances to the ends (poles within ~1e-6 of an end).
+    const double fw = rule.weight[q] * layer.factor_at_distance(rule.x_minus_lo[q], rule.hi_minus_x[q]);
+    const std::vector<double> p = rhabel::quadrature::jacobi_p_all(n - 1, del, gam, rule.x[q]);
+    for (std::size_t k = 0; k < n; ++k) c[k] += fw * p[k];
+  }
+  auto& coefficients = jacobi.coefficients;
+  if (coefficients.size() < n) coefficients.resize(n, 0.0);
+  for (std::size_t k = 0; k < n; ++k) coefficients[k] += c[k] / rhabel::quadrature::jacobi_norm_squared(k, del, gam);
+  layer = {};
+  return n;
 }
 
 }  // namespace rhabel::punch::detail

@@ -23,6 +23,13 @@
 //     only near pairs (on a row, the two neighbours) are summed pair by pair. An evaluation of
 //     the edge conditions then costs O(N), not O(N^2); the report's residual and surface
 //     displacement sum the far contacts through the same tree (far_action.hpp).
+//     Below iterative_from contacts, when two neighbours are closer than
+//     solve_options::layered_below of the shorter: abel::solve_union_layered instead, the Jacobi
+//     series of degree 24 (to 48) plus simple poles clustered beyond the facing ends, whose
+//     unknowns grow like log(L/gap) where the series alone needs a degree ~ 10 sqrt(L/gap). The
+//     poles stay in contact_density::layer while Newton iterates (the defects, loads and
+//     intensities include them) and are projected onto the Jacobi series
+//     (contact_density::absorb_layer) for a rigid body's levels and for the report.
 //   g_j = p_j + c_j, d_j = d^p_j + d^c_j.
 //
 // THE EDGES. Unknowns: a_j, b_j of every smooth contact (nu = -1), a_j of a wedge ending at its
@@ -32,7 +39,8 @@
 // length and no gap closes by more than 80 % in one step. Started from the isolated contacts; when
 // those overlap (or Newton from them fails), by continuation in the load: all loads scaled by t (contacts then
 // shrink like t^(1/(2 - alpha)) (parabola) or t^(1/(1 - alpha)) (wedge) about their apexes and
-// separate), t raised to 1 in steps, each solve starting from the previous one.
+// separate), t raised to 1 in steps, each solve starting from the previous one, the stages below
+// t = 1 only to continuation_accuracy.
 //   The Newton iteration is INEXACT: an evaluation solves the coupling correction only to 1e-3 of
 // the largest condition at the last point (at most 1e-5, at least the tolerance), so that the
 // correction's degree, which near contacts is what an evaluation costs, follows the progress
@@ -456,6 +464,20 @@ std::pair<abel::edge, abel::edge> series_edges(const problem& pb, std::size_t i)
   return {leading_edge(nu), trailing_edge(nu)};
 }
 
+/// The boundary-layer route's polynomial degree (abel's measurements: residual ~1e-12 at 24 with
+/// 8 poles a decade, gaps down to 1e-6 of a length); it adapts up to twice this.
+constexpr std::size_t layered_degree = 24;
+
+/// Whether two neighbours of the sorted intervals are closer than `below` of the shorter: then
+/// the correction is solved by abel's boundary-layer route (solve_options::layered_below).
+bool nearly_touching(const std::vector<abel::interval_spec<double>>& intervals, double below) {
+  for (std::size_t k = 0; k + 1 < intervals.size(); ++k) {
+    const double shorter = std::min(intervals[k].hi - intervals[k].lo, intervals[k + 1].hi - intervals[k + 1].lo);
+    if (intervals[k + 1].lo - intervals[k].hi < below * shorter) return true;
+  }
+  return false;
+}
+
 fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, const std::vector<double>& b) {
   const auto& st = *pb.st;
   const auto& cx = *pb.cx;
@@ -545,9 +567,16 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
   // (the same intervals): 11-19 products for rows of 10-300 parabolas 1.5 L apart.
   o.iterative_from = iterative_from;
   if (far) o.far_field = far->field();
-  const auto sol = abel::solve_union(cx.par, intervals, data, o);
+  const bool layered = !far && nearly_touching(intervals, cx.options.layered_below);
+  if (layered) {
+    // The boundary-layer route: the polynomial part at layered_degree (it adapts up to twice
+    // that), poles for the layers; its degree is not a hint for the polynomial route's ladder.
+    o.degree = pb.fixed_degree > 0 ? pb.fixed_degree : layered_degree;
+    o.max_degree = pb.fixed_degree > 0 ? 0 : 2 * layered_degree;
+  }
+  const auto sol = layered ? abel::solve_union_layered(cx.par, intervals, data, o) : abel::solve_union(cx.par, intervals, data, o);
   out.degree = sol.degree;
-  if (pb.fixed_degree == 0) pb.degree_hint->store(sol.degree);
+  if (pb.fixed_degree == 0 && !layered) pb.degree_hint->store(sol.degree);
   out.correction_residual = sol.residual * std::max(worst_ratio, 0.0);
   out.correction_converged = sol.status == abel::solve_status::converged;
   for (std::size_t k = 0; k < K; ++k) {
@@ -556,6 +585,7 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
     const auto& c = sol.densities[k].coefficients;
     if (coefficients.size() < c.size()) coefficients.resize(c.size(), 0.0);
     for (std::size_t m = 0; m < c.size(); ++m) coefficients[m] += c[m];
+    if (k < sol.layers.size()) out.g[j].layer = sol.layers[k];
     out.g[j].tail = std::max(out.g[j].tail, sol.status == abel::solve_status::converged ? 0.0 : sol.residual);
     if (sol.exponents[k].nu == -1) out.defect[j] += sol.solvability_defects[k];
   }
@@ -593,7 +623,10 @@ struct evaluation {
 std::vector<double> body_levels(const std::vector<indentor_state>& states, const std::vector<contact_density>& g,
                                 const context& cx, double height_factor) {
   std::vector<indentor_state> tmp = states;
-  for (std::size_t i = 0; i < tmp.size(); ++i) tmp[i].g = g[i];
+  for (std::size_t i = 0; i < tmp.size(); ++i) {
+    tmp[i].g = g[i];
+    tmp[i].g.absorb_layer(cx.options.tolerance);  // surface.hpp sees series and apex only
+  }
   const surface w(tmp, cx);
   std::vector<double> level(tmp.size());
   for (std::size_t i = 0; i < tmp.size(); ++i) level[i] = w.approach(i) + height_factor * tmp[i].height;
@@ -629,8 +662,7 @@ std::vector<double> body_conditions(const problem& pb, const fixed_solution& sol
 /// density load/L: the condition of an edge that must be smooth in a class singular there.
 double relative_intensity(const contact_density& g, bool trailing, double load) {
   const double L = g.length();
-  const double K = trailing ? g.jacobi.intensity_trailing() + (g.has_apex ? g.apex.intensity_trailing() : 0.0)
-                            : g.jacobi.intensity_leading() + (g.has_apex ? g.apex.intensity_leading() : 0.0);
+  const double K = g.intensity(trailing);
   return K * std::pow(L, trailing ? g.jacobi.del : g.jacobi.gam) / (load / L);
 }
 
@@ -677,10 +709,15 @@ edges moved(const problem& pb, const unknowns& u, const edges& x, const Eigen::V
   return y;
 }
 
-/// Smallest gap the coupled solve resolves, relative to the smaller of the two contacts: below it
-/// the correction's degree grows like sqrt(L/gap) beyond what a dense solve affords (abel/
-/// multi_interval.hpp: degree ~800 at 1e-4). A Newton step that would close a gap narrower than
-/// this ends the iteration (contacts_merge when the full step closes it).
+/// Smallest gap the coupled solve resolves, relative to the smaller of the two contacts. With the
+/// polynomial route alone the correction's degree grows like sqrt(L/gap) beyond what a dense solve
+/// affords (abel/multi_interval.hpp: degree ~800 at 1e-4). The boundary-layer route
+/// (solve_options::layered_below) solves smaller gaps, but the reported density is one Jacobi
+/// series (contact_density::absorb_layer) of degree ~ 30 sqrt(L/gap) whose independent residual
+/// costs O(degree^2) a check point: measured on two parabolas (alpha 0.3) at gaps 7e-5 / 4e-5 /
+/// 1.4e-5 L with this limit lowered, ok in 3.3 / 7.3 / 18 s, 80 % of it in the report. A Newton
+/// step that would close a gap narrower than this ends the iteration (contacts_merge when the full
+/// step closes it).
 constexpr double resolved_gap = 1e-4;
 
 /// Two neighbours whose gap the step (x + dx) would close while it is already below resolved_gap.
@@ -1197,6 +1234,12 @@ double gap_ratio(const problem& pb, const edges& x, bool movable_only = false) {
   return worst;
 }
 
+/// The continuation's stages below the full load only start the next stage: their Newton
+/// iterations stop at this accuracy (edge steps below 10x it, relative to a contact) instead of
+/// the tolerance. Measured on two parabolas (alpha 0.3) 1e-2 / 1e-3 / 4e-4 L apart: 39 / 54 / 60
+/// Newton iterations at the tolerance, 26 / 32 / 37 at 1e-4; the results agree to 1e-15 L.
+constexpr double continuation_accuracy = 1e-4;
+
 /// Newton directly from the isolated contacts when they do not overlap, else (or when that fails)
 /// by continuation in the load; pb.load_factor ends at the last load factor solved.
 newton_result attempt(problem& pb, const edges& isolated) {
@@ -1219,7 +1262,13 @@ newton_result attempt(problem& pb, const edges& isolated) {
   // Already well apart at the full load: the continuation would repeat the direct attempt.
   if (t == 1 && gap_ratio(pb, isolated) > 0) return result;
   pb.load_factor = t;
-  result = newton(pb, scaled_guess(pb, isolated, t));
+  const double requested = pb.accuracy;
+  // The stages below the full load only start the next one: solved to continuation_accuracy.
+  const auto stage = [&](problem p) {
+    if (p.load_factor < 1) p.accuracy = std::max(requested, continuation_accuracy);
+    return p;
+  };
+  result = newton(stage(pb), scaled_guess(pb, isolated, t));
   double step = 4;  // factor by which t grows
   std::size_t total = result.iterations;
   while (result.converged && t < 1) {
@@ -1235,7 +1284,7 @@ newton_result attempt(problem& pb, const edges& isolated) {
       if (pb.roles[i] == role::smooth_both) guess.b[i] = st[i].apex + (guess.b[i] - st[i].apex) * f;
     }
     if (gap_ratio(next, guess) <= 0) guess = result.x;  // the predictor would overlap: corrector only
-    auto trial = newton(next, guess);
+    auto trial = newton(stage(next), guess);
     total += trial.iterations;
     if (trial.converged) {
       result = std::move(trial);
@@ -1449,6 +1498,8 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   if (!result.sol.g.empty()) {
     for (std::size_t i = 0; i < st.size(); ++i) {
       st[i].g = std::move(result.sol.g[i]);
+      // The report, fields and surface take a Jacobi series (and apex): the layer joins the series.
+      st[i].g.absorb_layer(cx.options.tolerance);
       if (pb.body_load) st[i].target_load = st[i].g.integral();  // the solved share (checked by the caller)
       st[i].friction.reset();
       st[i].rh_unit.reset();

@@ -277,6 +277,49 @@ TEST_CASE("nearly touching contacts: the inexact Newton iteration ends on an eva
   }
 }
 
+TEST_CASE("nearly touching contacts: the boundary-layer basis agrees with the Jacobi series alone") {
+  // Two parabolas (alpha 0.3, R = 1, loads 0.3 pi/2 Gamma(1 - alpha)) whose coupled contacts are
+  // ~1.1e-3 of a contact length apart (apex distance from study_multi_contact). By default the
+  // coupling correction is solved with poles beyond the facing ends (solve_options::layered_below
+  // = 3e-3); layered_below = 0 solves it in the Jacobi series alone (degree ~400 here). The two
+  // discretisations share the particular solutions and the Newton iteration, not the correction:
+  // their contacts and C_f must agree to the edge tolerance, and each must pass its independent
+  // residual.
+  constexpr double route_tol = 1e-10;  // of L / of C_f: 100 x the tolerance (the series alone
+                                       // reaches a residual of ~1e-11 at this gap)
+  const double alpha = 0.3, D = 0.118494666741;
+  if (punch_test::bem::sanitizer_build) return;  // the series alone: ~1.5 s in Release, ~30 s under ASan
+  const double load = 0.3 * pi / 2 * boost::math::tgamma(1 - alpha);
+  const scene s = two(material{alpha, 1.0, 0.0, 0.0}, indentor{parabolic{1.0}, load, 0.0}, indentor{parabolic{1.0}, load, D});
+  solve_options series_only;
+  series_only.layered_below = 0;
+  const auto layered = solve(s), series = solve(s, series_only);
+  REQUIRE(layered.diagnostics.code == status_code::ok);
+  REQUIRE(series.diagnostics.code == status_code::ok);
+  const double L = std::min(layered.indentors[0].contact_length, layered.indentors[1].contact_length);
+  const double gap = layered.indentors[1].a - layered.indentors[0].b;
+  CHECK(gap > 5e-4 * L);
+  CHECK(gap < 2e-3 * L);
+  for (std::size_t i = 0; i < 2; ++i) {
+    CAPTURE(i);
+    CHECK(std::abs(layered.indentors[i].a - series.indentors[i].a) < route_tol * L);
+    CHECK(std::abs(layered.indentors[i].b - series.indentors[i].b) < route_tol * L);
+    CHECK(std::abs(layered.indentors[i].hysteretic_friction - series.indentors[i].hysteretic_friction) < route_tol);
+  }
+  CHECK(layered.diagnostics.residual < 1e-12);
+  CHECK(series.diagnostics.residual < 1e-10);
+}
+
+TEST_CASE("solve_options::layered_below is checked") {
+  solve_options o;
+  for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    o.layered_below = bad;
+    CHECK_THROWS_WITH_AS(solve(two(material{0.3, 1.0, 0.3, 0.0}, indentor{parabolic{1.0}, 0.1, 0.0},
+                                   indentor{parabolic{1.0}, 0.1, 3.0}), o),
+                         doctest::Contains("options.layered_below"), std::invalid_argument);
+  }
+}
+
 TEST_CASE("solve_options::time_limit stops a coupled solve with not_converged and says so") {
   const material m{0.3, 1.0, 0.3, 0.0};
   const indentor lone{parabolic{1.0}, 0.1, 0.0};

@@ -97,10 +97,18 @@ void compare(double alpha, double beta, const std::vector<shape_case>& cases, co
   }
   const auto oracle = punch_test::bem::solve(bs, punch_test::bem::test_options(levels));
   REQUIRE(oracle.converged);
-  for (std::size_t i = 0; i < cases.size(); ++i) {
+  // The same scene with the coupling correction in the boundary-layer basis wherever neighbours
+  // are closer than a contact length (solve_options::layered_below; by default only below 3e-3 L),
+  // against the same oracle: both discretisations of the correction must agree with it.
+  rhabel::punch::solve_options layered;
+  layered.layered_below = 1;
+  const auto r_layered = rhabel::punch::solve(s, layered);
+  REQUIRE(r_layered.diagnostics.code == rhabel::punch::status_code::ok);
+  for (const auto* result : {&r, &r_layered}) for (std::size_t i = 0; i < cases.size(); ++i) {
     CAPTURE(i);
     CAPTURE(cases[i].name);
-    const auto& ours = r.indentors[i];
+    CAPTURE(result == &r_layered);
+    const auto& ours = result->indentors[i];
     const auto& theirs = oracle.contacts[i];
     REQUIRE(theirs.in_contact);
     const double L = ours.contact_length;

@@ -18,6 +18,10 @@
 //     form for the long side's constant data and apex the rest, both in the class singular at the
 //     edge next to the apex, and `physical` the bounded class they sum to (see `physical`);
 //   * a line load (flat punch on/above the boundary);
+//   * layer: while the coupled solve iterates on nearly touching contacts, the boundary-layer
+//     part of abel::solve_union_layered (simple poles beyond the ends facing a neighbour, in the
+//     class of `jacobi`); absorb_layer turns it into Jacobi coefficients before the density is
+//     reported, so the report, the fields and the surface see a series and an apex only;
 //   * forcing: the right side of (8) as smooth part + steps (projected in contact.cpp with the steps'
 //     coefficients in closed form).
 #pragma once
@@ -58,6 +62,10 @@ struct contact_density {
   /// class. Their singular parts at that edge cancel (the orthogonality condition), so g has these
   /// exponents (nu = -1); empty otherwise (g has jacobi's).
   std::optional<edge_exponents> physical;
+  /// The boundary-layer part g_layer = w(x) sum_k a_k d_k/(d_k + 1 -+ x) of the coupled solve for
+  /// nearly touching contacts (abel::solve_union_layered), in the class of `jacobi`; empty
+  /// otherwise. value, integral, intensity and scale include it; absorb_layer removes it.
+  abel::layer_density<double> layer;
 
   double a() const { return jacobi.lo; }
   double b() const { return jacobi.hi; }
@@ -79,6 +87,18 @@ struct contact_density {
   double integral_to(double s) const;
   /// int_s^b g for a <= s <= b, accurate relative to itself when small (s near b).
   double integral_from(double s) const;
+  /// Edge intensity K = lim g(t) |t - edge|^(-exponent) of the series, the apex and the layer
+  /// parts in jacobi's class (abel::jacobi_density::intensity_leading/_trailing).
+  double intensity(bool trailing) const;
+  /// Adds the layer to the Jacobi coefficients and empties it: the projection of the layer's
+  /// factor onto P_n^(del, gam) by an n-point Gauss-Jacobi rule (exact for polynomials of degree
+  /// < n), n chosen so that every pole's coefficients, which decay like rho^-n with
+  /// rho = 1 + d + sqrt(d (d + 2)) for a pole d beyond an end (Bernstein ellipse), fall below
+  /// `relative_accuracy` of the density's scale (largest series coefficient or pole weight), at
+  /// most max_absorbed_degree. Cost O(n^2): n ~ 30/sqrt(2 d_min), ~600 at a gap of 1e-3 of the
+  /// length, ~2e4 at 1e-6. Returns the degree used (0: no layer).
+  std::size_t absorb_layer(double relative_accuracy);
+  static constexpr std::size_t max_absorbed_degree = 1 << 15;
 };
 
 }  // namespace rhabel::punch::detail
