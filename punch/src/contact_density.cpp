@@ -125,17 +125,32 @@ std::size_t contact_density::absorb_layer(double relative_accuracy) {
   double scale = 0;
   for (double c : jacobi.coefficients) scale = std::max(scale, std::abs(c));
   for (int k = 0; k <= 10; ++k) scale = std::max(scale, std::abs(layer.factor_at_distance(0.2 * k, 2 - 0.2 * k)));
+  if (!(scale > 0)) {  // a zero layer
+    layer = {};
+    return 0;
+  }
   const std::size_t poles = layer.lo_distances.size() + layer.hi_distances.size();
   const double target = std::max(relative_accuracy, 1e-16) * scale / static_cast<double>(poles);
+  // log rho of a pole d beyond an end: its coefficients decay like rho^-n.
+  const auto log_rho = [](double d) { return std::log1p(d + std::sqrt(d * (d + 2))); };
   double needed = 32;
   auto need = [&](const std::vector<double>& d, const std::vector<double>& a) {
     for (std::size_t k = 0; k < d.size(); ++k)
-      if (std::abs(a[k]) > target)
-        needed = std::max(needed, std::log(std::abs(a[k]) / target) / std::log1p(d[k] + std::sqrt(d[k] * (d[k] + 2))));
+      if (std::abs(a[k]) > target) needed = std::max(needed, std::log(std::abs(a[k]) / target) / log_rho(d[k]));
   };
   need(layer.lo_distances, layer.lo_coefficients);
   need(layer.hi_distances, layer.hi_coefficients);
   const auto n = static_cast<std::size_t>(std::min(double(max_absorbed_degree), std::ceil(needed) + 16));
+  // At the cap the projection misses the poles' coefficients beyond n: their size, relative to
+  // the density's scale, joins the error estimate (never an ok status with a truncated layer).
+  double missed = 0;
+  auto miss = [&](const std::vector<double>& d, const std::vector<double>& a) {
+    for (std::size_t k = 0; k < d.size(); ++k)
+      missed = std::max(missed, std::abs(a[k]) * std::exp(-double(n) * log_rho(d[k])) / scale);
+  };
+  miss(layer.lo_distances, layer.lo_coefficients);
+  miss(layer.hi_distances, layer.hi_coefficients);
+  tail = std::max(tail, missed);
   const auto rule = rhabel::quadrature::gauss_jacobi<double>(n, del, gam);
   std::vector<double> c(n, 0.0);
   for (std::size_t q = 0; q < n; ++q) {

@@ -1236,9 +1236,10 @@ double gap_ratio(const problem& pb, const edges& x, bool movable_only = false) {
 
 /// The continuation's stages below the full load only start the next stage: their Newton
 /// iterations stop at this accuracy (edge steps below 10x it, relative to a contact) instead of
-/// the tolerance. Measured on two parabolas (alpha 0.3) 1e-2 / 1e-3 / 4e-4 L apart: 39 / 54 / 60
-/// Newton iterations at the tolerance, 26 / 32 / 37 at 1e-4; the results agree to 1e-15 L.
-constexpr double continuation_accuracy = 1e-4;
+/// the tolerance. Measured on two parabolas 1e-3 L apart at alpha 0.3 / 0.7 / 0.9: 57 / 66 / 125
+/// Newton iterations at the tolerance (1e-12), 41 / 48 / 58 at 1e-6, results within 1e-13 L; at
+/// 1e-4 the alpha = 0.9 scene's stage at 1/64 of the load closed the gap (contacts_merge).
+constexpr double continuation_accuracy = 1e-6;
 
 /// Newton directly from the isolated contacts when they do not overlap, else (or when that fails)
 /// by continuation in the load; pb.load_factor ends at the last load factor solved.
