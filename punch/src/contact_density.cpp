@@ -125,7 +125,8 @@ std::size_t contact_density::absorb_layer(double relative_accuracy) {
   double scale = 0;
   for (double c : jacobi.coefficients) scale = std::max(scale, std::abs(c));
   for (int k = 0; k <= 10; ++k) scale = std::max(scale, std::abs(layer.factor_at_distance(0.2 * k, 2 - 0.2 * k)));
-  if (!(scale > 0)) {  // a zero layer
+  const auto zero = [](const std::vector<double>& a) { return std::all_of(a.begin(), a.end(), [](double c) { return c == 0; }); };
+  if (!(scale > 0) || (zero(layer.lo_coefficients) && zero(layer.hi_coefficients))) {  // nothing to project
     layer = {};
     return 0;
   }
