@@ -297,10 +297,11 @@ struct solve_options {
   /// fraction of the shorter one, the coupling correction of each Newton evaluation is solved in
   /// abel's boundary-layer basis (abel::solve_union_layered: a Jacobi series of degree 24 to 48
   /// plus poles clustered beyond the facing ends, ~log(L/gap) unknowns) instead of the Jacobi
-  /// series alone (degree ~ 10 sqrt(L/gap), up to 600). The default is where the two cost the same
-  /// on two parabolas (alpha 0.3): the series alone is faster above it (gap 1e-2 L: 0.25 s against
-  /// 0.37 s), the layers below (1e-3 L: 0.85 s against 1.5 s, and a residual of 1e-14 against
-  /// 1e-11). 0 never uses the layers, a value >= 1 always for neighbours closer than a length.
+  /// series alone (degree ~ 10 sqrt(L/gap), up to 600). The default is where the two cost about
+  /// the same on two parabolas (alpha 0.3, one core): the series alone is faster above it (gap
+  /// 1e-2 L: 0.12 s against 0.19 s), the layers below (1.1e-3 L: 0.46 s against 1.08 s, and a
+  /// residual of 1.2e-14 against 1.4e-11; 4e-4 L: 0.64 s against 2.2 s). 0 never uses the layers,
+  /// a value >= 1 uses them for every pair of neighbours closer than a contact length.
   /// The reported density is one Jacobi series either way (the layers are projected onto it). From
   /// six contacts on (the far-field route) the series alone is used.
   double layered_below = 3e-3;
