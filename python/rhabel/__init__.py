@@ -37,7 +37,8 @@ __all__ = ["solve", "trial_interval", "load_scene", "validate_scene", "Record", 
            "abel", "riemann", "__version__"]
 
 
-def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acceptance=1e-9, threads=1, time_limit=0):
+def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acceptance=1e-9, threads=1, time_limit=0,
+          layered_below=3e-3):
     """Solve a scene: rigid indentors sliding together at speed U towards -x over a power-law
     viscoelastic half-space E(t) = E1 t^-alpha (plane strain, steady state). Same schema, same
     validation and same numbers as ``rhabel solve SCENE.json`` (examples/README.md).
@@ -105,6 +106,12 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
         Seconds after which a solve of several contacts (or a sampled profile's contact search)
         stops and returns what it reached with status "not_converged" and a message naming the
         limit (default 0: no limit). A result stopped by it depends on the machine's speed.
+    layered_below : float >= 0
+        Several contacts, fewer than six: neighbours closer than this fraction of the shorter
+        contact (default 3e-3) have their coupling solved with poles clustered beyond the facing
+        ends (docs/theory.md section 7), whose cost grows like log(L/gap) instead of the Jacobi
+        series' sqrt(L/gap). 0: never; 1: for every pair closer than a contact length. The
+        reported density is a Jacobi series either way.
 
     Returns
     -------
@@ -170,9 +177,12 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
     time_limit = float(time_limit)
     if not (time_limit >= 0 and time_limit < float("inf")):
         raise ValueError(f"time_limit = {time_limit!r} must be finite and >= 0 (0: no limit)")
+    layered_below = float(layered_below)
+    if not (layered_below >= 0 and layered_below < float("inf")):
+        raise ValueError(f"layered_below = {layered_below!r} must be finite and >= 0 (0: never)")
     if "profile" in spec:
         result = _rhabel._solve_profile(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance, threads,
-                                        time_limit)
+                                        time_limit, layered_below)
         # The command line's echo of a profile: the samples stand as their count and range.
         profile = spec["profile"]
         echo = Record({k: v for k, v in spec.items() if k != "profile"})
@@ -181,7 +191,8 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
                                   "corners": profile["corners"]})
         result["scene"] = echo
         return result
-    result = _rhabel._solve(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance, threads, time_limit)
+    result = _rhabel._solve(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance, threads, time_limit,
+                            layered_below)
     result["scene"] = spec
     return result
 

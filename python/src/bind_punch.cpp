@@ -148,7 +148,7 @@ py::dict to_python(punch::scene_result&& r, const py::dict& spec, double effecti
 }
 
 punch::solve_options make_options(std::size_t grid, bool displacement, double tolerance, bool residual,
-                                  double acceptance, std::size_t threads, double time_limit) {
+                                  double acceptance, std::size_t threads, double time_limit, double layered_below) {
   punch::solve_options options;
   options.grid_points = grid;
   options.displacement = displacement;
@@ -157,14 +157,15 @@ punch::solve_options make_options(std::size_t grid, bool displacement, double to
   options.acceptance = acceptance;
   options.threads = threads;
   options.time_limit = time_limit;
+  options.layered_below = layered_below;
   return options;
 }
 
 py::dict solve(const py::dict& spec, std::size_t grid, bool displacement, double tolerance, bool residual,
-               double acceptance, std::size_t threads, double time_limit) {
+               double acceptance, std::size_t threads, double time_limit, double layered_below) {
   const punch::scene s = to_scene(spec);
   const punch::solve_options options =
-      make_options(grid, displacement, tolerance, residual, acceptance, threads, time_limit);
+      make_options(grid, displacement, tolerance, residual, acceptance, threads, time_limit, layered_below);
   punch::scene_result result;
   {
     py::gil_scoped_release nogil;  // threads may solve other scenes meanwhile
@@ -175,7 +176,7 @@ py::dict solve(const py::dict& spec, std::size_t grid, bool displacement, double
 
 /// punch::solve_profile for a validated scene with a "profile"; keys as in the JSON result.
 py::dict solve_profile(const py::dict& spec, std::size_t grid, bool displacement, double tolerance, bool residual,
-                       double acceptance, std::size_t threads, double time_limit) {
+                       double acceptance, std::size_t threads, double time_limit, double layered_below) {
   punch::profile_scene ps;
   ps.material = to_material(spec["material"]);
   ps.speed = number(spec, "speed");
@@ -185,7 +186,7 @@ py::dict solve_profile(const py::dict& spec, std::size_t grid, bool displacement
   ps.profile.z = profile["z"].cast<std::vector<double>>();
   ps.profile.corners = profile["corners"].cast<std::vector<double>>();
   const punch::solve_options options =
-      make_options(grid, displacement, tolerance, residual, acceptance, threads, time_limit);
+      make_options(grid, displacement, tolerance, residual, acceptance, threads, time_limit, layered_below);
   punch::profile_result r;
   {
     py::gil_scoped_release nogil;
@@ -244,11 +245,11 @@ py::dict trial_interval(const py::dict& spec, double a, double b, double toleran
 
 void bind_punch(py::module_& m) {
   m.def("_solve", &solve, py::arg("scene"), py::arg("grid"), py::arg("displacement"), py::arg("tolerance"),
-        py::arg("residual"), py::arg("acceptance"), py::arg("threads"), py::arg("time_limit"),
+        py::arg("residual"), py::arg("acceptance"), py::arg("threads"), py::arg("time_limit"), py::arg("layered_below"),
         "Solves a VALIDATED scene dict (rhabel.solve validates first). Returns nested Records.");
   m.def("_solve_profile", &solve_profile, py::arg("scene"), py::arg("grid"), py::arg("displacement"),
         py::arg("tolerance"), py::arg("residual"), py::arg("acceptance"), py::arg("threads"), py::arg("time_limit"),
-        "Solves a VALIDATED scene dict with a sampled profile (rhabel.solve validates first).");
+        py::arg("layered_below"), "Solves a VALIDATED scene dict with a sampled profile (rhabel.solve validates first).");
   m.def("_trial_interval", &trial_interval, py::arg("scene"), py::arg("a"), py::arg("b"), py::arg("tolerance"),
         "punch::trial_interval for a VALIDATED one-indentor scene dict (rhabel.trial_interval validates "
         "first). Returns a Record {load, hysteretic_friction, error_estimate}.");

@@ -119,3 +119,21 @@ def test_load_scene_rejects_duplicate_keys(tmp_path):
     path.write_text('{"speed": 1, "speed": 2}')
     with pytest.raises(ValueError, match="speed appears twice"):
         rhabel.load_scene(path)
+
+
+def test_layered_below_selects_the_coupling_basis_not_the_answer():
+    """Two parabolas ~1e-2 of a contact length apart (alpha 0.3): the coupling in the boundary-layer
+    basis (layered_below=1) and in the Jacobi series alone (0) are two discretisations of the same
+    equation; both ok, edges within 1e-10 L (measured in C++: 7e-16 L at this gap)."""
+    load = 0.3 * math.pi / 2 * math.gamma(0.7)
+    scene = {"material": {"alpha": 0.3, "E1": 1.0, "nu": 0.0, "coulomb": 0.0}, "speed": 1.0,
+             "indentors": [{"shape": "parabolic", "radius": 1.0, "load": load, "apex": 0.0},
+                           {"shape": "parabolic", "radius": 1.0, "load": load, "apex": 0.258122412441}]}
+    layered, series = rhabel.solve(scene, layered_below=1), rhabel.solve(scene, layered_below=0)
+    assert layered.diagnostics.status == "ok" and series.diagnostics.status == "ok"
+    L = min(c.contact_length for c in layered.indentors)
+    for p, q in zip(layered.indentors, series.indentors):
+        assert abs(p.contact[0] - q.contact[0]) < 1e-10 * L and abs(p.contact[1] - q.contact[1]) < 1e-10 * L
+    for bad in (-1, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="layered_below"):
+            rhabel.solve(scene, layered_below=bad)
