@@ -713,7 +713,7 @@ edges moved(const problem& pb, const unknowns& u, const edges& x, const Eigen::V
 /// polynomial route alone the correction's degree grows like sqrt(L/gap) beyond what a dense solve
 /// affords (abel/multi_interval.hpp: degree ~800 at 1e-4). The boundary-layer route
 /// (solve_options::layered_below) solves smaller gaps, but the reported density is one Jacobi
-/// series (contact_density::absorb_layer) of degree ~ 30 sqrt(L/gap) whose independent residual
+/// series (contact_density::absorb_layer) of degree ~ 15 sqrt(L/gap) whose independent residual
 /// costs O(degree^2) a check point: measured on two parabolas (alpha 0.3) at gaps 7e-5 / 4e-5 /
 /// 1.4e-5 L with this limit lowered, ok in 3.3 / 7.3 / 18 s, 80 % of it in the report. A Newton
 /// step that would close a gap narrower than this ends the iteration (contacts_merge when the full
