@@ -155,7 +155,8 @@ std::size_t contact_density::absorb_layer(double relative_accuracy) {
   const auto rule = rhabel::quadrature::gauss_jacobi<double>(n, del, gam);
   std::vector<double> c(n, 0.0);
   for (std::size_t q = 0; q < n; ++q) {
-    // The factor from the rule's distances to the ends (poles within ~1e-6 of an end).
+    // The factor from the rule's distances to the ends (poles within ~1e-6 of an end): why this is
+    // not quadrature::jacobi_coefficients, whose function sees the rounded x only.
     const double fw = rule.weight[q] * layer.factor_at_distance(rule.x_minus_lo[q], rule.hi_minus_x[q]);
     const std::vector<double> p = rhabel::quadrature::jacobi_p_all(n - 1, del, gam, rule.x[q]);
     for (std::size_t k = 0; k < n; ++k) c[k] += fw * p[k];

@@ -35,8 +35,7 @@ namespace rhabel::punch::detail {
 // varies there): g/delta^exponent = K + K1 delta + K2 delta^2 + ..., Richardson-extrapolated twice
 // (truncation ~ (delta/d)^3 ~ 1e-9, the cancellation ~ eps d/delta ~ 1e-12: an estimate).
 double edge_intensity(const contact_density& g, bool trailing) {
-  const double parts = trailing ? g.jacobi.intensity_trailing() + (g.has_apex ? g.apex.intensity_trailing() : 0.0)
-                                : g.jacobi.intensity_leading() + (g.has_apex ? g.apex.intensity_leading() : 0.0);
+  const double parts = g.intensity(trailing);
   if (!g.physical || g.jacobi.coefficients.empty()) return parts;
   const double h = g.jacobi.half_length(), x_apex = g.apex.apex_reference();
   const double d = trailing ? 1 - x_apex : 1 + x_apex;  // reference units

@@ -44,26 +44,24 @@ contact_density layered_contact() {
   return g;
 }
 
-/// The layer of layered_contact() from its definition, at t (distances to the ends exact).
-double layer_by_definition(const contact_density& g, double t) {
-  const double h = (g.b() - g.a()) / 2, u = (t - g.a()) / h, v = (g.b() - t) / h;  // 1 + x, 1 - x
-  double factor = 0;
-  for (std::size_t k = 0; k < g.layer.lo_distances.size(); ++k)
-    factor += g.layer.lo_coefficients[k] * g.layer.lo_distances[k] / (g.layer.lo_distances[k] + u);
-  for (std::size_t k = 0; k < g.layer.hi_distances.size(); ++k)
-    factor += g.layer.hi_coefficients[k] * g.layer.hi_distances[k] / (g.layer.hi_distances[k] + v);
-  return std::pow(v, g.jacobi.del) * std::pow(u, g.jacobi.gam) * factor;
-}
-
-/// The density of layered_contact() from its definition at the distances u = t - a, v = b - t.
-double density_by_definition(const contact_density& g, double u, double v) {
+/// The layer's factor sum_k a_k d_k/(d_k + 1 -+ x) of layered_contact() from its definition, at
+/// 1 + x = u/h and 1 - x = v/h.
+double layer_factor_by_definition(const contact_density& g, double u, double v) {
   const double h = (g.b() - g.a()) / 2;
-  const double x = u <= v ? u / h - 1 : 1 - v / h;
-  double factor = g.jacobi.series(x);
+  double factor = 0;
   for (std::size_t k = 0; k < g.layer.lo_distances.size(); ++k)
     factor += g.layer.lo_coefficients[k] * g.layer.lo_distances[k] / (g.layer.lo_distances[k] + u / h);
   for (std::size_t k = 0; k < g.layer.hi_distances.size(); ++k)
     factor += g.layer.hi_coefficients[k] * g.layer.hi_distances[k] / (g.layer.hi_distances[k] + v / h);
+  return factor;
+}
+
+/// The density of layered_contact() from its definition at the distances u = t - a, v = b - t;
+/// with_series false: the layer alone.
+double density_by_definition(const contact_density& g, double u, double v, bool with_series = true) {
+  const double h = (g.b() - g.a()) / 2;
+  const double x = u <= v ? u / h - 1 : 1 - v / h;
+  const double factor = (with_series ? g.jacobi.series(x) : 0.0) + layer_factor_by_definition(g, u, v);
   return std::pow(v / h, g.jacobi.del) * std::pow(u / h, g.jacobi.gam) * factor;
 }
 
@@ -92,7 +90,7 @@ TEST_CASE("a contact density with a boundary layer: values, integrals, intensity
   // distances, the factor's sum).
   for (double t : {-0.29, 0.1, 0.9, 1.6, 1.69, 1.7 - 1e-5, 1.7 - 1e-9}) {
     CAPTURE(t);
-    const double expected = series_only.value(t) + layer_by_definition(g, t);
+    const double expected = series_only.value(t) + density_by_definition(g, t - g.a(), g.b() - t, false);
     CHECK(std::abs(g.value(t) - expected) <= 1000 * eps * std::abs(expected));
   }
   // Integrals against tanh-sinh of the values (its own error ~1e-13 here): 1e-11 relative.
