@@ -25,7 +25,8 @@
 //     displacement sum the far contacts through the same tree (far_action.hpp).
 //     Below iterative_from contacts, when two neighbours are closer than
 //     solve_options::layered_below of the shorter: abel::solve_union_layered instead, the Jacobi
-//     series of degree 24 (to 48) plus simple poles clustered beyond the facing ends, whose
+//     series of degree 24 (to 48) plus simple poles clustered beyond the facing ends (8 a
+//     decade; an inexact evaluation, below, half of each: coarse_layered_accuracy), whose
 //     unknowns grow like log(L/gap) where the series alone needs a degree ~ 10 sqrt(L/gap). The
 //     poles stay in contact_density::layer while Newton iterates (the defects, loads and
 //     intensities include them) and are projected onto the Jacobi series
@@ -384,6 +385,7 @@ struct fixed_solution {
   std::vector<contact_density> g;  // per state
   std::vector<double> defect;      // per state: nu = -1 defect (abel's normalisation), else 0
   std::size_t degree = 0;          // collocation points per contact of the correction (0: none)
+  std::size_t poles_per_decade = 0;  // the boundary-layer route's (0: the polynomial route)
   double correction_residual = 0;  // its independent residual, relative to the original data
   bool correction_converged = true;
 };
@@ -416,6 +418,8 @@ struct problem {
   // finite differences of the Jacobian: the base point's degree, so that both sides of a
   // difference share one discretisation)
   std::size_t fixed_degree = 0;
+  // With fixed_degree on the boundary-layer route: the base point's poles a decade.
+  std::size_t fixed_poles_per_decade = 0;
   // The far field's tree, kept across evaluations (copies of the problem share it).
   std::shared_ptr<far_tree> tree = std::make_shared<far_tree>();
   // The degree the last adaptive evaluation needed (copies share it). The next one starts its
@@ -467,6 +471,16 @@ std::pair<abel::edge, abel::edge> series_edges(const problem& pb, std::size_t i)
 /// The boundary-layer route's polynomial degree (abel's measurements: residual ~1e-12 at 24 with
 /// 8 poles a decade, gaps down to 1e-6 of a length); it adapts up to twice this.
 constexpr std::size_t layered_degree = 24;
+constexpr std::size_t layered_poles_per_decade = 8;
+
+/// An inexact evaluation (see newton_iteration) at this accuracy or looser takes the boundary-layer
+/// route with a coarse basis: degree layered_degree / 2 (adapting up to layered_degree) and 4 poles
+/// a decade, whose residual stalls at ~1e-10 of the data, about a third of the fine basis's cost.
+/// Two parabolas 1e-3 L apart, alpha 0 / 0.1 / 0.5 / 0.7 / 0.9 (tolerance 1e-12): 0.39 / 0.61 /
+/// 0.28 / 0.37 / 0.49 s with the fine basis throughout, 0.39 / 0.30 / 0.24 / 0.32 / 0.47 s so, the
+/// same Newton iterations and edges within 1e-13 L (throwaway driver, one run each). Coarse at
+/// every accuracy, tolerance 1e-12 is missed (not_converged at 5e-10).
+constexpr double coarse_layered_accuracy = 1e-7;
 
 /// Whether two neighbours of the sorted intervals are closer than `below` of the shorter: then
 /// the correction is solved by abel's boundary-layer route (solve_options::layered_below).
@@ -567,15 +581,24 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
   // (the same intervals): 11-19 products for rows of 10-300 parabolas 1.5 L apart.
   o.iterative_from = iterative_from;
   if (far) o.far_field = far->field();
-  const bool layered = !far && nearly_touching(intervals, cx.options.layered_below);
+  // (A Jacobian's differences take the base point's route: a difference must not cross routes.)
+  const bool layered = !far && (pb.fixed_degree > 0 ? pb.fixed_poles_per_decade > 0
+                                                    : nearly_touching(intervals, cx.options.layered_below));
+  std::size_t per_decade = 0;
   if (layered) {
     // The boundary-layer route: the polynomial part at layered_degree (it adapts up to twice
-    // that), poles for the layers; its degree is not a hint for the polynomial route's ladder.
-    o.degree = pb.fixed_degree > 0 ? pb.fixed_degree : layered_degree;
-    o.max_degree = pb.fixed_degree > 0 ? 0 : 2 * layered_degree;
+    // that), poles for the layers, or the coarse basis for an inexact evaluation; a Jacobian's
+    // differences at the base point's basis. Its degree is not a hint for the polynomial route.
+    const bool coarse = tol >= coarse_layered_accuracy;
+    const std::size_t first = coarse ? layered_degree / 2 : layered_degree;
+    per_decade = pb.fixed_degree > 0 ? pb.fixed_poles_per_decade : (coarse ? layered_poles_per_decade / 2 : layered_poles_per_decade);
+    o.degree = pb.fixed_degree > 0 ? pb.fixed_degree : first;
+    o.max_degree = pb.fixed_degree > 0 ? 0 : 2 * first;
   }
-  const auto sol = layered ? abel::solve_union_layered(cx.par, intervals, data, o) : abel::solve_union(cx.par, intervals, data, o);
+  const auto sol = layered ? abel::solve_union_layered(cx.par, intervals, data, o, per_decade)
+                           : abel::solve_union(cx.par, intervals, data, o);
   out.degree = sol.degree;
+  out.poles_per_decade = per_decade;
   if (pb.fixed_degree == 0 && !layered) pb.degree_hint->store(sol.degree);
   out.correction_residual = sol.residual * std::max(worst_ratio, 0.0);
   out.correction_converged = sol.status == abel::solve_status::converged;
@@ -895,6 +918,7 @@ class body_far_model {
 Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x, const evaluation& ev) {
   problem pb = base;
   pb.fixed_degree = ev.sol.degree;
+  pb.fixed_poles_per_decade = ev.sol.poles_per_decade;
   const Eigen::VectorXd& r = ev.r;
   const auto m = static_cast<Eigen::Index>(u.state.size());
   const std::size_t n = pb.roles.size();
