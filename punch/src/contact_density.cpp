@@ -5,6 +5,7 @@
 #include "rhabel/quadrature/gauss_jacobi.hpp"
 #include "rhabel/quadrature/jacobi_polynomial.hpp"
 
+#include <boost/math/constants/constants.hpp>
 #include <boost/math/special_functions/beta.hpp>
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 namespace rhabel::punch::detail {
 
 namespace {
+
 // int_s^b of the Jacobi series, directly (no subtraction from the total): with X the reference
 // abscissa of s, int_X^1 w P_0 = 2^(del+gam+1) B(del+1, gam+1) I_{(1-X)/2}(del+1, gam+1) and, for
 // n >= 1, int_X^1 w P_n = (1/(2n)) (1-X)^(del+1) (1+X)^(gam+1) P_{n-1}^(del+1,gam+1)(X) (Rodrigues,
@@ -153,6 +155,8 @@ std::size_t contact_density::absorb_layer(double relative_accuracy) {
   miss(layer.hi_distances, layer.hi_coefficients);
   tail = std::max(tail, missed);
   const auto rule = rhabel::quadrature::gauss_jacobi<double>(n, del, gam);
+  const abel::layer_density<double> projected = layer;
+  const std::vector<double> before = jacobi.coefficients;
   std::vector<double> c(n, 0.0);
   for (std::size_t q = 0; q < n; ++q) {
     // The factor from the rule's distances to the ends (poles within ~1e-6 of an end): why this is
@@ -165,6 +169,29 @@ std::size_t contact_density::absorb_layer(double relative_accuracy) {
   if (coefficients.size() < n) coefficients.resize(n, 0.0);
   for (std::size_t k = 0; k < n; ++k) coefficients[k] += c[k] / rhabel::quadrature::jacobi_norm_squared(k, del, gam);
   layer = {};
+  // The projection's error, measured: the new series against the old one plus the poles at 64
+  // Chebyshev points and, at each end with poles, at the end and at 4^-5, 4^-4, ... times the
+  // nearest pole's distance from it (where the layer varies and a truncated series errs most),
+  // relative to the density's scale; into `tail`.
+  const rhabel::quadrature::jacobi_series<double> old_series(before, del, gam), new_series(coefficients, del, gam);
+  double worst = 0;
+  const auto compare = [&](double u, double v) {
+    const double x = u <= v ? u - 1 : 1 - v;
+    worst = std::max(worst, std::abs(new_series(x) - old_series(x) - projected.factor_at_distance(u, v)));
+  };
+  for (int k = 0; k < 64; ++k) {
+    const double theta = boost::math::constants::pi<double>() * (k + 0.5) / 64;
+    compare(1 + std::cos(theta), 1 - std::cos(theta));
+  }
+  if (!projected.lo_distances.empty()) {
+    compare(0, 2);
+    for (double d = projected.nearest_lo() / 1024; d < 1; d *= 4) compare(d, 2 - d);
+  }
+  if (!projected.hi_distances.empty()) {
+    compare(2, 0);
+    for (double d = projected.nearest_hi() / 1024; d < 1; d *= 4) compare(2 - d, d);
+  }
+  tail = std::max(tail, worst / scale);
   return n;
 }
 

@@ -1437,6 +1437,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   pb.cx = &cx;
   pb.body_load = body_load;
   edges isolated;
+  for (auto& s : st) s.solved.reset();  // set below for a result in the boundary-layer basis
   for (auto& s : st) {
     pb.roles.push_back(role_of(s, cx));
     solve_isolated(s, cx);  // the isolated contact: the start (its closed-form paths)
@@ -1523,7 +1524,9 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   if (!result.sol.g.empty()) {
     for (std::size_t i = 0; i < st.size(); ++i) {
       st[i].g = std::move(result.sol.g[i]);
-      // The report, fields and surface take a Jacobi series (and apex): the layer joins the series.
+      // The report, fields and surface take a Jacobi series (and apex): the layer joins the series;
+      // the residual of (8) is evaluated on the density as solved.
+      if (!st[i].g.layer.empty()) st[i].solved = st[i].g;
       st[i].g.absorb_layer(cx.options.tolerance);
       if (pb.body_load) st[i].target_load = st[i].g.integral();  // the solved share (checked by the caller)
       st[i].friction.reset();

@@ -69,6 +69,10 @@ struct indentor_state {
   double target_load = 0;  // in units of int g (the load divided by (pi/2) E_U)
   double height = 0;       // scene::body: the apex's height on the body [m]
   contact_density g;
+  // A coupled solve in the boundary-layer basis: g as solved, series and poles, before
+  // absorb_layer made g one Jacobi series (whose distance from this is in g.tail). The report's
+  // residual of (8) is evaluated on this (report.cpp).
+  std::optional<contact_density> solved;
   std::string status = "ok";
   status_code code = status_code::ok;
   std::optional<double> epsilon;

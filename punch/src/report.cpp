@@ -28,8 +28,24 @@
 
 namespace rhabel::punch::detail {
 
+// The boundary-layer part's action at s outside [lo, hi] (s off the edges): abel's panel rule
+// (another node count than the solve's) graded toward the poles and toward the end facing s, where
+// the kernel's branch point lies, with the kernel's argument from the distances to the ends.
+double layer_outside(const abel::layer_density<double>& layer, double s, const abel::abel_parameters<double>& par) {
+  const double inf = std::numeric_limits<double>::infinity(), h = layer.half_length();
+  const bool before = s < layer.lo;  // s before the interval: t - s > 0
+  const double d = before ? layer.lo - s : s - layer.hi;
+  const abel::detail::panel_integrator<double> rule(layer.del, layer.gam, 20);
+  return h * rule.integrate(2.0, std::min(layer.nearest_lo(), before ? d / h : inf),
+                            std::min(layer.nearest_hi(), before ? inf : d / h), [&](double u, double v) {
+                              const double t_minus_s = before ? d + h * u : -(d + h * v);
+                              return layer.factor_at_distance(u, v) * abel::detail::cross_kernel(par, t_minus_s);
+                            });
+}
+
 // A g (s) for s outside (or on the edge of) the support of g: the operator of (8)
-// (abel_operator::apply: graded Gauss-Jacobi quadrature outside the interval), plus the apex part.
+// (abel_operator::apply: graded Gauss-Jacobi quadrature outside the interval), plus the apex part
+// and the boundary-layer part (a density as solved, indentor_state::solved; s off the edges).
 double apply_outside(const contact_density& g, double s, const abel::abel_parameters<double>& par) {
   const double alpha = par.alpha();
   if (g.line_load) {
@@ -52,6 +68,7 @@ double apply_outside(const contact_density& g, double s, const abel::abel_parame
     result = op.apply_by_quadrature([&](double x) { return series(x); }, j.gam, j.del, s, j.coefficients.size());
   }
   if (g.has_apex) result += abel::apply(op, g.apex, s);
+  if (!g.layer.empty()) result += layer_outside(g.layer, s, par);
   return result;
 }
 
@@ -59,11 +76,14 @@ double apply_outside(const contact_density& g, double s, const abel::abel_parame
 // integrals (abel_operator::quadrature_evaluator, built once per density; it does not use the
 // spectral relation, so it checks it), plus the apex enrichment by abel::apply (its direct graded
 // quadrature of A[phi]: the same quadrature abel::solve_step used to build the data, so for that
-// part the residual checks the smooth remainder only; s must not be the apex).
+// part the residual checks the smooth remainder only; s must not be the apex), plus the
+// boundary-layer part of a density as solved (indentor_state::solved) by the same independent
+// quadrature, its panels graded toward the poles, at another node count than the solve's.
 class inside_action {
  public:
   inside_action(const contact_density& g, const abel::abel_parameters<double>& par)
       : g_(g), op_(par, g.a(), g.b()), evaluate_(op_, g.jacobi.gam, g.jacobi.del, g.jacobi.coefficients.size() + 32),
+        evaluate_layer_(op_, g.jacobi.gam, g.jacobi.del, 40),
         evaluate_mapped_(op_, g.jacobi.gam, g.jacobi.del, g.apex.smooth.coefficients.size() + 32),
         split_(g.apex.quadrature_nodes() - 4), series_(g.jacobi.coefficients, g.jacobi.del, g.jacobi.gam),
         mapped_series_(g.apex.smooth.series_evaluator()) {}
@@ -72,6 +92,11 @@ class inside_action {
   double operator()(double s) const {
     // g.jacobi.series(x) with the recurrence coefficients computed once (same sum to a few ulps).
     double result = series_sum(evaluate_, series_, s);
+    if (!g_.layer.empty()) {
+      const auto& layer = g_.layer;
+      result += evaluate_layer_([&](double, double p, double m) { return layer.factor_at_distance(p, m); }, s,
+                                layer.nearest_lo(), layer.nearest_hi());
+    }
     if (!g_.has_apex) return result;
     // A[C phi] as abel::apply computes it inside the interval, with the split rules built once
     // for all check points (abel::apply builds them per call).
@@ -104,7 +129,7 @@ class inside_action {
 
   const contact_density& g_;
   abel::abel_operator<double> op_;
-  abel::abel_operator<double>::quadrature_evaluator evaluate_, evaluate_mapped_;
+  abel::abel_operator<double>::quadrature_evaluator evaluate_, evaluate_layer_, evaluate_mapped_;
   abel::detail::split_integrator<double> split_;  // node count as in abel::apply
   rhabel::quadrature::jacobi_series<double> series_;  // g.jacobi's series, coefficients precomputed
   rhabel::quadrature::jacobi_series<double> mapped_series_;  // g.apex.smooth's (mapped only; else empty)
@@ -337,9 +362,21 @@ indentor_result report_contact(const std::vector<indentor_state>& st, std::size_
     // Relative to the data's scale: max |F| at the points, and for a flat face (F = 0) the size
     // of the density's own action, mean(g) (L/2)^alpha.
     double scale = g.integral() / g.length() * std::pow(g.length() / 2, cx.alpha);
-    const inside_action apply_inside(g, cx.par);
+    // In the boundary-layer basis: the densities as solved (series and poles; g is their
+    // projection, within g.tail), every other contact summed directly (fewer than
+    // iterative_from contacts: no far field).
+    const auto as_solved = [&](std::size_t j) -> const contact_density& { return st[j].solved ? *st[j].solved : st[j].g; };
+    const bool layered = std::any_of(st.begin(), st.end(), [](const indentor_state& s) { return s.solved.has_value(); });
+    const auto others = [&](double s) {
+      if (!layered) return heights.others_action(i, s);
+      double sum = 0;
+      for (std::size_t j = 0; j < st.size(); ++j)
+        if (j != i) sum += apply_outside(as_solved(j), s, cx.par);
+      return sum;
+    };
+    const inside_action apply_inside(as_solved(i), cx.par);
     for (const double sck : points) {
-      const double lhs = apply_inside(sck) + heights.others_action(i, sck);
+      const double lhs = apply_inside(sck) + others(sck);
       const double rhs = own_slope(st[i], sck) / cx.gamma_factor;
       worst = std::max(worst, std::abs(lhs - rhs));
       scale = std::max(scale, std::abs(rhs));
