@@ -732,16 +732,17 @@ edges moved(const problem& pb, const unknowns& u, const edges& x, const Eigen::V
   return y;
 }
 
-/// Smallest gap the coupled solve resolves, relative to the smaller of the two contacts. With the
-/// polynomial route alone the correction's degree grows like sqrt(L/gap) beyond what a dense solve
-/// affords (abel/multi_interval.hpp: degree ~800 at 1e-4). The boundary-layer route
-/// (solve_options::layered_below) solves smaller gaps, but the reported density is one Jacobi
-/// series (contact_density::absorb_layer) of degree ~ 15 sqrt(L/gap) whose independent residual
-/// costs O(degree^2) a check point: measured on two parabolas (alpha 0.3) at gaps 7e-5 / 4e-5 /
-/// 1.4e-5 L with this limit lowered, ok in 3.3 / 7.3 / 18 s, 80 % of it in the report. A Newton
-/// step that would close a gap narrower than this ends the iteration (contacts_merge when the full
-/// step closes it).
-constexpr double resolved_gap = 1e-4;
+/// Smallest gap the coupled solve resolves, relative to the smaller of the two contacts. The
+/// boundary-layer route (solve_options::layered_below) solves the coupling at any gap in
+/// log(L/gap) unknowns, and the report's residual is evaluated on the densities as solved; what
+/// grows is the reported density, one Jacobi series (contact_density::absorb_layer) of degree
+/// ~ 15 sqrt(L/gap), projected and used by the fields in O(degree^2): ~1e4 at 1e-6 L, where its
+/// measured projection error is ~3e-12 of the density. Two elastic parabolas (alpha 0, R 1,
+/// load_g 0.3 each, throwaway driver): gaps 8.2e-6 / 3.0e-6 / 1.7e-6 L ok in 0.9 / 1.7 / 2.2 s;
+/// apexes 0.23 apart, a gap closing below this limit, contacts_merge in 2.6 s. A Newton step that
+/// would close a gap narrower than this ends the iteration (contacts_merge when the full step
+/// closes it, else not_converged): contacts are not merged into one.
+constexpr double resolved_gap = 1e-6;
 
 /// Two neighbours whose gap the step (x + dx) would close while it is already below resolved_gap.
 struct closing_gap {

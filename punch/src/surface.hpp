@@ -154,10 +154,12 @@ class surface {
     weighted_nodes& out = nodes_[o];
     out.t.resize(rule.size());
     out.w.resize(rule.size());
+    // The series summed at all nodes in one call, its recurrence coefficients computed once.
+    d.jacobi.series_evaluator().evaluate(rule.x.data(), out.w.data(), rule.size());
     for (std::size_t q = 0; q < rule.size(); ++q) {
       out.t[q] = rule.x_minus_lo[q] <= rule.hi_minus_x[q] ? d.jacobi.lo + d.length() * rule.x_minus_lo[q] / 2
                                                           : d.jacobi.hi - d.length() * rule.hi_minus_x[q] / 2;
-      out.w[q] = rule.weight[q] * d.jacobi.series(rule.x[q]) * d.length() / 2;
+      out.w[q] *= rule.weight[q] * d.length() / 2;
     }
     return out;
   }
@@ -263,7 +265,8 @@ class surface {
         const auto& j = g.jacobi;
         const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(j.coefficients.size() / 2 + 2, j.del, j.gam + cx_.alpha);
         double sum = 0;
-        for (std::size_t q = 0; q < rule_ptr->size(); ++q) sum += rule_ptr->weight[q] * j.series(rule_ptr->x[q]);
+        const auto series = j.series_evaluator();
+        for (std::size_t q = 0; q < rule_ptr->size(); ++q) sum += rule_ptr->weight[q] * series(rule_ptr->x[q]);
         value -= (std::pow(Lg / 2, 1 + cx_.alpha) * sum - j.integral()) / cx_.alpha;
       } else if (!g.has_apex) {
         const double half = Lg / 2;

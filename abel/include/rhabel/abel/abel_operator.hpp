@@ -257,6 +257,9 @@ struct jacobi_density {
     for (const Real& b : breakpoints)
       if (b > lo && b < hi) cuts.push_back(-1 + (b - lo) / h);
     cuts.push_back(Real(1));
+    // The series with its recurrence coefficients computed once (series() recomputes them at
+    // every node: O(n) each, the cost of a long series).
+    const auto S = series_evaluator();
     Real sum = 0;
     for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
       const bool first = k == 0, last = k + 2 == cuts.size();
@@ -272,7 +275,7 @@ struct jacobi_density {
                               if (!first) weight *= pow(one_plus_x, gam);
                               if (!last) weight *= pow(one_minus_x, del);
                               const Real t = one_plus_x <= one_minus_x ? lo + h * one_plus_x : hi - h * one_minus_x;
-                              return weight * f(t) * series(x);
+                              return weight * f(t) * S(x);
                             });
     }
     return h * sum;
