@@ -310,6 +310,32 @@ TEST_CASE("nearly touching contacts: the boundary-layer basis agrees with the Ja
   CHECK(series.diagnostics.residual < 1e-10);
 }
 
+TEST_CASE("nearly touching elastic parabolas, a few 1e-6 of a contact length apart: solved and mirror-symmetric") {
+  // Two identical parabolas at alpha = 0, beta = 0 (R = 1, loads 0.3 pi/2): the physics is
+  // symmetric about the midpoint of the apexes, which the solver does not impose, so the edges
+  // must be mirror images, a_0 + b_1 = D = b_0 + a_1. Apex distances 0.27 and 0.25 put the
+  // coupled contacts ~8e-6 and ~3e-6 of a contact length apart (measured): the boundary-layer
+  // route with its density projected onto Jacobi series of degree ~5000 and ~8000.
+  constexpr double mirror_tol = 1e-10;  // of L: 100 x the tolerance (edges reach ~1e-15 measured)
+  if (punch_test::bem::sanitizer_build) return;  // ~1-2 s each in Release
+  for (const double D : {0.27, 0.25}) {
+    CAPTURE(D);
+    const double load = 0.3 * pi / 2;
+    const scene s = two(material{0.0, 1.0, 0.0, 0.0}, indentor{parabolic{1.0}, load, 0.0}, indentor{parabolic{1.0}, load, D});
+    const auto r = solve(s);
+    REQUIRE(r.diagnostics.code == status_code::ok);
+    const double L = std::min(r.indentors[0].contact_length, r.indentors[1].contact_length);
+    const double gap = r.indentors[1].a - r.indentors[0].b;
+    CAPTURE(gap / L);
+    CHECK(gap > 1e-6 * L);
+    CHECK(gap < 1e-5 * L);
+    CHECK(std::abs(r.indentors[0].a + r.indentors[1].b - D) < mirror_tol * L);
+    CHECK(std::abs(r.indentors[0].b + r.indentors[1].a - D) < mirror_tol * L);
+    CHECK(std::abs(r.indentors[0].hysteretic_friction + r.indentors[1].hysteretic_friction) < mirror_tol);
+    CHECK(r.diagnostics.residual < 1e-10);
+  }
+}
+
 TEST_CASE("solve_options::layered_below is checked") {
   solve_options o;
   for (double bad : {-1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
