@@ -2,7 +2,7 @@
 // rhabel::abel::jacobi_density, the apex enrichment by rhabel::abel::enriched_density.
 #include "rhabel/punch/detail/contact_density.hpp"
 
-#include "rhabel/quadrature/gauss_jacobi.hpp"
+#include "rhabel/quadrature/detail/jacobi_projection.hpp"
 #include "rhabel/quadrature/jacobi_polynomial.hpp"
 
 #include <boost/math/constants/constants.hpp>
@@ -14,7 +14,6 @@
 namespace rhabel::punch::detail {
 
 namespace {
-
 // int_s^b of the Jacobi series, directly (no subtraction from the total): with X the reference
 // abscissa of s, int_X^1 w P_0 = 2^(del+gam+1) B(del+1, gam+1) I_{(1-X)/2}(del+1, gam+1) and, for
 // n >= 1, int_X^1 w P_n = (1/(2n)) (1-X)^(del+1) (1+X)^(gam+1) P_{n-1}^(del+1,gam+1)(X) (Rodrigues,
@@ -59,63 +58,6 @@ double layer_partial(const abel::layer_density<double>& layer, double s, bool to
   });
 }
 
-// sum_q f_q P_k^(p,q)(x_q), k < n, for the nodes of a Gauss-Jacobi rule: jacobi_p_all's
-// recurrences (the plain three-term one for |x| < 1/2, Reinsch's difference form near the nearer
-// end, from the rule's distance to that end) with their coefficients computed once for all nodes
-// instead of at every node (at n ~ 1e4 nodes and degrees that was most of absorb_layer's time).
-std::vector<double> project(const rhabel::quadrature::quadrature_rule<double>& rule, const std::vector<double>& f,
-                            std::size_t n, double p, double q) {
-  namespace qd = rhabel::quadrature::detail;
-  std::vector<qd::jacobi_recurrence<double>> plain(n);
-  std::vector<qd::difference_form_step<double>> at_plus(n), at_minus(n);
-  std::vector<double> rise_plus(n), rise_minus(n);  // pi_(k+1)/pi_k at each end
-  for (std::size_t k = 0; k < n; ++k) {
-    plain[k] = qd::jacobi_recurrence_coefficients(k, p, q);
-    if (k >= 1) {
-      at_plus[k] = qd::difference_form_coefficients(k, p, q);
-      at_minus[k] = qd::difference_form_coefficients(k, q, p);
-    }
-    rise_plus[k] = (double(k) + 1 + p) / (double(k) + 1);
-    rise_minus[k] = (double(k) + 1 + q) / (double(k) + 1);
-  }
-  std::vector<double> c(n, 0.0);
-  for (std::size_t node = 0; node < rule.size(); ++node) {
-    const double x = rule.x[node], fq = f[node];
-    if (x >= 0.5 || x <= -0.5) {
-      // Near +1 with (p, q) and u = 1 - x; near -1 with (q, p), u = 1 + x and the sign (-1)^k.
-      const bool plus = x >= 0.5;
-      const double a = plus ? p : q, b = plus ? q : p, u = plus ? rule.hi_minus_x[node] : rule.x_minus_lo[node];
-      const auto& steps = plus ? at_plus : at_minus;
-      const auto& rise = plus ? rise_plus : rise_minus;
-      double R = 1, pi_k = 1, sign = 1;
-      c[0] += fq;
-      if (n < 2) continue;
-      double D = -(a + b + 2) * u / (2 * (a + 1));
-      R += D;
-      pi_k = rise[0];
-      sign = plus ? 1 : -1;
-      c[1] += fq * sign * pi_k * R;
-      for (std::size_t k = 1; k + 1 < n; ++k) {
-        D = steps[k].b * D - steps[k].a * u * R;
-        R += D;
-        pi_k *= rise[k];
-        if (!plus) sign = -sign;
-        c[k + 1] += fq * sign * pi_k * R;
-      }
-      continue;
-    }
-    double previous = 1, current = (p + q + 2) / 2 * x + (p - q) / 2;
-    c[0] += fq;
-    if (n >= 2) c[1] += fq * current;
-    for (std::size_t k = 1; k + 1 < n; ++k) {
-      const double next = (plain[k].A * x + plain[k].B) * current - plain[k].C * previous;
-      previous = current;
-      current = next;
-      c[k + 1] += fq * current;
-    }
-  }
-  return c;
-}
 }  // namespace
 
 void contact_density::set_interval(double lo, double hi) {
@@ -212,18 +154,14 @@ std::size_t contact_density::absorb_layer(double relative_accuracy) {
   miss(layer.lo_distances, layer.lo_coefficients);
   miss(layer.hi_distances, layer.hi_coefficients);
   tail = std::max(tail, missed);
-  const auto rule = rhabel::quadrature::gauss_jacobi<double>(n, del, gam);
-  const abel::layer_density<double> projected = layer;
   const std::vector<double> before = jacobi.coefficients;
-  // The factor from the rule's distances to the ends (poles within ~1e-6 of an end): why this is
-  // not quadrature::jacobi_coefficients, whose function sees the rounded x only.
-  std::vector<double> fw(n);
-  for (std::size_t q = 0; q < n; ++q) fw[q] = rule.weight[q] * layer.factor_at_distance(rule.x_minus_lo[q], rule.hi_minus_x[q]);
-  const std::vector<double> c = project(rule, fw, n, del, gam);
+  // The factor from the rule's distances to the ends (poles within ~1e-6 of an end).
+  const std::vector<double> c = rhabel::quadrature::jacobi_coefficients(
+      [&](double, double one_plus_x, double one_minus_x) { return layer.factor_at_distance(one_plus_x, one_minus_x); },
+      del, gam, n);
   auto& coefficients = jacobi.coefficients;
   if (coefficients.size() < n) coefficients.resize(n, 0.0);
-  for (std::size_t k = 0; k < n; ++k) coefficients[k] += c[k] / rhabel::quadrature::jacobi_norm_squared(k, del, gam);
-  layer = {};
+  for (std::size_t k = 0; k < n; ++k) coefficients[k] += c[k];
   // The projection's error, measured: the new series against the old one plus the poles at 64
   // Chebyshev points and, at each end with poles, at the end and at 4^-5, 4^-4, ... times the
   // nearest pole's distance from it (where the layer varies and a truncated series errs most),
@@ -232,21 +170,22 @@ std::size_t contact_density::absorb_layer(double relative_accuracy) {
   double worst = 0;
   const auto compare = [&](double u, double v) {
     const double x = u <= v ? u - 1 : 1 - v;
-    worst = std::max(worst, std::abs(new_series(x) - old_series(x) - projected.factor_at_distance(u, v)));
+    worst = std::max(worst, std::abs(new_series(x) - old_series(x) - layer.factor_at_distance(u, v)));
   };
   for (int k = 0; k < 64; ++k) {
     const double theta = boost::math::constants::pi<double>() * (k + 0.5) / 64;
     compare(1 + std::cos(theta), 1 - std::cos(theta));
   }
-  if (!projected.lo_distances.empty()) {
+  if (!layer.lo_distances.empty()) {
     compare(0, 2);
-    for (double d = projected.nearest_lo() / 1024; d < 1; d *= 4) compare(d, 2 - d);
+    for (double d = layer.nearest_lo() / 1024; d < 1; d *= 4) compare(d, 2 - d);
   }
-  if (!projected.hi_distances.empty()) {
+  if (!layer.hi_distances.empty()) {
     compare(2, 0);
-    for (double d = projected.nearest_hi() / 1024; d < 1; d *= 4) compare(2 - d, d);
+    for (double d = layer.nearest_hi() / 1024; d < 1; d *= 4) compare(2 - d, d);
   }
   tail = std::max(tail, worst / scale);
+  layer = {};
   return n;
 }
 

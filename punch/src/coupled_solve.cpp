@@ -1438,8 +1438,8 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   pb.cx = &cx;
   pb.body_load = body_load;
   edges isolated;
-  for (auto& s : st) s.solved.reset();  // set below for a result in the boundary-layer basis
   for (auto& s : st) {
+    s.solved.reset();  // set below for a result in the boundary-layer basis
     pb.roles.push_back(role_of(s, cx));
     solve_isolated(s, cx);  // the isolated contact: the start (its closed-form paths)
     isolated.a.push_back(s.g.a());

@@ -211,6 +211,35 @@ TEST_CASE("jacobi_coefficients: exact for polynomials, spectral for exp") {
   CHECK(max_abs(e) < 10);
 }
 
+TEST_CASE("jacobi_coefficients: long expansions near singular ends; the three-argument form") {
+  // f = P_0 + P_397 (jacobi_p: the endpoint series next to the ends, another evaluation than the
+  // projection's recurrences) at n = 400, exponents of a singular and a bounded end: recovered to
+  // 2e3 eps (400-term sums whose terms grow toward the ends; measured 1.0e3 eps, and 4.9e3 eps
+  // with P_k evaluated at each node from the rounded x instead of the rule's distances).
+  const double p = -0.65, q = 0.35;
+  const std::size_t n = 400, m = 397;
+  const auto c = rq::jacobi_coefficients([&](double x) { return 1 + rq::jacobi_p(m, p, q, x); }, p, q, n);
+  for (std::size_t k = 0; k < n; ++k) {
+    CAPTURE(k);
+    const double expected = k == 0 || k == m ? 1.0 : 0.0;
+    CHECK(std::abs(c[k] - expected) <= 2e3 * eps);
+  }
+  // f(x, 1 + x, 1 - x) gets the rule's distances to the ends: they sum to 2 and match x to
+  // rounding, and a polynomial written in them has the coefficients of the one-argument form.
+  double worst_sum = 0, worst_x = 0;
+  const auto three = rq::jacobi_coefficients(
+      [&](double x, double u, double v) {
+        worst_sum = std::max(worst_sum, std::abs(u + v - 2));
+        worst_x = std::max(worst_x, std::abs((u <= v ? u - 1 : 1 - v) - x));
+        return u * u * v;
+      },
+      p, q, 12);
+  const auto one = rq::jacobi_coefficients([](double x) { return (1 + x) * (1 + x) * (1 - x); }, p, q, 12);
+  CHECK(worst_sum <= 4 * eps);
+  CHECK(worst_x <= 2 * eps);
+  for (std::size_t k = 0; k < 12; ++k) CHECK(std::abs(three[k] - one[k]) <= 64 * eps);
+}
+
 #if RHABEL_TEST_MULTIPRECISION  // 50 digits: not in the sanitize build (tests/CMakeLists.txt)
 TEST_CASE("jacobi_integral_below: Rodrigues formula vs quadrature on [-1, x0], incomplete beta") {
   // Oracle: Gauss-Jacobi on [-1, x0] with weight (t + 1)^q and (1 - t)^p evaluated at the nodes,

@@ -38,8 +38,8 @@
 //    the family (p, q); jacobi_series_raise_p/q and jacobi_series_times_one_minus_x/one_plus_x
 //    apply them to coefficient vectors (exact up to rounding; O(K)).
 //  * jacobi_coefficients(f, p, q, n): c_k = (1/h_k) sum_i w_i f(x_i) P_k(x_i) with the n-point
-//    Gauss-Jacobi rule: exact for polynomials of degree < n, spectrally accurate for analytic f
-//    (declared in detail/jacobi_projection.hpp because it needs gauss_jacobi.hpp; the umbrella
+//    Gauss-Jacobi rule: exact for polynomials of degree < n, spectrally accurate for analytic f;
+//    f may take (x, 1 + x, 1 - x), the rule's exact distances to the ends (declared in detail/jacobi_projection.hpp because it needs gauss_jacobi.hpp; the umbrella
 //    rhabel/quadrature.hpp includes it).
 //  * jacobi_integral_below(m, p, q, x0) = int_{-1}^{x0} w P_m by the Rodrigues-type identity
 //        d/dx[(1-x)^(p+1) (1+x)^(q+1) P_{m-1}^(p+1,q+1)] = -2m (1-x)^p (1+x)^q P_m^(p,q)   (m >= 1)
