@@ -694,6 +694,7 @@ double relative_intensity(const contact_density& g, bool trailing, double load) 
 /// imposed, the relative intensities at both edges; on a rigid body, its second condition is
 /// body_conditions'. A wedge ending at its apex: load/P - 1 (on a body: body_conditions').
 evaluation evaluate(const problem& pb, const unknowns& u, const std::vector<double>& a, const std::vector<double>& b) {
+  pb.cx->check_time();  // every evaluation: the Jacobian's columns, the line search, the sharpening
   evaluation ev{solve_fixed(pb, a, b), Eigen::VectorXd(static_cast<Eigen::Index>(u.state.size()))};
   const auto& st = *pb.st;
   const auto& cx = *pb.cx;
@@ -1073,6 +1074,10 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
   } catch (const std::domain_error& e) {  // a contact's own solve failed at the start
     out.failure = e.what();
     return out;
+  } catch (const time_limit_reached& e) {
+    out.failure = e.what();
+    out.residual = std::numeric_limits<double>::infinity();
+    return out;
   }
   if (u.state.empty()) {
     out.converged = true;
@@ -1083,149 +1088,156 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
   // when it is nearly singular, e.g. contacts about to merge); above, J0's LU with Broyden's
   // updates by the Woodbury identity (rows of 1000 parabolas: the factorisations were 32 % of the
   // time).
-  abel::detail::broyden_matrix<double> J(jacobian(pb, u, out.x, ev));
-  bool fresh = true;
-  std::size_t since_fresh = 0;  // accepted steps since the last finite-difference Jacobian
-  std::size_t flat = 0;         // accepted steps of the current flat run
-  bool refreshed_in_flat = false;
-  const bool colouring = pb.roles.size() > full_width && (!pb.body_load || body_colouring(pb));
-  for (std::size_t it = 0; it < 60; ++it) {
-    if (pb.cx->out_of_time()) {
-      out.failure = pb.cx->time_limit_message();
-      break;
-    }
-    out.iterations = it + 1;
-    const auto solved = J.solve(ev.r);
-    if (!solved) {  // Broyden's updates made the matrix singular (a fresh one has none): a new Jacobian
-      J.reset(jacobian(pb, u, out.x, ev));
-      fresh = true;
-      since_fresh = 0;
-      continue;
-    }
-    const Eigen::VectorXd dx = -*solved;
-    if (!dx.allFinite()) {
-      out.failure = "singular Jacobian of the edge conditions";
-      break;
-    }
-    std::optional<closing_gap> closing;
-    double t = step_limit(pb, u, out.x, dx, closing);
-    if (closing) {
-      std::ostringstream os;
-      os << (closing->closes ? " (the next step closes the gap: they merge)" : "") << "; gaps below " << resolved_gap
-         << " of the contact length are not resolved";
-      out.failure = closing_message(pb, *closing, os.str());
-      if (closing->closes) out.merged = std::make_pair(closing->first, closing->second);
-      break;
-    }
-    bool accepted = false;
-    evaluation next;
-    edges y;
-    q.accuracy = accuracy_for(ev.r.lpNorm<Eigen::Infinity>());
-    for (int tries = 0; tries < 12; ++tries) {
-      y = moved(pb, u, out.x, t * dx);
-      try {
-        next = evaluate(q, u, y.a, y.b);
-        accepted = next.r.allFinite() &&
-                   next.r.lpNorm<Eigen::Infinity>() < (1 - 1e-4 * t) * ev.r.lpNorm<Eigen::Infinity>() + 1e-14;
-      } catch (const merge_error& m) {
-        out.merged = std::make_pair(m.first, m.second);
-        out.failure = m.what();
-      } catch (const std::domain_error& e) {  // e.g. a wedge's apex left its contact: a shorter step
-        out.failure = e.what();
+  // The time limit (time_limit_reached from any evaluation) ends the iteration at the last
+  // accepted point, whose evaluation ev is reported.
+  try {
+    abel::detail::broyden_matrix<double> J(jacobian(pb, u, out.x, ev));
+    bool fresh = true;
+    std::size_t since_fresh = 0;  // accepted steps since the last finite-difference Jacobian
+    std::size_t flat = 0;         // accepted steps of the current flat run
+    bool refreshed_in_flat = false;
+    const bool colouring = pb.roles.size() > full_width && (!pb.body_load || body_colouring(pb));
+    for (std::size_t it = 0; it < 60; ++it) {
+      if (pb.cx->out_of_time()) {
+        out.failure = pb.cx->time_limit_message();
+        break;
       }
-      if (accepted) break;
-      t /= 2;
-    }
-    if (!accepted) {
-      if (!fresh) {  // Broyden's matrix went stale: a new finite-difference Jacobian
+      out.iterations = it + 1;
+      const auto solved = J.solve(ev.r);
+      if (!solved) {  // Broyden's updates made the matrix singular (a fresh one has none): a new Jacobian
         J.reset(jacobian(pb, u, out.x, ev));
         fresh = true;
         since_fresh = 0;
         continue;
       }
-      if (out.failure.empty()) out.failure = "the edge iteration stalled";
-      break;
-    }
-    out.merged.reset();
-    out.failure.clear();
-    // Broyden's (good) update with the step taken.
-    const Eigen::VectorXd s = t * dx;
-    const Eigen::VectorXd dr = next.r - ev.r;
-    J.update(s, dr);
-    const bool step_was_fresh = fresh;
-    fresh = false;
-    double step = 0;
-    for (std::size_t k = 0; k < u.state.size(); ++k) {
-      const std::size_t i = u.state[k];
-      step = std::max(step, std::abs(s[static_cast<Eigen::Index>(k)]) / (y.b[i] - y.a[i]));
-    }
-    const edges before = out.x;
-    out.x = y;
-    const double reduction = next.r.lpNorm<Eigen::Infinity>() / ev.r.lpNorm<Eigen::Infinity>();
-    ev = std::move(next);
-    ev_accuracy = q.accuracy;
-    sharpen(out.x);
-    ++since_fresh;
-    if (reduction > flat_gain && step > 10 * tol) {
-      if (++flat == flat_steps && !refreshed_in_flat) {
-        J.reset(jacobian(pb, u, out.x, ev));
-        fresh = true;
-        since_fresh = 0;
-        flat = 0;
-        refreshed_in_flat = true;
-        continue;
+      const Eigen::VectorXd dx = -*solved;
+      if (!dx.allFinite()) {
+        out.failure = "singular Jacobian of the edge conditions";
+        break;
       }
-      if (flat == flat_steps) {
-        const auto pair = narrowing_pair(before, out.x);
-        if (pair && pair->gap_ratio < flat_merge_gap) {
-          std::ostringstream os;
-          os.precision(3);
-          os << " where the edge iteration stalls (largest edge condition " << ev.r.lpNorm<Eigen::Infinity>()
-             << "): they merge";
-          out.failure = closing_message(pb, *pair, os.str());
-          out.merged = std::make_pair(pair->first, pair->second);
-        } else {
-          out.failure = "the edge iteration stalled";
+      std::optional<closing_gap> closing;
+      double t = step_limit(pb, u, out.x, dx, closing);
+      if (closing) {
+        std::ostringstream os;
+        os << (closing->closes ? " (the next step closes the gap: they merge)" : "") << "; gaps below " << resolved_gap
+           << " of the contact length are not resolved";
+        out.failure = closing_message(pb, *closing, os.str());
+        if (closing->closes) out.merged = std::make_pair(closing->first, closing->second);
+        break;
+      }
+      bool accepted = false;
+      evaluation next;
+      edges y;
+      q.accuracy = accuracy_for(ev.r.lpNorm<Eigen::Infinity>());
+      for (int tries = 0; tries < 12; ++tries) {
+        y = moved(pb, u, out.x, t * dx);
+        try {
+          next = evaluate(q, u, y.a, y.b);
+          accepted = next.r.allFinite() &&
+                     next.r.lpNorm<Eigen::Infinity>() < (1 - 1e-4 * t) * ev.r.lpNorm<Eigen::Infinity>() + 1e-14;
+        } catch (const merge_error& m) {
+          out.merged = std::make_pair(m.first, m.second);
+          out.failure = m.what();
+        } catch (const std::domain_error& e) {  // e.g. a wedge's apex left its contact: a shorter step
+          out.failure = e.what();
         }
+        if (accepted) break;
+        t /= 2;
+      }
+      if (!accepted) {
+        if (!fresh) {  // Broyden's matrix went stale: a new finite-difference Jacobian
+          J.reset(jacobian(pb, u, out.x, ev));
+          fresh = true;
+          since_fresh = 0;
+          continue;
+        }
+        if (out.failure.empty()) out.failure = "the edge iteration stalled";
         break;
       }
-    } else {
-      flat = 0;
-      refreshed_in_flat = false;
-    }
-    // Many contacts (coloured Jacobian): when even a new Jacobian's step gains less than a
-    // quarter, this start is too far from the solution (rows of 300 parabolas from the isolated
-    // contacts: 27 steps from 3.8 to 0.95, each gaining 1 ... 11 %): the caller's continuation in
-    // the load takes over. A rigid body's steps are often shortened by step_limit far from the
-    // solution (a contact about to vanish): only a full step that gains little gives up there.
-    if (colouring && step_was_fresh && reduction > 0.75 && step > 10 * tol && (!pb.body_load || t == 1)) {
-      out.failure = "the edge iteration stalled";
-      break;
-    }
-    // Otherwise Broyden's updates from a start far from the solution crawl (rows of 100
-    // parabolas: the condition fell by less than half per step for 12 steps, then converged in 2
-    // after a new Jacobian; two parabolas 1e-3 L apart, the Jacobian taken at the continuation's
-    // last gap of 1e-2 L: 12 steps each gaining ~ a factor 1.5); a new one when a step gains less
-    // than a factor 2 two steps after the last. Its columns are differenced at a fixed degree
-    // without a residual: 2 full_width evaluations when coloured, else one per unknown.
-    if (reduction > 0.5 && (colouring || t == 1) && since_fresh >= 2 && step > 10 * tol) {
-      J.reset(jacobian(pb, u, out.x, ev));
-      fresh = true;
-      since_fresh = 0;
-    }
-    if (pb.body_load) {
-      for (std::size_t i = 0; i < pb.roles.size(); ++i)
-        if (pb.roles[i] == role::smooth_both && y.b[i] - y.a[i] < vanishing_length * pb.start_length[i]) out.lost = i;
-      if (out.lost) {
-        out.failure = "a contact vanishes";
+      out.merged.reset();
+      out.failure.clear();
+      // Broyden's (good) update with the step taken.
+      const Eigen::VectorXd s = t * dx;
+      const Eigen::VectorXd dr = next.r - ev.r;
+      J.update(s, dr);
+      const bool step_was_fresh = fresh;
+      fresh = false;
+      double step = 0;
+      for (std::size_t k = 0; k < u.state.size(); ++k) {
+        const std::size_t i = u.state[k];
+        step = std::max(step, std::abs(s[static_cast<Eigen::Index>(k)]) / (y.b[i] - y.a[i]));
+      }
+      const edges before = out.x;
+      out.x = y;
+      const double reduction = next.r.lpNorm<Eigen::Infinity>() / ev.r.lpNorm<Eigen::Infinity>();
+      ev = std::move(next);
+      ev_accuracy = q.accuracy;
+      sharpen(out.x);
+      ++since_fresh;
+      if (reduction > flat_gain && step > 10 * tol) {
+        if (++flat == flat_steps && !refreshed_in_flat) {
+          J.reset(jacobian(pb, u, out.x, ev));
+          fresh = true;
+          since_fresh = 0;
+          flat = 0;
+          refreshed_in_flat = true;
+          continue;
+        }
+        if (flat == flat_steps) {
+          const auto pair = narrowing_pair(before, out.x);
+          if (pair && pair->gap_ratio < flat_merge_gap) {
+            std::ostringstream os;
+            os.precision(3);
+            os << " where the edge iteration stalls (largest edge condition " << ev.r.lpNorm<Eigen::Infinity>()
+               << "): they merge";
+            out.failure = closing_message(pb, *pair, os.str());
+            out.merged = std::make_pair(pair->first, pair->second);
+          } else {
+            out.failure = "the edge iteration stalled";
+          }
+          break;
+        }
+      } else {
+        flat = 0;
+        refreshed_in_flat = false;
+      }
+      // Many contacts (coloured Jacobian): when even a new Jacobian's step gains less than a
+      // quarter, this start is too far from the solution (rows of 300 parabolas from the isolated
+      // contacts: 27 steps from 3.8 to 0.95, each gaining 1 ... 11 %): the caller's continuation in
+      // the load takes over. A rigid body's steps are often shortened by step_limit far from the
+      // solution (a contact about to vanish): only a full step that gains little gives up there.
+      if (colouring && step_was_fresh && reduction > 0.75 && step > 10 * tol && (!pb.body_load || t == 1)) {
+        out.failure = "the edge iteration stalled";
+        break;
+      }
+      // Otherwise Broyden's updates from a start far from the solution crawl (rows of 100
+      // parabolas: the condition fell by less than half per step for 12 steps, then converged in 2
+      // after a new Jacobian; two parabolas 1e-3 L apart, the Jacobian taken at the continuation's
+      // last gap of 1e-2 L: 12 steps each gaining ~ a factor 1.5); a new one when a step gains less
+      // than a factor 2 two steps after the last. Its columns are differenced at a fixed degree
+      // without a residual: 2 full_width evaluations when coloured, else one per unknown.
+      if (reduction > 0.5 && (colouring || t == 1) && since_fresh >= 2 && step > 10 * tol) {
+        J.reset(jacobian(pb, u, out.x, ev));
+        fresh = true;
+        since_fresh = 0;
+      }
+      if (pb.body_load) {
+        for (std::size_t i = 0; i < pb.roles.size(); ++i)
+          if (pb.roles[i] == role::smooth_both && y.b[i] - y.a[i] < vanishing_length * pb.start_length[i]) out.lost = i;
+        if (out.lost) {
+          out.failure = "a contact vanishes";
+          break;
+        }
+      }
+      // Converged when the step is within the tolerance and the point was evaluated to it.
+      if (step <= 10 * tol && ev_accuracy <= tol) {
+        out.converged = true;
         break;
       }
     }
-    // Converged when the step is within the tolerance and the point was evaluated to it.
-    if (step <= 10 * tol && ev_accuracy <= tol) {
-      out.converged = true;
-      break;
-    }
+  } catch (const time_limit_reached& e) {
+    out.failure = e.what();
+    out.merged.reset();
   }
   out.residual = ev.r.lpNorm<Eigen::Infinity>();
   out.sol = std::move(ev.sol);
@@ -1373,6 +1385,10 @@ newton_result height_continuation(problem& pb, const edges& isolated) {
   return r;
 }
 
+/// The accuracy of the projection of the boundary-layer poles (contact_density::absorb_layer) of a
+/// solve stopped by solve_options::time_limit: its measured error joins the error estimate.
+constexpr double out_of_time_projection = 1e-4;
+
 /// `pb` with every contact in the bounded class (no load imposed).
 problem bounded_form(problem pb) {
   pb.loaded.assign(pb.loaded.size(), false);
@@ -1383,6 +1399,7 @@ problem bounded_form(problem pb) {
 /// pb and result when better(second, first) says so. The iterations of both count.
 template <class Run, class Better>
 void retry(problem& pb, newton_result& result, problem other, Run run, Better better) {
+  if (pb.cx->out_of_time()) return;  // a retry would return at once with nothing to compare
   auto second = run(other);
   second.iterations += result.iterations;
   if (better(second, result)) {
@@ -1531,7 +1548,10 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
       // tenth of it at least (at tolerance 1e-8, to the acceptance's default 1e-9, every scene of
       // gap 1e-3 L in study_multi_contact came back not_converged).
       if (!st[i].g.layer.empty()) st[i].solved = st[i].g;
-      st[i].g.absorb_layer(std::min(cx.options.tolerance, 0.1 * cx.options.acceptance));
+      // Out of time, the result is not ok anyway: the projection at a coarse accuracy (its degree
+      // grows like sqrt(L/gap) and its cost like the square: seconds for contacts nearly touching).
+      st[i].g.absorb_layer(cx.out_of_time() ? out_of_time_projection
+                                            : std::min(cx.options.tolerance, 0.1 * cx.options.acceptance));
       if (pb.body_load) st[i].target_load = st[i].g.integral();  // the solved share (checked by the caller)
       st[i].friction.reset();
       st[i].rh_unit.reset();

@@ -31,6 +31,7 @@
 #include <cstddef>
 #include <memory>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -84,6 +85,15 @@ struct indentor_state {
   double rh_one_minus_eps = 0;  // its interval is [-eps, rh_one_minus_eps]
 };
 
+/// Thrown by context::check_time from inside a solve's inner loops when solve_options::time_limit
+/// has run out. The loops that own a state to report (the Newton iteration of a coupled solve, the
+/// contact search of a sampled profile) catch it and report that state as not_converged; it never
+/// leaves the library. Not a std::domain_error, so the handlers of a contact's own failures (which
+/// try other forms or shorter steps) let it through.
+struct time_limit_reached : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 struct context {
   double alpha = 0, beta = 0, kappa = 0, offset = 0;
   double gamma_factor = 1;  // Gamma(1 - alpha)
@@ -103,6 +113,10 @@ struct context {
   bool out_of_time() const { return deadline != std::chrono::steady_clock::time_point::max() && std::chrono::steady_clock::now() >= deadline; }
   /// The failure text of a solve stopped by options.time_limit.
   std::string time_limit_message() const;
+  /// Throws time_limit_reached when options.time_limit has run out. Called at every evaluation of
+  /// a coupled solve and every step of the coarse contact search, so that a solve ends within one
+  /// evaluation of the limit (solve_options::time_limit).
+  void check_time() const;
   /// Edge exponents of the class of index nu (see leading_edge, trailing_edge).
   edge_exponents exponents(int nu) const { return par.exponents(leading_edge(nu), trailing_edge(nu)); }
 };

@@ -50,6 +50,10 @@ std::string context::time_limit_message() const {
   return os.str();
 }
 
+void context::check_time() const {
+  if (out_of_time()) throw time_limit_reached(time_limit_message());
+}
+
 context make_context(const material& m, double speed, const solve_options& options) {
   context cx;
   // alpha below 1e-300 (down to the subnormal 5e-324, where the small-alpha forms divide by alpha)

@@ -292,9 +292,12 @@ struct solve_options {
   std::size_t threads = 1;
   /// Seconds after which a coupled solve (several contacts; the sampled profile's contact search)
   /// stops and reports what it reached with status_code::not_converged and a message naming the
-  /// limit; 0 = no limit. Checked before each Newton step and each round of the contact search, so
-  /// a solve ends within about one step of it (a step costs milliseconds to a second). A one-contact
-  /// solve, which takes milliseconds, does not check it. The work done by a given time depends on
+  /// limit; 0 = no limit. Checked at every evaluation of the coupled edge conditions (each
+  /// Jacobian column, each point of a line search) and every active-set step of a profile's coarse
+  /// search, so a solve stops within one evaluation of it (milliseconds to a few tenths of a
+  /// second) and then reports the last accepted state, with its report's own cost on top (the
+  /// residuals and clearances of the contacts reached). A one-contact solve, which takes
+  /// milliseconds, does not check it. The work done by a given time depends on
   /// the machine: a result stopped by the limit is not reproducible, one that finished is.
   double time_limit = 0;
   /// Several contacts, fewer than six: when two neighbouring contacts are closer than this
