@@ -11,19 +11,21 @@
 // D unknown. Active set: every panel active on a grid of 256 panels; then repeatedly every panel
 // with g < 0 is dropped, and when none is negative every panel that penetrates (w - z < D) is
 // added, until neither happens; the grid is then refined four times at a time up to `panels`
-// (at most 4096), each level starting from the last level's set. The linear solve on the active
-// panels: LU up to 600 of them, else GMRES (abel/detail/block_gmres.hpp) with products from the
-// Toeplitz table and one diagonal block per run of active panels (the contacts: their coupling is
-// smooth), runs longer than 600 panels cut into blocks of 600.
+// (at most 2^17), each level starting from the last level's set. The linear solve on the active
+// panels: LU up to 600 of them, else GMRES (abel/detail/block_gmres.hpp) with one diagonal block
+// per run of active panels (the contacts: their coupling is smooth), runs longer than 600 panels
+// cut into blocks of 600. Every product with the Toeplitz matrix (GMRES's, the penetration
+// check's) is a circulant convolution by FFT (toeplitz_product.hpp). Each active-set step checks
+// solve_options::time_limit (time_limit_reached).
 //
 // ACCURACY. A first-order method: edges to a panel, loads to O(h) of the contacts' loads, so a
 // contact whose load is a few percent of the others' may be missing or extra. That is what the
 // search corrects; nothing of this solve is reported. The collocation at 3/4 (not the midpoint)
 // keeps the checkerboard mode away from the odd part of Psi's null space at kappa = -1.
 //
-// COST. O(n m) per active-set step (m active panels) for the penetration check, O(m^2) per GMRES
-// product, the blocks' LU; memory O(n + 600 m). Measured (rhabel/punch/profile.hpp): 3-40 ms for
-// 800 .. 4000 samples and 6 .. 49 contacts.
+// COST. O(n log n) per product (n panels; the penetration check is one, GMRES a few tens), the
+// blocks' LU, O(600^2 m) at most; memory O(n + 600 m). Measured (rhabel/punch/profile.hpp): a few
+// ms to 40 ms for 800 .. 4000 samples and 6 .. 49 contacts.
 #pragma once
 
 #include "internal.hpp"
