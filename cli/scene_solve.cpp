@@ -249,7 +249,9 @@ run_outcome run_profile(const scene_spec& spec, const run_request& request, cons
   }
   doc["contacts"] = std::move(contacts);
   if (!std::isnan(r.clearance)) doc["clearance"] = {{"min", r.clearance}, {"at", r.clearance_at}};
+  doc["penetrations"] = r.penetrations;
   end_document(out, spec, r.diagnostics, r.diagnostics.rounds);
+  out.result["diagnostics"]["load_fraction"] = r.diagnostics.load_fraction;
   return out;
 }
 

@@ -236,7 +236,8 @@ bool widen(const profile_model& m, std::vector<run>& runs, const scene_states& s
 /// The clearance of the surface at the samples outside the contacts: per bump the deepest
 /// penetration (relative to the profile's span; 0 when clear), and the smallest clearance overall.
 struct clearance_check {
-  std::vector<double> depth;  // per bump
+  std::vector<double> depth;      // per bump
+  std::vector<double> deepest_at; // per bump: the abscissa of its deepest sample
   double worst = std::numeric_limits<double>::infinity();
   double worst_at = 0;
 };
@@ -246,6 +247,7 @@ clearance_check check_clearance(const profile_model& m, const scene_states& ss, 
   const auto& x = m.curve.x();
   clearance_check out;
   out.depth.assign(m.bumps.size(), 0.0);
+  out.deepest_at.assign(m.bumps.size(), 0.0);
   // The samples off the contacts, each with the nearest contact as its reference (its datum).
   std::vector<std::vector<double>> xs(st.size());
   std::vector<std::vector<std::size_t>> index(st.size());
@@ -277,7 +279,7 @@ clearance_check check_clearance(const profile_model& m, const scene_states& ss, 
       // w - w(a_i) >= z - z(a_i) where the surface clears the profile.
       const double gap = (w[k] - (m.curve.z()[q] - z_a)) / m.span;
       if (gap < out.worst) out.worst = gap, out.worst_at = x[q];
-      out.depth[bump_of[q]] = std::max(out.depth[bump_of[q]], -gap);
+      if (-gap > out.depth[bump_of[q]]) out.depth[bump_of[q]] = -gap, out.deepest_at[bump_of[q]] = x[q];
     }
   }
   return out;
@@ -302,6 +304,7 @@ std::string rename(std::string text, const profile_model& m, const std::vector<r
 /// A solved round: its runs, the scene built from them, the solved states and the outcome.
 struct round_state {
   std::vector<run> runs;
+  double t = 1;  // the fraction of the body's load it carries
   scene sc;
   scene_states states;
   coupled_outcome outcome;
@@ -353,7 +356,12 @@ void refuse_end_contacts(const profile_model& m, const std::vector<coarse_patch>
 /// coarse solve did not settle. Refuses a scene whose contacts reach an end of the samples.
 std::optional<search_start> predicted_start(const profile_model& m, const context& cx) {
   const double load = m.source->load / cx.pressure_scale;
-  const auto patches = coarse_contacts(m.curve, load, cx, m.curve.x().size());
+  std::vector<coarse_patch> patches;
+  try {
+    patches = coarse_contacts(m.curve, load, cx, m.curve.x().size());
+  } catch (const time_limit_reached&) {
+    return std::nullopt;  // the search's first round runs anyway: it has a result to report
+  }
   refuse_end_contacts(m, patches, load);
   if (patches.empty()) return std::nullopt;
   const auto& x = m.curve.x();
@@ -412,6 +420,7 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
     ++out.rounds;
     round_state next;
     next.runs = runs;
+    next.t = t;
     next.sc = make_scene(m, runs, t * load);
     next.states = prepare_states(next.sc, cx);
     start_split(m, runs, shares, next.states);
@@ -481,11 +490,41 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
     // A bump dropped at a smaller load may carry load at a larger one.
     dropped.assign(dropped.size(), 0);
   }
-  // The evidence of a round that is reported but was not the last one looked at (a later round
-  // failed to solve or the round limit came): stale clearances are recomputed for it.
-  if (out.last && out.last->outcome.code == status_code::ok && !out.failure.empty())
-    out.clear = check_clearance(m, out.last->states, cx);
+  // The evidence of the round that is reported when it was not the last one checked (a later
+  // round failed to solve, the round limit came, or its own solve did not converge): its
+  // clearances, recomputed (for a failed solve they locate the contacts it misses).
+  if (out.last && (out.last->outcome.code != status_code::ok || !out.failure.empty())) {
+    try {
+      out.clear = check_clearance(m, out.last->states, cx);
+    } catch (const std::exception&) {
+      out.clear = {};
+    }
+  }
   return out;
+}
+
+/// The deepest sample of each bump that penetrates by more than tol (relative to the span),
+/// deepest first, at most max_listed.
+std::vector<double> missing_contacts(const clearance_check& c, double tol) {
+  constexpr std::size_t max_listed = 16;
+  std::vector<std::size_t> order;
+  for (std::size_t b = 0; b < c.depth.size(); ++b)
+    if (c.depth[b] > tol) order.push_back(b);
+  std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return c.depth[p] > c.depth[q]; });
+  if (order.size() > max_listed) order.resize(max_listed);
+  std::vector<double> out;
+  for (const std::size_t b : order) out.push_back(c.deepest_at[b]);
+  return out;
+}
+
+/// "; the profile penetrates the surface (contacts missing) at x = .., .." or "".
+std::string penetration_list(const std::vector<double>& at) {
+  if (at.empty()) return "";
+  std::ostringstream os;
+  os.precision(6);
+  os << "; the profile penetrates the surface (contacts missing) at x = ";
+  for (std::size_t k = 0; k < at.size(); ++k) os << (k ? ", " : "") << at[k];
+  return os.str();
 }
 
 /// Whether a search ended in a set the report will call ok: its last round solved and converged,
@@ -515,6 +554,8 @@ profile_result report_profile(const profile_model& m, const context& cx, const s
   out.diagnostics.status = rename(r.diagnostics.status, m, last.runs);
   out.diagnostics.rounds = sr.rounds;
   out.diagnostics.iterations = sr.iterations;
+  out.diagnostics.load_fraction = last.t;
+  out.penetrations = missing_contacts(sr.clear, tol);
   const bool checked = last.outcome.code == status_code::ok && !sr.clear.depth.empty();
   out.clearance = !checked ? std::numeric_limits<double>::quiet_NaN()
                   : sr.clear.worst == std::numeric_limits<double>::infinity() ? 0.0
@@ -532,7 +573,24 @@ profile_result report_profile(const profile_model& m, const context& cx, const s
                                            "] leaves the samples [" + num(s.profile.x.front()) + ", " +
                                            num(s.profile.x.back()) + "]: extend the profile");
   }
-  if (!sr.failure.empty()) fail(status_code::not_converged, sr.failure);
+  if (last.t < 1) {
+    // Never a partial load presented as the answer: the status leads with it, whatever failed.
+    std::ostringstream os;
+    os.precision(3);
+    os << "the search reached only " << last.t << " of body.load (" << last.t * s.load << " of " << s.load
+       << ")" << penetration_list(out.penetrations) << ": "
+       << (!sr.failure.empty() ? sr.failure : out.diagnostics.status);
+    out.diagnostics.code = out.diagnostics.code == status_code::ok ? status_code::not_converged : out.diagnostics.code;
+    out.diagnostics.status = os.str();
+  }
+  if (!sr.failure.empty()) {
+    // The search's own reason (the time limit, the round limit) is said even when the round it
+    // reports already failed for another.
+    if (out.diagnostics.code == status_code::ok)
+      fail(status_code::not_converged, sr.failure + penetration_list(out.penetrations));
+    else if (out.diagnostics.status.find(sr.failure) == std::string::npos)
+      out.diagnostics.status += "; " + sr.failure;
+  }
   if (out.clearance < -tol) {
     std::ostringstream os;
     os.precision(3);

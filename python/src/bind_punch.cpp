@@ -212,6 +212,7 @@ py::dict solve_profile(const py::dict& spec, std::size_t grid, bool displacement
     clearance["at"] = r.clearance_at;
     out["clearance"] = std::move(clearance);
   }
+  out["penetrations"] = py::cast(r.penetrations);
   py::dict diagnostics = record();
   diagnostics["residual"] = r.diagnostics.residual;
   diagnostics["seconds"] = r.diagnostics.seconds;
@@ -219,6 +220,7 @@ py::dict solve_profile(const py::dict& spec, std::size_t grid, bool displacement
   diagnostics["iterations"] = r.diagnostics.iterations;
   diagnostics["status"] = punch::to_string(r.diagnostics.code);
   diagnostics["status_message"] = r.diagnostics.status;
+  diagnostics["load_fraction"] = r.diagnostics.load_fraction;
   out["diagnostics"] = std::move(diagnostics);
   return out;
 }

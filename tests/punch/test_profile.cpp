@@ -261,9 +261,17 @@ TEST_CASE("solve_options::time_limit: a search stopped by it reports not_converg
   CHECK(r.diagnostics.code == pu::status_code::not_converged);
   CHECK(r.diagnostics.status.find("time limit of 1e-09 s (solve_options::time_limit)") != std::string::npos);
   CHECK(r.diagnostics.iterations == 0);
-  // The same search without the limit (the cosine bumps of the test above) is ok.
+  // Out of time before the coarse solve's first step, the search starts from the highest tip
+  // alone at 1/256 of the load: what it reports carries that fraction, and says so first.
+  CHECK(r.diagnostics.load_fraction == doctest::Approx(1.0 / 256).epsilon(1e-15));
+  CHECK(r.diagnostics.status.rfind("the search reached only 0.00391 of body.load", 0) == 0);
+  // The same search without the limit (the cosine bumps of the test above) is ok, at the full
+  // load, and finds no contact missing.
   o.time_limit = 0;
-  CHECK(pu::solve_profile(ps, o).diagnostics.code == pu::status_code::ok);
+  const auto full = pu::solve_profile(ps, o);
+  CHECK(full.diagnostics.code == pu::status_code::ok);
+  CHECK(full.diagnostics.load_fraction == 1);
+  CHECK(full.penetrations.empty());
   for (const double bad : {-1.0, std::nan(""), HUGE_VAL}) {
     o.time_limit = bad;
     CAPTURE(bad);

@@ -66,6 +66,12 @@
 //   load grows with the distance (Psi ~ -d^alpha/alpha, -log d at alpha = 0), so far from the
 //   loads the surface rises above any profile of bounded height, and a long profile under a heavy
 //   load (or at alpha near 1) touches at the end of its data, beyond which nothing is known.
+//   A result that is not ok says what is missing: diagnostics.load_fraction is the fraction of the
+//   load its contacts carry (below 1 when the search stopped inside its load continuation, and
+//   then the status leads with "the search reached only t of body.load"), and `penetrations`
+//   lists where the profile penetrates the surface outside the contacts found (the contacts the
+//   search is missing). solve_options::time_limit is checked at every evaluation of a round's
+//   coupled solve and every step of the coarse solve: the search then reports its last round.
 //   So `ok` means: every contact passes contact.hpp's checks (residual of (8) against the
 //   spline, non-negative pressure, loads adding up to P, equal levels), and the surface clears
 //   the profile at every checked sample to acceptance x (max z - min z).
@@ -141,6 +147,11 @@ struct profile_result {
   /// relative to max z - min z (negative: the profile penetrates the surface there).
   double clearance = 0;
   double clearance_at = 0;  ///< where that clearance is [m]
+  /// Where the profile penetrates the surface outside the contacts found by more than the
+  /// acceptance (x (max z - min z)): the deepest sample of each such bump, deepest first, at most
+  /// 16 [m]. Contacts the search is missing; empty when the surface clears the profile (or the
+  /// last round had no solved state to check).
+  std::vector<double> penetrations;
   struct diagnostics_t {
     double residual = 0;     ///< max over contacts of indentor_result::residual
     double seconds = 0;      ///< wall-clock time [s]
@@ -148,6 +159,10 @@ struct profile_result {
     std::string status;      ///< "ok" or what failed, with the numbers
     std::size_t rounds = 0;  ///< coupled solves of the active set
     std::size_t iterations = 0;  ///< Newton iterations, summed over the rounds
+    /// The fraction of body.load that the reported contacts carry: 1, or less when the search
+    /// stopped in its load continuation (then the status is not ok and says so: the result is
+    /// not the answer to the full load).
+    double load_fraction = 1;
   } diagnostics;
 };
 
