@@ -3,7 +3,7 @@
 # venv, offline, as the README says:
 #     python3 -m venv --system-site-packages V && V/bin/pip install --no-build-isolation --no-index .
 # then, from another directory, imports rhabel from the venv, checks the metadata (version equal to
-# rhabel.__version__), the files, that the extension was built for the venv's
+# rhabel.__version__), the files (with the type stubs), that the extension was built for the venv's
 # interpreter, and solves a scene.
 #   bash check_pip_install.sh SOURCE_DIR BINARY_DIR PYTHON
 # Everything lives in BINARY_DIR/pip-install-check/ at fixed paths (the copy, the venv, the CMake
@@ -50,7 +50,7 @@ assert importlib.metadata.version("rhabel") == rhabel.__version__, (importlib.me
 meta = importlib.metadata.metadata("rhabel")
 assert meta["Name"] == "rhabel" and "numpy" in " ".join(meta.get_all("Requires-Dist")), dict(meta)
 files = {str(f) for f in importlib.metadata.files("rhabel")}
-for name in ("rhabel/__init__.py", "rhabel/abel.py"):
+for name in ("rhabel/__init__.py", "rhabel/abel.py", "rhabel/py.typed", "rhabel/__init__.pyi", "rhabel/abel.pyi"):
     assert name in files, f"{name} is not installed: {sorted(files)}"
 # The extension was built for the interpreter that ran pip (CMake's Python3_EXECUTABLE).
 cache = (work / "cmake" / "CMakeCache.txt").read_text()
@@ -59,5 +59,6 @@ assert len(interpreter) == 1 and pathlib.Path(interpreter[0]).parent == work / "
 r = rhabel.solve({"material": {"alpha": 0.3, "E1": 1.0e6, "nu": 0.5, "coulomb": 0.0}, "speed": 0.01,
                   "indentors": [{"shape": "parabolic", "radius": 0.02, "load": 100.0}]}, grid=11)
 assert r.diagnostics.status == "ok" and r.indentors[0].pressure.p.size == 11, r
+assert repr(r).startswith("rhabel.Result: 1 contact, status ok") and type(r.to_dict()) is dict, repr(r)
 print(f"pip install: rhabel {rhabel.__version__} from {where.parent}, C_f = {r.indentors[0].hysteretic_friction:.6g}")
 PY
