@@ -35,8 +35,7 @@ from . import abel, riemann
 __version__ = _rhabel.__version__
 
 __all__ = ["solve", "trial_interval", "load_scene", "validate_scene", "Record", "Result", "gauss_jacobi", "GaussJacobiRule",
-           "jacobi_p",
-           "abel", "riemann", "__version__"]
+           "jacobi_p", "abel", "riemann", "__version__"]
 
 
 def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acceptance=1e-9, threads=1, time_limit=0,

@@ -38,7 +38,7 @@ class Record(dict):
         """The same content as plain Python data: nested dicts (not Records), lists, tuples,
         floats, ints, strings, None and booleans, with the sampled fields as the same NumPy arrays
         (not copies). ``to_plain()`` turns the arrays into lists as well."""
-        return _unrecord(self)
+        return _plain(self, keep_arrays=True)
 
     def to_plain(self):
         """The same content as plain dicts, lists and floats (arrays become lists, tuples lists):
@@ -52,25 +52,16 @@ class Record(dict):
         return json.dumps(_plain(self), **kwargs)
 
 
-def _plain(value):
+def _plain(value, keep_arrays=False):
+    """Records as dicts; lists and tuples as lists (keep_arrays: tuples stay tuples); NumPy arrays as
+    lists (keep_arrays: the arrays themselves); NumPy scalars as Python numbers."""
     if isinstance(value, dict):
-        return {k: _plain(v) for k, v in value.items()}
+        return {k: _plain(v, keep_arrays) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
+        items = [_plain(v, keep_arrays) for v in value]
+        return tuple(items) if keep_arrays and isinstance(value, tuple) else items
     if isinstance(value, np.ndarray):
-        return value.tolist()
-    if isinstance(value, np.generic):
-        return value.item()
-    return value
-
-
-def _unrecord(value):
-    if isinstance(value, dict):
-        return {k: _unrecord(v) for k, v in value.items()}
-    if isinstance(value, list):
-        return [_unrecord(v) for v in value]
-    if isinstance(value, tuple):
-        return tuple(_unrecord(v) for v in value)
+        return value if keep_arrays else value.tolist()
     if isinstance(value, np.generic):
         return value.item()
     return value
