@@ -71,7 +71,7 @@ std::string row_prefix(const sweep_spec& sweep, std::size_t row, row_format form
 
 /// Solves row i and returns its whole line (with '\n'); never throws for a failed scene (the row
 /// then carries its status and message). `ok` is set to whether the status is "ok". request: the
-/// options of each row's solve (time_limit, tolerance; grid 0, one thread).
+/// options of each row's solve (time_limit, tolerance, acceptance; grid 0, one thread).
 std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format format, bool& ok, const run_request& request);
 
 }  // namespace rhabel::cli
