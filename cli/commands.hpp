@@ -96,6 +96,27 @@ inline CLI::Validator number_in(double lo, double hi, bool lo_open = false) {
       bounded ? "FLOAT in " + range : "FLOAT " + range);
 }
 
+/// --acceptance of `solve` and `sweep`: punch::solve_options::acceptance, the bar of status "ok".
+inline CLI::Option* add_acceptance_option(CLI::App* command, double& acceptance) {
+  return command
+      ->add_option("--acceptance", acceptance,
+                   "the bar of status \"ok\": relative residual of (8), negative pressure, load defect and error "
+                   "estimate (default 1e-9; a sampled profile is worth ~1e-6)")
+      ->check(number_in(1e-15, 0.1));
+}
+
+/// --tolerance of `solve` and `sweep`: punch::solve_options::tolerance, the relative tolerance of the
+/// root finders and expansions (default 1e-12), in [min_tolerance, max_tolerance].
+inline constexpr double min_tolerance = 1e-15;
+inline constexpr double max_tolerance = 1e-2;
+inline CLI::Option* add_tolerance_option(CLI::App* command, double& tolerance) {
+  return command
+      ->add_option("--tolerance", tolerance,
+                   "relative tolerance of the root finders and expansions (default 1e-12): larger is faster and "
+                   "less accurate (examples/README.md, work-precision table)")
+      ->check(number_in(min_tolerance, max_tolerance));
+}
+
 /// What a subcommand runs once the command line has been parsed; returns the exit code.
 using command_action = std::function<int()>;
 

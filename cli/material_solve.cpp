@@ -61,10 +61,12 @@ run_outcome run_scene_with_material(const scene_spec& scene, const run_request& 
   const auto& spec = *scene.material.curve;
   const auto curve = load_master_curve(spec, "solve");
   scene_spec trial = scene;
+  run_request fit_request;  // the fixed point's trial solves: no samples, the run's tolerance
+  fit_request.tolerance = request.tolerance;
   auto length = [&](const materials::local_fit& f) {
     trial.material.alpha = f.alpha;
     trial.material.E1 = f.E1;
-    return mean_contact_length(run_scene(trial, run_request{}));
+    return mean_contact_length(run_scene(trial, fit_request));
   };
   materials::fixed_point_fit fp;
   try {
@@ -83,7 +85,7 @@ run_outcome run_scene_with_material(const scene_spec& scene, const run_request& 
           single.indentors[0].apex = 0;
           single.material.alpha = f.alpha;
           single.material.E1 = f.E1;
-          sum += mean_contact_length(run_scene(single, run_request{}));
+          sum += mean_contact_length(run_scene(single, fit_request));
         }
         return sum / static_cast<double>(scene.indentors.size());
       };

@@ -263,6 +263,7 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   options.acceptance = request.acceptance;
   options.threads = request.threads;
   options.time_limit = request.time_limit;
+  options.tolerance = request.tolerance;
   if (spec.profile) return run_profile(spec, request, options);
   punch::scene_result r = solve_or_refuse([&] { return punch::solve(to_punch(spec), options); });
   run_outcome out;

@@ -21,6 +21,7 @@ struct run_request {
   double acceptance = 1e-9;  ///< punch::solve_options::acceptance: the bar of status "ok"
   std::size_t threads = 1;   ///< punch::solve_options::threads (rhabel sweep keeps 1: it runs rows in parallel)
   double time_limit = 0;     ///< punch::solve_options::time_limit (seconds; 0 = none)
+  double tolerance = 1e-12;  ///< punch::solve_options::tolerance (--tolerance; commands.hpp)
 };
 
 /// One indentor's samples of a field: abscissae and values (finite), of equal sizes.

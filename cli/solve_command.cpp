@@ -1,5 +1,5 @@
-// rhabel solve SCENE.json [--grid N] [--csv PREFIX] [--acceptance TOL] [--threads N] [--time-limit S]
-//              [--compact]
+// rhabel solve SCENE.json [--grid N] [--csv PREFIX] [--acceptance TOL] [--tolerance TOL] [--threads N]
+//              [--time-limit S] [--compact]
 //
 // Reads a scene (a JSON file, or stdin for "-"), validates all of it, solves it with the punch
 // layer and prints the result as JSON on stdout. Schemas: cli/scene_json.hpp (scene) and
@@ -11,6 +11,8 @@
 //                  PREFIX_displacement.csv (indentor,x,displacement): all indentors in one file
 //                  each, `indentor` is the index in the scene; implies --grid 201 unless given.
 //   --acceptance TOL  the bar of status "ok" (punch::solve_options::acceptance, default 1e-9).
+//   --tolerance TOL   relative tolerance of the root finders and expansions
+//                  (punch::solve_options::tolerance, default 1e-12, in [1e-15, 1e-2]).
 //   --threads N    threads for the Jacobian columns of several contacts (punch::solve_options::threads;
 //                  default 0: every core); the result does not depend on N.
 //   --time-limit S seconds after which a solve of several contacts stops and reports what it
@@ -61,6 +63,7 @@ struct solve_arguments {
   bool csv = false;  // --csv given (an empty prefix is an error, not "no CSV")
   bool compact = false;
   double acceptance = 1e-9;
+  double tolerance = 1e-12;
   std::size_t threads = 0;  // every core
   double time_limit = 0;    // none
 };
@@ -214,6 +217,7 @@ int run(const solve_arguments& args) {
   run_request request;
   request.grid = args.grid;
   request.acceptance = args.acceptance;
+  request.tolerance = args.tolerance;
   request.threads = args.threads;
   request.time_limit = args.time_limit;
   if (request.grid == 0 && args.csv) request.grid = default_csv_grid;
@@ -255,11 +259,8 @@ void add_solve_command(CLI::App& app, command_action& action) {
   auto* csv = solve->add_option("--csv", args->csv_prefix,
                     "also write PREFIX_pressure.csv (indentor,x,pressure) and PREFIX_displacement.csv "
                     "(indentor,x,displacement); implies --grid 201");
-  solve
-      ->add_option("--acceptance", args->acceptance,
-                   "the bar of status \"ok\": relative residual of (8), negative pressure, load defect and error "
-                   "estimate (default 1e-9; a sampled profile is worth ~1e-6)")
-      ->check(number_in(1e-15, 0.1));
+  add_acceptance_option(solve, args->acceptance);
+  add_tolerance_option(solve, args->tolerance);
   solve
       ->add_option("--threads", args->threads,
                    "threads for the finite-difference Jacobian of several contacts (default 0: every core; the "

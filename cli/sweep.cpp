@@ -304,7 +304,7 @@ std::string row_prefix(const sweep_spec& sweep, std::size_t row, row_format form
   return out;
 }
 
-std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format format, bool& ok, double time_limit) {
+std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format format, bool& ok, const run_request& request) {
   const auto columns = row_columns(sweep);
   const std::size_t first_output = 1 + sweep.axes.size();
   std::vector<std::string> fields(columns.size() - first_output);  // status .. message, as text ("" = empty)
@@ -324,8 +324,6 @@ std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format forma
       throw;
     }
     std::string warning;
-    run_request request;
-    request.time_limit = time_limit;
     const run_outcome outcome = run_scene_with_material(scene, request, &warning);
     const auto& r = outcome.result;
     const auto& diag = r.at("diagnostics");

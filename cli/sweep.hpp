@@ -21,6 +21,8 @@
 //   that holds the scene (made absolute in the rows' scenes, so each row's scene stands alone).
 #pragma once
 
+#include "scene_solve.hpp"
+
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
@@ -68,8 +70,8 @@ std::string header_line(const sweep_spec& sweep, row_format format);
 std::string row_prefix(const sweep_spec& sweep, std::size_t row, row_format format);
 
 /// Solves row i and returns its whole line (with '\n'); never throws for a failed scene (the row
-/// then carries its status and message). `ok` is set to whether the status is "ok". time_limit:
-/// punch::solve_options::time_limit of each row's solve (seconds, 0 = none).
-std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format format, bool& ok, double time_limit);
+/// then carries its status and message). `ok` is set to whether the status is "ok". request: the
+/// options of each row's solve (time_limit, tolerance, acceptance; grid 0, one thread).
+std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format format, bool& ok, const run_request& request);
 
 }  // namespace rhabel::cli

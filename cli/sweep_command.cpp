@@ -1,4 +1,5 @@
-// rhabel sweep SWEEP.json --out FILE.csv [--jsonl] [--threads N] [--time-limit S] [--print-scenes] [--quiet]
+// rhabel sweep SWEEP.json --out FILE.csv [--jsonl] [--threads N] [--time-limit S] [--tolerance TOL]
+//              [--acceptance TOL] [--print-scenes] [--quiet]
 //
 // Solves every scene of a sweep (cli/sweep.hpp) and writes one row per scene: CSV with a header, or
 // JSON lines (--jsonl: one object per line, the same keys). Rows: row, the swept values, status,
@@ -15,7 +16,7 @@
 // missing ones and, when all are there, rewrites FILE in row order (temporary + rename): every row
 // exactly once, in scene order.
 //
-// Parallelism: --threads N worker threads (default: all cores; under MPI, the cores divided by the
+// Parallelism: --threads N worker threads (default 0: all cores; under MPI, the cores divided by the
 // ranks on the node). When built with RHABEL_WITH_MPI and started by mpirun, the rows still missing
 // are dealt cyclically over the ranks (row k of the missing list to rank k mod size); the ranks send
 // their lines to rank 0, the only one that touches FILE, so the output is the same as one process's
@@ -23,7 +24,9 @@
 //
 // --time-limit S: each row's solve of several contacts stops after S seconds and its row reports
 // what it reached (status not_converged; punch::solve_options::time_limit), so one slow scene does
-// not hold up a long sweep. Such a row depends on the machine's speed.
+// not hold up a long sweep. Such a row depends on the machine's speed. --tolerance and --acceptance:
+// each row's punch::solve_options::tolerance and acceptance, as in `rhabel solve` (a row still equals
+// that solve).
 //
 // Progress (rows done, rate, remaining time) goes to stderr only when stderr is a terminal
 // (--quiet silences it). Exit codes: 0 every row ok, 3 every row written but some not ok, 2 bad
@@ -70,6 +73,8 @@ struct sweep_arguments {
   bool jsonl = false;
   std::size_t threads = 0;
   double time_limit = 0;  // seconds per row's solve; 0 = none
+  double tolerance = 1e-12;
+  double acceptance = 1e-9;
   bool print_scenes = false;
   bool quiet = false;
 };
@@ -211,8 +216,8 @@ struct finished_row {
 class work_pool {
  public:
   work_pool(const sweep_spec& sweep, row_format format, std::vector<std::size_t> rows, std::size_t threads,
-            double time_limit)
-      : sweep_(sweep), format_(format), rows_(std::move(rows)), time_limit_(time_limit) {
+            const run_request& request)
+      : sweep_(sweep), format_(format), rows_(std::move(rows)), request_(request) {
     threads = std::max<std::size_t>(1, std::min(threads, rows_.size()));
     if (rows_.empty()) return;
     for (std::size_t t = 0; t < threads; ++t) workers_.emplace_back([this] { work(); });
@@ -236,7 +241,7 @@ class work_pool {
       const std::size_t k = next_.fetch_add(1);
       if (k >= rows_.size() || stop_) return;
       bool ok = false;
-      std::string line = solve_row(sweep_, rows_[k], format_, ok, time_limit_);
+      std::string line = solve_row(sweep_, rows_[k], format_, ok, request_);
       {
         std::lock_guard lock(mutex_);
         done_.push_back({rows_[k], std::move(line)});
@@ -247,7 +252,7 @@ class work_pool {
   const sweep_spec& sweep_;
   row_format format_;
   std::vector<std::size_t> rows_;
-  double time_limit_ = 0;
+  run_request request_;  // each row's solve options
   std::atomic<std::size_t> next_{0};
   std::atomic<bool> stop_{false};
   std::mutex mutex_;
@@ -352,7 +357,11 @@ int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
   std::map<std::size_t, std::string> lines = std::move(existing.lines);
   std::size_t received = 0;
   {
-    work_pool pool(sweep, format, mine, threads, args.time_limit);
+    run_request request;  // grid 0, one thread per row (the rows run in parallel)
+    request.time_limit = args.time_limit;
+    request.tolerance = args.tolerance;
+    request.acceptance = args.acceptance;
+    work_pool pool(sweep, format, mine, threads, request);
     std::size_t local_done = 0;
     auto store = [&](finished_row&& r) {  // rank 0 only
       write_all(fd, r.line, args.out);
@@ -422,11 +431,13 @@ void add_sweep_command(CLI::App& app, command_action& action) {
   cmd->add_option("SWEEP", args->sweep_path, "sweep file (JSON)")->required();
   cmd->add_option("--out", args->out, "output file (rows appended as they complete, sorted at the end)");
   cmd->add_flag("--jsonl", args->jsonl, "write JSON lines instead of CSV");
-  cmd->add_option("--threads", args->threads, "worker threads (default: all cores)")->check(CLI::Range(1, 4096));
+  cmd->add_option("--threads", args->threads, "worker threads (default 0: every core)")->check(CLI::Range(0, 4096));
   cmd->add_option("--time-limit", args->time_limit,
                   "seconds after which a row's solve of several contacts stops and its row reports what it "
                   "reached, status not_converged (default 0: no limit)")
       ->check(number_in(0.0, 1e9));
+  add_tolerance_option(cmd, args->tolerance);
+  add_acceptance_option(cmd, args->acceptance);
   cmd->add_flag("--print-scenes", args->print_scenes, "print each row's scene as one JSON line and stop");
   cmd->add_flag("--quiet", args->quiet, "no progress bar");
   cmd->callback([&action, args] {

@@ -11,6 +11,7 @@ Contents
     validate_scene(scene)       the validation of solve() alone
     load_scene(path)            read a scene JSON file (duplicate keys rejected, as the CLI)
     Record                      the result type: a dict whose keys are also attributes
+    Result                      the Record of solve(): repr one line per contact, to_dict()
     gauss_jacobi(n, p, q, ...)  Gauss-Jacobi rule (rhabel::quadrature::gauss_jacobi)
     jacobi_p(n, p, q, x)        Jacobi polynomials, vectorised over x
     rhabel.abel                 spectral solver of the generalized Abel equation
@@ -27,14 +28,14 @@ import math as _math
 from collections import namedtuple as _namedtuple
 
 from . import _rhabel
-from ._record import Record
+from ._record import Record, Result
 from ._scene import validate as _validate
 from . import abel, riemann
 
 __version__ = _rhabel.__version__
 
-__all__ = ["solve", "trial_interval", "load_scene", "validate_scene", "Record", "gauss_jacobi", "GaussJacobiRule", "jacobi_p",
-           "abel", "riemann", "__version__"]
+__all__ = ["solve", "trial_interval", "load_scene", "validate_scene", "Record", "Result", "gauss_jacobi", "GaussJacobiRule",
+           "jacobi_p", "abel", "riemann", "__version__"]
 
 
 def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acceptance=1e-9, threads=1, time_limit=0,
@@ -115,8 +116,9 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
 
     Returns
     -------
-    Record
-        A dict whose keys are also attributes, with the fields of the JSON result:
+    Result
+        A Record (a dict whose keys are also attributes) with the fields of the JSON result;
+        its repr is a summary, one line per contact (interval, load, C_f, status):
 
         - ``beta``, ``kappa``: friction parameter, tan(beta pi/2) = k (1-2nu)/(2(1-nu)), and
           kappa = cos((alpha + beta/2) pi)/cos(beta pi/2).
@@ -148,6 +150,7 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
           {``min``, ``at``} (the smallest gap between surface and profile at the samples outside
           the contacts, relative to max z - min z) and ``diagnostics.rounds``.
 
+        ``result.to_dict()`` is the same as plain dicts and lists with the NumPy arrays;
         ``result.to_plain()`` / ``result.to_json()`` give the command line's document.
 
     Raises
@@ -190,11 +193,11 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
                                   "samples": len(profile["x"]), "x_range": [profile["x"][0], profile["x"][-1]],
                                   "corners": profile["corners"]})
         result["scene"] = echo
-        return result
+        return Result(result)
     result = _rhabel._solve(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance, threads, time_limit,
                             layered_below)
     result["scene"] = spec
-    return result
+    return Result(result)
 
 
 def trial_interval(scene, a, b, tolerance=1e-12):

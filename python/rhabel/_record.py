@@ -1,8 +1,15 @@
-"""Record: the dict-like result type of rhabel.solve (keys readable as attributes)."""
+"""Record: the dict-like result type of rhabel.solve (keys readable as attributes), and Result,
+the Record of a whole solve with a one-line-per-contact repr."""
 
 import json
 
 import numpy as np
+
+# A Record's repr shows at most this many leading and trailing entries of an array (NumPy's
+# summarisation), so that it stays short whatever the grid.
+_REPR_ARRAY_EDGE = 3
+# A Result's repr has one line per contact, at most this many (then one line saying how many more).
+_REPR_MAX_CONTACTS = 20
 
 
 class Record(dict):
@@ -22,6 +29,17 @@ class Record(dict):
     def __dir__(self):
         return list(self) + list(super().__dir__())
 
+    def __repr__(self):
+        # Sampled fields are summarised (first and last entries), as NumPy does for long arrays.
+        with np.printoptions(threshold=2 * _REPR_ARRAY_EDGE, edgeitems=_REPR_ARRAY_EDGE):
+            return f"{type(self).__name__}({dict.__repr__(self)})"
+
+    def to_dict(self):
+        """The same content as plain Python data: nested dicts (not Records), lists, tuples,
+        floats, ints, strings, None and booleans, with the sampled fields as the same NumPy arrays
+        (not copies). ``to_plain()`` turns the arrays into lists as well."""
+        return _plain(self, keep_arrays=True)
+
     def to_plain(self):
         """The same content as plain dicts, lists and floats (arrays become lists, tuples lists):
         what ``json.loads`` of the command line's output gives."""
@@ -34,13 +52,52 @@ class Record(dict):
         return json.dumps(_plain(self), **kwargs)
 
 
-def _plain(value):
+def _plain(value, keep_arrays=False):
+    """Records as dicts; lists and tuples as lists (keep_arrays: tuples stay tuples); NumPy arrays as
+    lists (keep_arrays: the arrays themselves); NumPy scalars as Python numbers."""
     if isinstance(value, dict):
-        return {k: _plain(v) for k, v in value.items()}
+        return {k: _plain(v, keep_arrays) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
-        return [_plain(v) for v in value]
+        items = [_plain(v, keep_arrays) for v in value]
+        return tuple(items) if keep_arrays and isinstance(value, tuple) else items
     if isinstance(value, np.ndarray):
-        return value.tolist()
+        return value if keep_arrays else value.tolist()
     if isinstance(value, np.generic):
         return value.item()
     return value
+
+
+class Result(Record):
+    """The result of rhabel.solve: a Record (a dict whose keys are also attributes) whose repr is
+    a short summary, one line for the solve and one per contact (interval, load, C_f, status), at
+    most _REPR_MAX_CONTACTS of them, whatever the grid. ``to_dict()``, ``to_plain()`` and
+    ``to_json()`` give the whole content."""
+
+    __slots__ = ()
+
+    def __repr__(self):
+        contacts = self.get("indentors", self.get("contacts", []))
+        diagnostics = self.get("diagnostics", {})
+        head = (f"rhabel.Result: {len(contacts)} contact{'s' if len(contacts) != 1 else ''}, "
+                f"status {diagnostics.get('status', '?')}, residual {_g(diagnostics.get('residual'))}, "
+                f"regime {self.get('regime', '?')}, beta {_g(self.get('beta'))}, kappa {_g(self.get('kappa'))}")
+        lines = [head]
+        shown = contacts if len(contacts) <= _REPR_MAX_CONTACTS else contacts[:_REPR_MAX_CONTACTS - 1]
+        for i, c in enumerate(shown):
+            a, b = c.get("contact", (float("nan"), float("nan")))
+            label = str(c.get("name") or c.get("shape") or "contact")[:24]
+            lines.append(f"  [{i}] {label}: [{_g(a)}, {_g(b)}], load {_g(c.get('load'))}, "
+                         f"C_f {_g(c.get('hysteretic_friction'))}, status {c.get('status', '?')}")
+        if len(shown) < len(contacts):
+            lines.append(f"  ... {len(contacts) - len(shown)} more (r.{'indentors' if 'indentors' in self else 'contacts'})")
+        return "\n".join(lines)
+
+
+def _g(x):
+    """A number in 6 significant digits (or '?' when absent)."""
+    if x is None:
+        return "?"
+    try:
+        return f"{float(x):.6g}"
+    except (TypeError, ValueError):
+        return str(x)

@@ -235,6 +235,11 @@ for limit in -1 nan inf; do
   [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && grep -q -- "--time-limit" "$tmp/stderr" \
     || fail "--time-limit $limit: rc $rc, $(cat "$tmp/stderr")"
 done
+for tolerance in nan inf -1 0 1e-16 0.1 abc ""; do
+  "$rhabel" solve "$tmp/good.json" --tolerance "$tolerance" > "$tmp/stdout" 2> "$tmp/stderr"; rc=$?
+  [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && [ "$(wc -l < "$tmp/stderr")" -eq 1 ] && grep -q -- "--tolerance" "$tmp/stderr" \
+    || fail "--tolerance '$tolerance': rc $rc, $(cat "$tmp/stderr")"
+done
 for acceptance in nan 1 0 abc; do
   "$rhabel" solve "$tmp/good.json" --acceptance "$acceptance" > "$tmp/stdout" 2> "$tmp/stderr"; rc=$?
   [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && grep -q -- "--acceptance" "$tmp/stderr" \

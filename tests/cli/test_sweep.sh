@@ -213,6 +213,37 @@ for limit in -1 nan inf; do
     || fail "--time-limit $limit: rc $rc, $(cat "$tmp/err")"
 done
 
+# --- --tolerance and --acceptance reach every row, which still equals `rhabel solve` with them bit for
+# bit; --threads 0 is every core; bad values refused ----------------------------------------------
+"$rhabel" sweep "$tmp/two.json" --out "$tmp/tol.csv" --tolerance 1e-6 --acceptance 1e-4 --threads 0 2> "$tmp/err" \
+  || fail "--tolerance 1e-6 --acceptance 1e-4 --threads 0: exit $? ($(cat "$tmp/err"))"
+"$rhabel" sweep "$tmp/two.json" --print-scenes | head -1 > "$tmp/tol_scene.json"
+"$rhabel" solve "$tmp/tol_scene.json" --tolerance 1e-6 --acceptance 1e-4 --compact > "$tmp/tol_solve.json" \
+  || fail "solve --tolerance 1e-6 --acceptance 1e-4: exit $?"
+# At the default acceptance (1e-9) the same rows are not ok: the acceptance reached them too.
+"$rhabel" sweep "$tmp/two.json" --out "$tmp/tol_strict.csv" --tolerance 1e-6 2> /dev/null; rc=$?
+[ "$rc" -eq 3 ] || fail "--tolerance 1e-6 at the default acceptance: exit $rc, expected 3"
+"$py" - "$tmp/tol.csv" "$tmp/tol_solve.json" "$tmp/unlimited.csv" <<'PY' || fail "--tolerance rows (see above)"
+import csv, json, sys
+row = list(csv.DictReader(open(sys.argv[1], newline="")))[0]
+solve = json.load(open(sys.argv[2]))
+default = list(csv.DictReader(open(sys.argv[3], newline="")))[0]
+assert row["status"] == solve["diagnostics"]["status"] == "ok", (row, solve["diagnostics"])
+for k, ind in enumerate(solve["indentors"]):
+    assert float(row[f"ind{k}_C_f"]) == ind["hysteretic_friction"], (row, ind)
+    assert float(row[f"ind{k}_a"]) == ind["contact"][0] and float(row[f"ind{k}_b"]) == ind["contact"][1]
+# The tolerance reached the solver: the rows differ from the default's (1e-12), by little.
+cf, cf0 = float(row["ind0_C_f"]), float(default["ind0_C_f"])
+assert cf != cf0 and abs(cf - cf0) < 1e-4 * abs(cf0), (cf, cf0)
+PY
+for bad in "--tolerance nan" "--tolerance inf" "--tolerance 0" "--tolerance 1e-16" "--tolerance 0.1" "--tolerance abc" \
+           "--acceptance nan" "--acceptance 0" "--acceptance 1" "--threads -1" "--threads 4097" "--threads x"; do
+  # shellcheck disable=SC2086  # "OPTION VALUE" splits in two on purpose
+  "$rhabel" sweep "$tmp/two.json" --out "$tmp/bad_option.csv" $bad > /dev/null 2> "$tmp/err"; rc=$?
+  [ "$rc" -eq 2 ] && [ "$(wc -l < "$tmp/err")" -eq 1 ] && grep -q -- "${bad%% *}" "$tmp/err" && [ ! -e "$tmp/bad_option.csv" ] \
+    || fail "$bad: rc $rc, $(cat "$tmp/err")"
+done
+
 # --- the shipped example runs ---------------------------------------------------------------------
 "$rhabel" sweep "$src/examples/friction_speed_sweep.json" --out "$tmp/friction.csv" 2> "$tmp/err" \
   || fail "examples/friction_speed_sweep.json: exit $? ($(cat "$tmp/err"))"
