@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdlib>
+#include <exception>
 #include <functional>
 #include <limits>
 #include <stdexcept>
@@ -39,6 +40,17 @@ inline constexpr int exit_ok = 0;
 inline constexpr int exit_internal_error = 1;
 inline constexpr int exit_bad_input = 2;  ///< also: cannot solve, cannot write
 inline constexpr int exit_not_ok = 3;     ///< solve: result written, its status is not "ok"
+
+/// The exit code main() gives an exception leaving a command: exit_bad_input for input_error,
+/// write_error and a library's rejection of a parameter (std::domain_error, std::invalid_argument),
+/// exit_internal_error for anything else.
+inline int exit_code_of(const std::exception& e) {
+  if (dynamic_cast<const input_error*>(&e) || dynamic_cast<const write_error*>(&e) ||
+      dynamic_cast<const std::domain_error*>(&e) || dynamic_cast<const std::invalid_argument*>(&e)) {
+    return exit_bad_input;
+  }
+  return exit_internal_error;
+}
 
 /// The exit-code table as printed in the help texts.
 inline constexpr const char* exit_code_help =

@@ -1,5 +1,6 @@
 // materials/src/master_curve.cpp: see rhabel/materials/master_curve.hpp.
 #include "rhabel/materials/master_curve.hpp"
+#include "rhabel/materials/text_file.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -85,6 +86,7 @@ struct log_curve {
 master_curve parse_master_curve(std::string_view text, const std::string& source) {
   const std::string where = "master curve '" + excerpt(source) + "'";
   auto fail = [&](const std::string& what) { throw std::invalid_argument(where + ": " + what); };
+  text = without_bom(text);
   master_curve curve;
   curve.source = source;
   std::vector<std::string> names;
@@ -146,6 +148,10 @@ master_curve parse_master_curve(std::string_view text, const std::string& source
       errno = 0;
       const double x = field.empty() ? 0 : std::strtod(field.c_str(), &stop);
       if (field.empty() || stop != field.c_str() + field.size()) fail(col + ": '" + excerpt(field) + "' is not a number");
+      // strtod also reads C's hexadecimal floats (0x1p+23), which no measurement file contains.
+      if (field.find_first_of("xX") != std::string::npos) {
+        fail(col + ": '" + excerpt(field) + "' is a hexadecimal number (decimal numbers only)");
+      }
       if (!std::isfinite(x) || (errno == ERANGE && std::fabs(x) > 1)) {
         fail(col + ": '" + excerpt(field) + "' is not a finite number");
       }
@@ -186,13 +192,7 @@ master_curve parse_master_curve(std::string_view text, const std::string& source
 }
 
 master_curve read_master_curve(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) {
-    throw std::invalid_argument("cannot read master curve '" + excerpt(path) + "': " + std::strerror(errno));
-  }
-  std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-  if (file.bad()) throw std::invalid_argument("cannot read master curve '" + excerpt(path) + "': read error");
-  return parse_master_curve(text, path);
+  return parse_master_curve(read_text_file(path, "master curve"), path);
 }
 
 double wlf_log10_shift(const wlf_shift& wlf, double temperature) {
