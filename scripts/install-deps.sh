@@ -16,6 +16,7 @@ packages=(
   python3 python3-matplotlib  # the main job's plot
   pybind11-dev python3-dev    # the Python package rhabel (python/)
   python3-numpy python3-pytest  # its arrays and its tests (tests/python/)
+  python3-hypothesis            # property-based tests of the Python API (tests/python/test_properties.py)
   python3-nbclient python3-nbformat python3-nbconvert python3-ipykernel  # notebooks/, run by CTest (label notebooks)
   clang-14 libclang-rt-14-dev  # libFuzzer and its sanitizers: make test-fuzz (tests/fuzz/)
 )
