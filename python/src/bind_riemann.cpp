@@ -64,7 +64,9 @@ solution solve(double alpha, double beta, double a, double b, const py::object& 
           "or None (steps only)");
     }
   }
-  for (const auto& [position, size] : steps) F.steps.push_back({position, size});
+  for (const auto& [position, size] : steps) {
+    F.steps.push_back({check_finite(fn, "a step's position", position), check_finite(fn, "a step's size", size)});
+  }
   riemann::abel_rh_options<double> options;
   options.order = order;
   options.load = load;

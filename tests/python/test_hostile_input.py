@@ -103,6 +103,13 @@ def test_non_finite_arguments_of_densities_refused():
         g.integral_to([0.0, float("inf")])
 
 
+def test_non_finite_steps_refused():
+    with pytest.raises(ValueError, match="a step's size = nan"):
+        rhabel.riemann.solve_abel_rh(.3, .1, -1, 1, [1.0], steps=[(0.0, float("nan"))])
+    with pytest.raises(ValueError, match="a step's position = inf"):
+        rhabel.riemann.solve_abel_rh(.3, .1, -1, 1, [1.0], steps=[(float("inf"), 1.0)])
+
+
 def test_coefficients_near_the_double_range_are_a_value_error():
     with pytest.raises(ValueError, match="data"):
         rhabel.abel.solve(.3, .1, -1, 1, "bounded", "unbounded", [1e308, 1e308])
