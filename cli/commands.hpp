@@ -15,6 +15,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include <rhabel/materials/text_file.hpp>
+
 #include <cstdlib>
 #include <exception>
 #include <functional>
@@ -64,28 +66,7 @@ inline constexpr const char* exit_code_help =
 
 /// `text` on one line: control characters (bytes 0x00-0x1f and 0x7f) become \n, \r, \t or \xHH,
 /// so that an echoed value (an argument, a file name, a JSON excerpt) cannot break the message.
-inline std::string one_line(std::string_view text) {
-  static constexpr char hex[] = "0123456789abcdef";
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (c == '\n') {
-      out += "\\n";
-    } else if (c == '\r') {
-      out += "\\r";
-    } else if (c == '\t') {
-      out += "\\t";
-    } else if (byte < 0x20 || byte == 0x7f) {
-      out += "\\x";
-      out += hex[byte >> 4];
-      out += hex[byte & 0xf];
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
+inline std::string one_line(std::string_view text) { return materials::printable(text, text.size()); }
 
 /// The check of a floating-point option: a number in [lo, hi] (with lo_open, in (lo, hi]). Unlike
 /// CLI::Range and CLI::PositiveNumber it refuses NaN (every comparison with NaN is false, so those

@@ -24,21 +24,7 @@ std::string short_num(double x) {
 }
 
 // Printable excerpt of a field (control characters escaped, at most 40 bytes).
-std::string excerpt(std::string_view text) {
-  std::string out;
-  for (const char c : text.substr(0, 40)) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte < 0x20 || byte == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02x", byte);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  if (text.size() > 40) out += "...";
-  return out;
-}
+std::string excerpt(std::string_view text) { return printable(text, 40); }
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);

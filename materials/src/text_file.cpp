@@ -14,26 +14,6 @@
 namespace rhabel::materials {
 namespace {
 
-// The path as shown in a message: control characters escaped as the command line does (\n, \r,
-// \t, \xHH), at most 200 bytes.
-std::string shown(const std::string& path) {
-  std::string out;
-  for (const char c : path.substr(0, 200)) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (c == '\n' || c == '\r' || c == '\t') {
-      out += c == '\n' ? "\\n" : c == '\r' ? "\\r" : "\\t";
-    } else if (byte < 0x20 || byte == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02x", byte);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  if (path.size() > 200) out += "...";
-  return out;
-}
-
 const char* kind_of(mode_t mode) {
   if (S_ISDIR(mode)) return "it is a directory";
   if (S_ISFIFO(mode)) return "it is a FIFO (only regular files are read)";
@@ -42,7 +22,7 @@ const char* kind_of(mode_t mode) {
   return "it is not a regular file";
 }
 
-// Reads fd to the end, at most max_bytes (one more byte is asked for to detect a larger file).
+// Reads fd to the end; more than max_bytes is refused as soon as it is read.
 std::string read_bounded(int fd, std::size_t max_bytes, const std::string& fail_prefix) {
   std::string text;
   char buffer[1 << 16];
@@ -63,7 +43,7 @@ std::string read_bounded(int fd, std::size_t max_bytes, const std::string& fail_
 }  // namespace
 
 std::string read_text_file(const std::string& path, const std::string& what, std::size_t max_bytes, bool allow_stdin) {
-  const std::string prefix = "cannot read " + what + " '" + shown(path) + "': ";
+  const std::string prefix = "cannot read " + what + " '" + printable(path, 200) + "': ";
   if (path.find('\0') != std::string::npos) throw std::invalid_argument(prefix + "the name contains a NUL byte");
   if (allow_stdin && path == "-") return read_bounded(STDIN_FILENO, max_bytes, prefix);
   // O_NONBLOCK: opening a FIFO without a writer would block; it is refused below by fstat.
@@ -82,6 +62,24 @@ std::string read_text_file(const std::string& path, const std::string& what, std
   const int flags = ::fcntl(fd, F_GETFL);
   if (flags >= 0) ::fcntl(fd, F_SETFL, flags & ~O_NONBLOCK);
   return read_bounded(fd, max_bytes, prefix);
+}
+
+std::string printable(std::string_view text, std::size_t max_bytes) {
+  std::string out;
+  for (const char c : text.substr(0, max_bytes)) {
+    const auto byte = static_cast<unsigned char>(c);
+    if (c == '\n' || c == '\r' || c == '\t') {
+      out += c == '\n' ? "\\n" : c == '\r' ? "\\r" : "\\t";
+    } else if (byte < 0x20 || byte == 0x7f) {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02x", byte);
+      out += buf;
+    } else {
+      out += c;
+    }
+  }
+  if (text.size() > max_bytes) out += "...";
+  return out;
 }
 
 std::string_view without_bom(std::string_view text) {

@@ -28,6 +28,10 @@ inline constexpr std::size_t max_text_file_bytes = std::size_t{256} << 20;
 std::string read_text_file(const std::string& path, const std::string& what,
                            std::size_t max_bytes = max_text_file_bytes, bool allow_stdin = false);
 
+/// `text` safe to echo inside a one-line message: control characters escaped as the command line
+/// does (\n, \r, \t, \xHH), at most `max_bytes` bytes of it (then "...").
+std::string printable(std::string_view text, std::size_t max_bytes);
+
 /// `text` without a leading UTF-8 byte-order mark (EF BB BF), which spreadsheet programs write at
 /// the start of a CSV file. The one rule of every CSV rhabel reads (master curves, profiles): a
 /// mark at the very start is skipped, anywhere else it is an ordinary (invalid) character.
