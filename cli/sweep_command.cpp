@@ -131,6 +131,10 @@ void write_all(int fd, const std::string& text, const std::string& file) {
   }
 }
 
+// The longest line a row can have when resuming: its numbers take < 30 bytes a column and its
+// message is one line of a few hundred bytes; 16 KiB leaves room for long string values.
+constexpr std::size_t max_row_bytes = 16384;
+
 struct existing_rows {
   std::map<std::size_t, std::string> lines;  // row -> whole line (with '\n')
   std::size_t keep_bytes = 0;                 // length of the complete lines (a partial tail is cut)
@@ -142,12 +146,14 @@ existing_rows scan_existing(const sweep_spec& sweep, row_format format, const st
   existing_rows out;
   if (::access(file.c_str(), F_OK) != 0) return out;  // a new file
   std::string text;
+  const std::string header = header_line(sweep, format);
+  // A row is at most max_row_bytes, so this bound only stops a file that cannot be this sweep's.
+  const std::size_t bound = std::max(materials::max_text_file_bytes, header.size() + sweep.rows * max_row_bytes);
   try {  // only a regular file, with a bound (/dev/full, a directory or a FIFO are refused)
-    text = materials::read_text_file(file, "the existing output");
+    text = materials::read_text_file(file, "the existing output", bound);
   } catch (const std::invalid_argument& e) {
     throw input_error("sweep: --out " + one_line(file) + ": " + e.what());
   }
-  const std::string header = header_line(sweep, format);
   std::size_t pos = 0, line_no = 0;
   if (!header.empty()) {
     if (text.empty()) return out;

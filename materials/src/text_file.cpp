@@ -87,11 +87,4 @@ std::string_view without_bom(std::string_view text) {
   return text;
 }
 
-bool exists_but_not_regular(const std::string& path) {
-  struct stat info {};
-  if (path.find('\0') != std::string::npos) return true;
-  if (::stat(path.c_str(), &info) != 0) return false;
-  return !S_ISREG(info.st_mode);
-}
-
 }  // namespace rhabel::materials

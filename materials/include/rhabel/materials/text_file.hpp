@@ -14,10 +14,11 @@
 
 namespace rhabel::materials {
 
-/// The size limit of the text files rhabel reads (master curves, scenes, sweeps, profiles,
-/// a sweep's partial output): 256 MiB. The largest realistic ones are a few MB (a profile of 10^5
-/// samples is ~4 MB, a sweep output of 10^6 rows ~300 MB is above it only with long messages); the
-/// limit bounds the memory a wrong path (/dev/zero, a disk image) can take before it is refused.
+/// The size limit of the text files rhabel reads from its users (master curves, scenes, sweeps,
+/// profiles): 256 MiB. The largest realistic ones are a few MB (a profile of 10^5 samples is
+/// ~4 MB); the limit bounds the memory a wrong path (a disk image, a log) can take before it is
+/// refused. A sweep's own output, read back when resuming, is bounded by its row count instead
+/// (cli/sweep_command.cpp).
 inline constexpr std::size_t max_text_file_bytes = std::size_t{256} << 20;
 
 /// The whole content of `path`, which must be a regular file of at most `max_bytes` bytes (or, with
@@ -36,9 +37,5 @@ std::string printable(std::string_view text, std::size_t max_bytes);
 /// the start of a CSV file. The one rule of every CSV rhabel reads (master curves, profiles): a
 /// mark at the very start is skipped, anywhere else it is an ordinary (invalid) character.
 std::string_view without_bom(std::string_view text);
-
-/// True if `path` names an existing file that is not a regular file (a directory, a device, a
-/// FIFO, a socket): a path that must never be opened as an output to append to or read back.
-bool exists_but_not_regular(const std::string& path);
 
 }  // namespace rhabel::materials
