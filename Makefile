@@ -46,12 +46,15 @@ test-sanitize: deps
 	@cmake --build --preset sanitize -j $(JOBS)
 	@ctest --preset sanitize -j $(JOBS)
 
-# The libFuzzer target of the scene parser and the solve entry (tests/fuzz/README.md): clang,
-# only the sources it needs; a 60 s run on the committed corpus (CI runs this too).
+# The libFuzzer targets (tests/fuzz/README.md): the scene parser and the solve entry (60 s), the
+# master-curve reader and the sweep schema (30 s each); clang, only the sources they need, each on
+# its committed corpus (CI runs this too).
 test-fuzz: deps
 	@cmake --preset fuzz >/dev/null
 	@cmake --build --preset fuzz -j $(JOBS)
 	@bash tests/fuzz/run.sh build-fuzz/bin/fuzz_scene
+	@bash tests/fuzz/run.sh build-fuzz/bin/fuzz_master_curve 30
+	@bash tests/fuzz/run.sh build-fuzz/bin/fuzz_sweep 30
 
 studies: build
 	@bash scripts/run-studies.sh

@@ -15,7 +15,10 @@
 
 #include <CLI/CLI.hpp>
 
+#include <rhabel/materials/text_file.hpp>
+
 #include <cstdlib>
+#include <exception>
 #include <functional>
 #include <limits>
 #include <stdexcept>
@@ -40,6 +43,17 @@ inline constexpr int exit_internal_error = 1;
 inline constexpr int exit_bad_input = 2;  ///< also: cannot solve, cannot write
 inline constexpr int exit_not_ok = 3;     ///< solve: result written, its status is not "ok"
 
+/// The exit code main() gives an exception leaving a command: exit_bad_input for input_error,
+/// write_error and a library's rejection of a parameter (std::domain_error, std::invalid_argument),
+/// exit_internal_error for anything else.
+inline int exit_code_of(const std::exception& e) {
+  if (dynamic_cast<const input_error*>(&e) || dynamic_cast<const write_error*>(&e) ||
+      dynamic_cast<const std::domain_error*>(&e) || dynamic_cast<const std::invalid_argument*>(&e)) {
+    return exit_bad_input;
+  }
+  return exit_internal_error;
+}
+
 /// The exit-code table as printed in the help texts.
 inline constexpr const char* exit_code_help =
     "Exit codes:\n"
@@ -52,28 +66,7 @@ inline constexpr const char* exit_code_help =
 
 /// `text` on one line: control characters (bytes 0x00-0x1f and 0x7f) become \n, \r, \t or \xHH,
 /// so that an echoed value (an argument, a file name, a JSON excerpt) cannot break the message.
-inline std::string one_line(std::string_view text) {
-  static constexpr char hex[] = "0123456789abcdef";
-  std::string out;
-  out.reserve(text.size());
-  for (const char c : text) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (c == '\n') {
-      out += "\\n";
-    } else if (c == '\r') {
-      out += "\\r";
-    } else if (c == '\t') {
-      out += "\\t";
-    } else if (byte < 0x20 || byte == 0x7f) {
-      out += "\\x";
-      out += hex[byte >> 4];
-      out += hex[byte & 0xf];
-    } else {
-      out += c;
-    }
-  }
-  return out;
-}
+inline std::string one_line(std::string_view text) { return materials::printable(text, text.size()); }
 
 /// The check of a floating-point option: a number in [lo, hi] (with lo_open, in (lo, hi]). Unlike
 /// CLI::Range and CLI::PositiveNumber it refuses NaN (every comparison with NaN is false, so those

@@ -30,11 +30,18 @@ std::shared_ptr<const materials::master_curve> read_cached(const std::string& pa
   }
 }
 
-double mean_contact_length(const run_outcome& outcome) {
+// The length L of omega0 = U/L of one indentor: its contact length, but a flat punch's width. The
+// flat's face is what deforms the material; at and above alpha + beta/2 = 1/2 it rides on its
+// leading corner (contact length 0), which would leave no contact frequency.
+double fit_length(const indentor_spec& indentor, const nlohmann::ordered_json& solved) {
+  return indentor.shape == shape_kind::flat ? indentor.width : solved.at("contact_length").get<double>();
+}
+
+double mean_contact_length(const scene_spec& scene, const run_outcome& outcome) {
   double sum = 0;
   std::size_t n = 0;
   for (const auto& item : outcome.result.at("indentors")) {
-    sum += item.at("contact_length").get<double>();
+    sum += fit_length(scene.indentors.at(n), item);
     ++n;
   }
   return n ? sum / static_cast<double>(n) : 0.0;
@@ -66,7 +73,7 @@ run_outcome run_scene_with_material(const scene_spec& scene, const run_request& 
   auto length = [&](const materials::local_fit& f) {
     trial.material.alpha = f.alpha;
     trial.material.E1 = f.E1;
-    return mean_contact_length(run_scene(trial, fit_request));
+    return mean_contact_length(trial, run_scene(trial, fit_request));
   };
   materials::fixed_point_fit fp;
   try {
@@ -78,6 +85,10 @@ run_outcome run_scene_with_material(const scene_spec& scene, const run_request& 
       auto alone = [&](const materials::local_fit& f) {
         double sum = 0;
         for (const auto& ind : scene.indentors) {
+          if (ind.shape == shape_kind::flat) {  // its width, whatever the material
+            sum += ind.width;
+            continue;
+          }
           scene_spec single = scene;
           single.indentors = {ind};
           // An isolated indentor's contact length does not depend on its apex; at apex 0 the punch
@@ -85,7 +96,7 @@ run_outcome run_scene_with_material(const scene_spec& scene, const run_request& 
           single.indentors[0].apex = 0;
           single.material.alpha = f.alpha;
           single.material.E1 = f.E1;
-          sum += mean_contact_length(run_scene(single, fit_request));
+          sum += mean_contact_length(single, run_scene(single, fit_request));
         }
         return sum / static_cast<double>(scene.indentors.size());
       };

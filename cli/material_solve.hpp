@@ -4,6 +4,8 @@
 // rhabel::materials (rhabel/materials/master_curve.hpp): the curve (shifted by WLF to the scene's
 // temperature if given) is fitted by a local power law at omega0, the scene is solved with it, and
 // omega0 = U / L is iterated to a fixed point, L being the mean contact length of the indentors
+// (a flat punch counts with its width: at and above alpha + beta/2 = 1/2 it touches only with its
+// leading corner)
 // (with several indentors: first with each indentor solved alone, which is fast, then on the whole
 // scene from there: the coupled solve can take seconds at a trial material far from the answer).
 // The final solve, with the converged (alpha, E1), is the written result; it gains

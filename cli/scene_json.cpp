@@ -4,6 +4,7 @@
 #include "commands.hpp"
 
 #include <nlohmann/json.hpp>
+#include <rhabel/materials/text_file.hpp>
 
 #include <cmath>
 #include <cstddef>
@@ -230,6 +231,10 @@ material_spec parse_material(const json& value, const std::string& base_dir) {
       fail_scene("material.master_curve must be a non-empty string (a CSV file name), got " + type_of(file) + " " + show(file));
     }
     c.path = file.get<std::string>();
+    // A NUL byte ends the name for the operating system: "c.csv\u0000junk" would read c.csv.
+    if (c.path.find('\0') != std::string::npos) {
+      fail_scene("material.master_curve = " + show(file) + " contains a NUL byte (\\u0000): not a file name");
+    }
     c.resolved_path = base_dir.empty() || c.path.front() == '/' ? c.path : base_dir + "/" + c.path;
     const bool has_t = value.contains("temperature"), has_wlf = value.contains("wlf");
     if (has_t != has_wlf) {
@@ -321,12 +326,13 @@ std::vector<double> number_array(const json& value, const std::string& path, con
 // The two-column CSV of a profile: x,z per line (comma, semicolon, tab or blanks between them);
 // an optional first line that is not numeric (a header) and lines starting with # are skipped.
 void read_profile_csv(const std::string& path, const std::string& shown, profile_spec& p) {
-  // Only a regular file: a device (/dev/zero) or a pipe would be read forever.
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec))
-    fail_scene("profile.file = \"" + shown + "\" is not a readable regular file (" + path + ")");
-  std::ifstream in(path);
-  if (!in) fail_scene("profile.file = \"" + shown + "\" cannot be read (" + path + ")");
+  std::string text;
+  try {  // only a regular file, with a bound: a device (/dev/zero) or a pipe would be read forever
+    text = materials::read_text_file(path, "profile.file");
+  } catch (const std::invalid_argument& e) {
+    fail_scene("profile.file = \"" + shown + "\" is not a readable regular file (" + e.what() + ")");
+  }
+  std::istringstream in{std::string(materials::without_bom(text))};
   std::string line;
   std::size_t number_of_line = 0;
   while (std::getline(in, line)) {

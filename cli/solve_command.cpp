@@ -69,26 +69,12 @@ struct solve_arguments {
 };
 
 std::string read_scene(const std::string& path) {
-  if (path == "-") {
-    std::ostringstream text;
-    text << std::cin.rdbuf();
-    if (std::cin.bad()) throw input_error("solve: cannot read the scene from stdin");
-    return text.str();
-  }
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) {
-    throw input_error("solve: cannot read scene file '" + path + "': it is a directory");
-  }
-  std::ifstream file(path, std::ios::binary);
-  if (!file) {
-    throw input_error("solve: cannot read scene file '" + path + "': " + std::strerror(errno));
-  }
   try {
-    std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-    if (!file.bad()) return text;
-  } catch (const std::exception&) {  // libstdc++ throws from underflow on some read errors
+    return materials::read_text_file(path, path == "-" ? "the scene from" : "scene file", materials::max_text_file_bytes,
+                                     true);
+  } catch (const std::invalid_argument& e) {
+    throw input_error(std::string("solve: ") + e.what());
   }
-  throw input_error("solve: cannot read scene file '" + path + "': read error");
 }
 
 void write_table(std::FILE* out, const sampled_table& table) {

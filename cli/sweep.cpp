@@ -8,6 +8,7 @@
 
 #include <rhabel/materials.hpp>
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -26,13 +27,11 @@ namespace fs = std::filesystem;
 [[noreturn]] void fail_sweep(const std::string& message) { throw input_error("sweep: " + one_line(message)); }
 
 std::string read_text(const std::string& path, const char* what) {
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) fail_sweep(std::string("cannot read ") + what + " '" + path + "': it is a directory");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) fail_sweep(std::string("cannot read ") + what + " '" + path + "': " + std::strerror(errno));
-  std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-  if (file.bad()) fail_sweep(std::string("cannot read ") + what + " '" + path + "': read error");
-  return text;
+  try {
+    return materials::read_text_file(path, what);
+  } catch (const std::invalid_argument& e) {
+    fail_sweep(e.what());
+  }
 }
 
 json parse_json(const std::string& text, const std::string& source) {
@@ -45,12 +44,21 @@ json parse_json(const std::string& text, const std::string& source) {
   }
 }
 
+constexpr std::size_t max_index_digits = 9;
+
 // "indentors[0].load" -> /indentors/0/load
 json::json_pointer to_pointer(const std::string& path, const std::string& where) {
   std::string pointer;
   std::size_t i = 0;
-  auto bad = [&] { fail_sweep(where + " = \"" + path + "\" is not a field path like speed, indentors[0].load, material.temperature"); };
+  auto bad = [&] {
+    fail_sweep(where + " = \"" + path + "\" is not a field path like speed, indentors[0].load, material.temperature");
+  };
   if (path.empty()) bad();
+  // A scene's field names are letters, digits and underscores: anything else (a NUL, a control
+  // character, JSON pointer's own ~ and /) cannot name one and would reach the CSV header.
+  for (const char c : path) {
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '[' || c == ']')) bad();
+  }
   while (i < path.size()) {
     std::size_t j = i;
     while (j < path.size() && path[j] != '.' && path[j] != '[') ++j;
@@ -61,7 +69,12 @@ json::json_pointer to_pointer(const std::string& path, const std::string& where)
       const auto close = path.find(']', j);
       if (close == std::string::npos || close == j + 1) bad();
       const std::string index = path.substr(j + 1, close - j - 1);
-      if (index.find_first_not_of("0123456789") != std::string::npos) bad();
+      // At most max_index_digits digits, without leading zeros: JSON pointer's array indices (a
+      // longer one overflowed inside the JSON library); no scene has 10^9 indentors.
+      if (index.find_first_not_of("0123456789") != std::string::npos || index.size() > max_index_digits ||
+          (index.size() > 1 && index.front() == '0')) {
+        bad();
+      }
       pointer += '/';
       pointer += index;
       j = close + 1;
@@ -107,7 +120,9 @@ std::vector<json> expand_range(const json& spec, const std::string& where, bool 
       v = to;
     } else {
       const double t = static_cast<double>(i) / static_cast<double>(n - 1);
-      v = logarithmic ? std::exp(std::log(from) + t * (std::log(to) - std::log(from))) : from + t * (to - from);
+      // (1 - t) from + t to, not from + t (to - from): the difference overflows for ends near
+      // +-1.8e308 (-1e308 .. 1e308 has the middle 0).
+      v = logarithmic ? std::exp((1 - t) * std::log(from) + t * std::log(to)) : (1 - t) * from + t * to;
     }
     values.emplace_back(v);
   }
@@ -145,14 +160,18 @@ std::string value_text(const json& v, row_format format) {
 }  // namespace
 
 sweep_spec read_sweep(const std::string& path) {
-  const json doc = parse_json(read_text(path, "sweep file"), "sweep file '" + path + "'");
-  if (!doc.is_object()) fail_sweep("sweep file '" + path + "': the top level must be an object");
+  return parse_sweep(read_text(path, "sweep file"), "sweep file '" + path + "'", fs::path(path).parent_path().string());
+}
+
+sweep_spec parse_sweep(const std::string& text, const std::string& source, const std::string& directory) {
+  const json doc = parse_json(text, source);
+  if (!doc.is_object()) fail_sweep(source + ": the top level must be an object");
   for (const auto& item : doc.items()) {
     if (item.key() != "description" && item.key() != "scene" && item.key() != "axes" && item.key() != "combine") {
       fail_sweep(item.key() + " is not a known field of a sweep (known: description, scene, axes, combine)");
     }
   }
-  const fs::path dir = fs::path(path).parent_path();
+  const fs::path dir = directory;
   sweep_spec sweep;
   const auto s = doc.find("scene");
   if (s == doc.end()) fail_sweep("scene is missing: a scene object or the name of a scene file is required");
@@ -230,6 +249,21 @@ sweep_spec read_sweep(const std::string& path) {
     if (sweep.base.contains(axis.pointer) && !sweep.base.at(axis.pointer).is_primitive()) {
       fail_sweep(where + ".path = \"" + axis.path + "\" is not a scalar field of the scene");
     }
+    if (!sweep.base.contains(axis.pointer)) {
+      // A field the base scene does not have (material.temperature, an indentor's apex) must be
+      // one the scene knows: otherwise every row would be invalid_scene.
+      json trial = sweep.base;
+      trial[axis.pointer] = axis.values.front();
+      try {
+        (void)parse_scene(trial.dump(), "(base scene with " + axis.path + ")");
+      } catch (const input_error& e) {
+        const std::string what = e.what();
+        if (what.find(" " + axis.path + " is not a known field") != std::string::npos) {
+          fail_sweep(where + ".path = \"" + axis.path + "\" is not a field of the scene (" +
+                     what.substr(what.find(axis.path)) + ")");
+        }
+      }
+    }
     for (const auto& other : sweep.axes) {
       if (other.pointer == axis.pointer) fail_sweep(where + ".path = \"" + axis.path + "\" is swept twice");
     }
@@ -302,6 +336,38 @@ std::string row_prefix(const sweep_spec& sweep, std::size_t row, row_format form
     for (std::size_t k = 0; k < values.size(); ++k) out += json(sweep.axes[k].path).dump() + ":" + values[k].dump() + ",";
   }
   return out;
+}
+
+bool is_complete_row(const sweep_spec& sweep, row_format format, std::string_view line) {
+  if (line.size() < 2 || line.back() != '\n') return false;
+  line.remove_suffix(1);
+  const auto columns = row_columns(sweep);
+  if (format == row_format::jsonl) {
+    const json row = json::parse(line.begin(), line.end(), nullptr, false);
+    if (!row.is_object() || row.size() != columns.size()) return false;
+    for (const auto& c : columns) {
+      if (!row.contains(c)) return false;
+    }
+    return true;
+  }
+  std::size_t fields = 1;
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (c == '\n' || c == '\r') return false;
+    if (quoted) {
+      if (c == '"') {
+        if (i + 1 < line.size() && line[i + 1] == '"') ++i;
+        else quoted = false;
+      }
+    } else if (c == '"') {
+      if (i > 0 && line[i - 1] != ',') return false;  // a quote only opens a field
+      quoted = true;
+    } else if (c == ',') {
+      ++fields;
+    }
+  }
+  return !quoted && fields == columns.size();
 }
 
 std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format format, bool& ok, const run_request& request) {

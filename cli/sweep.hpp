@@ -9,8 +9,9 @@
 //    "combine": "product" (default) | "zip"}
 //
 // - `path` names any scalar field of the scene by its JSON path (`speed`, `indentors[0].load`,
-//   `material.temperature`); its parent must exist in the base scene (the field itself may be
-//   absent, e.g. an `apex` left at its default). The swept values are judged like any scene value:
+//   `material.temperature`: letters, digits, _, . and [index]); its parent must exist in the base
+//   scene (the field itself may be absent, e.g. an `apex` left at its default, but must be one the
+//   scene knows: otherwise the sweep is refused up front). The swept values are judged like any scene value:
 //   a value outside its valid range makes that row's status "invalid_scene", the sweep goes on.
 // - `log_range`: count values from * (to/from)^(i/(count-1)), i = 0 .. count-1, computed as
 //   exp(ln from + i (ln to - ln from)/(count - 1)) with both ends exact; `range`: the same linearly;
@@ -27,6 +28,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rhabel::cli {
@@ -50,6 +52,10 @@ struct sweep_spec {
 /// Reads and validates a sweep file (and its base scene). Throws input_error ("sweep: ...").
 sweep_spec read_sweep(const std::string& path);
 
+/// The same for the sweep file's text: `source` names it in messages, relative file names are
+/// relative to `directory`.
+sweep_spec parse_sweep(const std::string& text, const std::string& source, const std::string& directory);
+
 /// Values of the axes for row i (one per axis).
 std::vector<nlohmann::json> row_values(const sweep_spec& sweep, std::size_t row);
 
@@ -68,6 +74,11 @@ std::string header_line(const sweep_spec& sweep, row_format format);
 /// The deterministic beginning of row i's line: its index and inputs, up to and including the
 /// separator before the status (used to recognise rows already written when resuming).
 std::string row_prefix(const sweep_spec& sweep, std::size_t row, row_format format);
+
+/// Whether `line` (with its '\n') is a whole row as solve_row writes it: CSV with exactly the
+/// columns' count of fields (quoted fields as csv_field writes them), or a JSON object with exactly
+/// the columns as keys. A torn line (a killed writer, a full disk) is not.
+bool is_complete_row(const sweep_spec& sweep, row_format format, std::string_view line);
 
 /// Solves row i and returns its whole line (with '\n'); never throws for a failed scene (the row
 /// then carries its status and message). `ok` is set to whether the status is "ok". request: the

@@ -30,11 +30,14 @@
 //
 // Progress (rows done, rate, remaining time) goes to stderr only when stderr is a terminal
 // (--quiet silences it). Exit codes: 0 every row ok, 3 every row written but some not ok, 2 bad
-// sweep file, arguments, a FILE from another sweep, or a failed write. Under mpirun only rank 0
-// returns the code (mpirun passes it on, with its own note on stderr when it is not 0).
+// sweep file, arguments, a FILE from another sweep, or a failed write. Under mpirun every rank ends
+// with MPI_Finalize and the same code, and only rank 0 prints the message (mpirun passes the code
+// on; it adds its own note on stderr when the code is not 0 unless run with --quiet).
 #include "commands.hpp"
 #include "scene_json.hpp"
 #include "sweep.hpp"
+
+#include <rhabel/materials/text_file.hpp>
 
 #include <algorithm>
 #include <atomic>
@@ -45,6 +48,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <deque>
+#include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -83,6 +87,10 @@ struct sweep_arguments {
 struct mpi_context {
   int rank = 0, size = 1;
   bool active = false;
+  // While the ranks exchange rows, a failure of one cannot be told to the others (they would wait
+  // for it forever): only then is the job aborted (MPI_Abort). Before and after, every rank ends
+  // with MPI_Finalize and the same exit code, and rank 0 alone prints the message.
+  bool rows_in_flight = false;
 #ifdef RHABEL_WITH_MPI
   static bool launched_by_mpirun() {
     for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE", "PMI_RANK"}) {
@@ -128,6 +136,10 @@ void write_all(int fd, const std::string& text, const std::string& file) {
   }
 }
 
+// The longest line a row can have when resuming: its numbers take < 30 bytes a column and its
+// message is one line of a few hundred bytes; 16 KiB leaves room for long string values.
+constexpr std::size_t max_row_bytes = 16384;
+
 struct existing_rows {
   std::map<std::size_t, std::string> lines;  // row -> whole line (with '\n')
   std::size_t keep_bytes = 0;                 // length of the complete lines (a partial tail is cut)
@@ -137,10 +149,16 @@ struct existing_rows {
 // Reads FILE if it exists: the header must be this sweep's, every complete line one of its rows.
 existing_rows scan_existing(const sweep_spec& sweep, row_format format, const std::string& file) {
   existing_rows out;
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return out;
-  const std::string text{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (::access(file.c_str(), F_OK) != 0) return out;  // a new file
+  std::string text;
   const std::string header = header_line(sweep, format);
+  // A row is at most max_row_bytes, so this bound only stops a file that cannot be this sweep's.
+  const std::size_t bound = std::max(materials::max_text_file_bytes, header.size() + sweep.rows * max_row_bytes);
+  try {  // only a regular file, with a bound (/dev/full, a directory or a FIFO are refused)
+    text = materials::read_text_file(file, "the existing output", bound);
+  } catch (const std::invalid_argument& e) {
+    throw input_error("sweep: --out " + one_line(file) + ": " + e.what());
+  }
   std::size_t pos = 0, line_no = 0;
   if (!header.empty()) {
     if (text.empty()) return out;
@@ -159,19 +177,29 @@ existing_rows scan_existing(const sweep_spec& sweep, row_format format, const st
     if (end == std::string::npos) break;  // partial last line of a killed run: cut off
     ++line_no;
     const std::string line = text.substr(pos, end + 1 - pos);
+    pos = end + 1;
+    out.keep_bytes = pos;
     std::size_t row = 0;
     const std::size_t skip = format == row_format::csv ? 0 : 7;  // {"row":
     const char* digits = line.c_str() + std::min(skip, line.size());
     char* stop = nullptr;
+    errno = 0;
     row = std::strtoull(digits, &stop, 10);
-    if (stop == digits || row >= sweep.rows || line.compare(0, row_prefix(sweep, row, format).size(),
-                                                            row_prefix(sweep, row, format)) != 0) {
-      throw input_error("sweep: --out " + one_line(file) + " line " + std::to_string(line_no) +
-                        " is not a row of this sweep (another sweep's file?): remove it or choose another name");
+    const bool numbered = stop != digits && errno == 0 && row < sweep.rows;
+    const std::string prefix = numbered ? row_prefix(sweep, row, format) : std::string();
+    if (numbered && line.compare(0, prefix.size(), prefix) == 0) {
+      // This sweep's row, unless torn (a killed writer, a disk that filled up): then it is dropped
+      // and solved again, never copied to the result.
+      if (is_complete_row(sweep, format, line)) out.lines.emplace(row, line);  // a duplicate keeps the first
+      continue;
     }
-    out.lines.emplace(row, line);  // a duplicate keeps the first
-    pos = end + 1;
-    out.keep_bytes = pos;
+    // A line cut short inside its row's own prefix (or inside {"row": before the number) is torn
+    // too; anything else is foreign.
+    const std::string start = numbered ? prefix : std::string(format == row_format::csv ? "" : "{\"row\":");
+    const std::size_t kept = line.size() - 1;  // without its '\n'
+    if (kept < start.size() && start.compare(0, kept, line, 0, kept) == 0) continue;
+    throw input_error("sweep: --out " + one_line(file) + " line " + std::to_string(line_no) +
+                      " is not a row of this sweep (another sweep's file?): remove it or choose another name");
   }
   return out;
 }
@@ -357,6 +385,7 @@ int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
   std::map<std::size_t, std::string> lines = std::move(existing.lines);
   std::size_t received = 0;
   {
+    mpi.rows_in_flight = mpi.active;
     run_request request;  // grid 0, one thread per row (the rows run in parallel)
     request.time_limit = args.time_limit;
     request.tolerance = args.tolerance;
@@ -400,21 +429,31 @@ int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
       bar.update(received);
     }
   }
+  mpi.rows_in_flight = false;
   bar.update(received, true);
 
   int code = exit_ok;
+  std::exception_ptr failure;
   if (mpi.rank == 0) {
-    // Every row exactly once, in row order.
-    if (lines.size() != sweep.rows) throw std::runtime_error("sweep: internal error: rows missing after the run");
-    rewrite_sorted(args.out, header, lines);
-    ::close(fd);
-    for (const auto& [row, line] : lines) {
-      if (!status_ok(line, row_prefix(sweep, row, format).size(), format)) code = exit_not_ok;
+    try {
+      // Every row exactly once, in row order.
+      if (lines.size() != sweep.rows) throw std::runtime_error("sweep: internal error: rows missing after the run");
+      rewrite_sorted(args.out, header, lines);
+      ::close(fd);
+      for (const auto& [row, line] : lines) {
+        if (!status_ok(line, row_prefix(sweep, row, format).size(), format)) code = exit_not_ok;
+      }
+    } catch (const std::exception& e) {
+      failure = std::current_exception();
+      code = exit_code_of(e);
     }
   }
-  // Only rank 0 reports the exit code: mpirun aborts the job when any rank exits non-zero, and
-  // the other ranks have nothing to report (their rows are in FILE).
-  return mpi.rank == 0 ? code : exit_ok;
+#ifdef RHABEL_WITH_MPI
+  // Every rank ends with rank 0's code (its rows are in FILE; rank 0 alone prints).
+  if (mpi.active) MPI_Bcast(&code, 1, MPI_INT, 0, MPI_COMM_WORLD);
+#endif
+  if (failure) std::rethrow_exception(failure);
+  return code;
 }
 
 }  // namespace
@@ -447,12 +486,17 @@ void add_sweep_command(CLI::App& app, command_action& action) {
       try {
         return run_sweep(*args, mpi);
       } catch (const std::exception& e) {
-        if (mpi.rank != 0) return exit_bad_input;  // rank 0 reports
 #ifdef RHABEL_WITH_MPI
-        std::cerr << "rhabel: " << one_line(e.what()) << '\n';
-        std::cerr.flush();
-        MPI_Abort(MPI_COMM_WORLD, exit_bad_input);
+        if (mpi.rows_in_flight) {  // the other ranks cannot be told: the job must end here
+          std::cerr << "rhabel: " << one_line(e.what()) << '\n';
+          std::cerr.flush();
+          MPI_Abort(MPI_COMM_WORLD, exit_code_of(e));
+        }
 #endif
+        // Bad input is found alike on every rank (the sweep file) or by rank 0 and sent to all
+        // (the existing output): each rank ends with MPI_Finalize (~mpi_context) and the same
+        // code; rank 0 alone prints the line (main).
+        if (mpi.rank != 0) return exit_code_of(e);
         throw;
       }
     };

@@ -18,6 +18,7 @@ packages=(
   python3-numpy python3-pytest  # its arrays and its tests (tests/python/)
   python3-setuptools python3-wheel python3-pip python3-venv  # `pip install .` offline (pyproject.toml, setup.py)
   python3-mypy                  # checks the package's type stubs (tests/python/test_result_view.py)
+  python3-hypothesis            # property-based tests of the Python API (tests/python/test_properties.py)
   python3-nbclient python3-nbformat python3-nbconvert python3-ipykernel  # notebooks/, run by CTest (label notebooks)
   clang-14 libclang-rt-14-dev  # libFuzzer and its sanitizers: make test-fuzz (tests/fuzz/)
 )

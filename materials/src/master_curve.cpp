@@ -1,5 +1,6 @@
 // materials/src/master_curve.cpp: see rhabel/materials/master_curve.hpp.
 #include "rhabel/materials/master_curve.hpp"
+#include "rhabel/materials/text_file.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -23,21 +24,7 @@ std::string short_num(double x) {
 }
 
 // Printable excerpt of a field (control characters escaped, at most 40 bytes).
-std::string excerpt(std::string_view text) {
-  std::string out;
-  for (const char c : text.substr(0, 40)) {
-    const auto byte = static_cast<unsigned char>(c);
-    if (byte < 0x20 || byte == 0x7f) {
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\x%02x", byte);
-      out += buf;
-    } else {
-      out += c;
-    }
-  }
-  if (text.size() > 40) out += "...";
-  return out;
-}
+std::string excerpt(std::string_view text) { return printable(text, 40); }
 
 std::string_view trim(std::string_view s) {
   while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
@@ -85,6 +72,7 @@ struct log_curve {
 master_curve parse_master_curve(std::string_view text, const std::string& source) {
   const std::string where = "master curve '" + excerpt(source) + "'";
   auto fail = [&](const std::string& what) { throw std::invalid_argument(where + ": " + what); };
+  text = without_bom(text);
   master_curve curve;
   curve.source = source;
   std::vector<std::string> names;
@@ -146,6 +134,10 @@ master_curve parse_master_curve(std::string_view text, const std::string& source
       errno = 0;
       const double x = field.empty() ? 0 : std::strtod(field.c_str(), &stop);
       if (field.empty() || stop != field.c_str() + field.size()) fail(col + ": '" + excerpt(field) + "' is not a number");
+      // strtod also reads C's hexadecimal floats (0x1p+23), which no measurement file contains.
+      if (field.find_first_of("xX") != std::string::npos) {
+        fail(col + ": '" + excerpt(field) + "' is a hexadecimal number (decimal numbers only)");
+      }
       if (!std::isfinite(x) || (errno == ERANGE && std::fabs(x) > 1)) {
         fail(col + ": '" + excerpt(field) + "' is not a finite number");
       }
@@ -186,13 +178,7 @@ master_curve parse_master_curve(std::string_view text, const std::string& source
 }
 
 master_curve read_master_curve(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) {
-    throw std::invalid_argument("cannot read master curve '" + excerpt(path) + "': " + std::strerror(errno));
-  }
-  std::string text{std::istreambuf_iterator<char>(file), std::istreambuf_iterator<char>()};
-  if (file.bad()) throw std::invalid_argument("cannot read master curve '" + excerpt(path) + "': read error");
-  return parse_master_curve(text, path);
+  return parse_master_curve(read_text_file(path, "master curve"), path);
 }
 
 double wlf_log10_shift(const wlf_shift& wlf, double temperature) {

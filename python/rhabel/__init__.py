@@ -234,8 +234,8 @@ def trial_interval(scene, a, b, tolerance=1e-12):
         ``load`` (int p over [a, b], N/m), ``hysteretic_friction`` (C_f of the trial field) and
         ``error_estimate`` (estimated relative error of the density: an estimate, not a bound).
 
-    Raises ValueError for an invalid scene, more than one indentor, a flat punch, a >= b or a
-    non-finite edge. Releases the GIL.
+    Raises ValueError for an invalid scene, more than one indentor, a flat punch, a >= b, a
+    non-finite edge, or an interval whose load or C_f is beyond the double range. Releases the GIL.
 
     Example
     -------
@@ -250,7 +250,19 @@ def trial_interval(scene, a, b, tolerance=1e-12):
                          "a trial interval belongs to exactly one")
     if not (0 < tolerance < 1):
         raise ValueError(f"trial_interval: tolerance = {tolerance!r} is outside the valid range (0, 1)")
-    return _rhabel._trial_interval(spec, _finite(a, "a"), _finite(b, "b"), float(tolerance))
+    a, b = _finite(a, "a"), _finite(b, "b")
+    if not _math.isfinite(b - a):
+        raise ValueError(f"trial_interval: b - a = {b!r} - {a!r} overflows a double: the interval must be shorter")
+    try:
+        result = _rhabel._trial_interval(spec, a, b, float(tolerance))
+    except OverflowError as e:
+        raise ValueError(f"trial_interval: the interval [a, b] = [{a!r}, {b!r}] takes the field beyond the double "
+                         f"range ({e})") from None
+    if not all(_math.isfinite(result[k]) for k in ("load", "hysteretic_friction")):
+        raise ValueError(f"trial_interval: the interval [a, b] = [{a!r}, {b!r}] gives a load or C_f beyond the double "
+                         f"range (load {result['load']!r}, C_f {result['hysteretic_friction']!r}): choose an interval "
+                         "of a length closer to the indentor's scale")
+    return result
 
 
 def _finite(value, name):
@@ -325,7 +337,8 @@ def gauss_jacobi(n, p, q, lo=-1.0, hi=1.0):
     Accuracy (measured against 60-digit tables, rhabel/quadrature/gauss_jacobi.hpp): for
     p, q in (-1, 5] and n <= 10^6 every weight and min(1 - x, 1 + x) to <= 45 eps relative
     (worst measured 8.9 and 3.2 eps). O(n): n = 10^4 in ~0.6 ms, 10^6 in ~60-90 ms.
-    Raises ValueError for n = 0, p or q outside (-1, 30], lo >= hi. Releases the GIL.
+    Raises ValueError for n = 0 or above 10^6 (checked before allocating), p or q outside (-1, 30],
+    lo >= hi. Releases the GIL.
 
     Example: ``x, _, _, w = rhabel.gauss_jacobi(10, 0.25, -0.5)``; ``w @ x**3``.
     """

@@ -76,8 +76,13 @@ def _show(value):
     else:
         try:
             text = json.dumps(value, separators=(",", ":"), ensure_ascii=False)  # as nlohmann's dump()
+        except RecursionError:  # nested deeper than the interpreter's recursion limit
+            text = "[...]" if isinstance(value, (list, tuple)) else "{...}"
         except (TypeError, ValueError):
-            text = repr(value)
+            try:
+                text = repr(value)
+            except RecursionError:
+                text = "..."
     return text if len(text) <= 40 else text[:37] + "..."
 
 
@@ -211,13 +216,21 @@ def _number_array(value, path, what):
     return [_number(v, f"{path}[{i}]", _ANY_FINITE, what) for i, v in enumerate(value)]
 
 
+# The size limit of a profile CSV, as the command line's (rhabel/materials/text_file.hpp,
+# max_text_file_bytes: 256 MiB, far above a realistic profile, bounds the memory a wrong path takes).
+_MAX_TEXT_FILE_BYTES = 256 << 20
+
+
 def _read_profile_csv(path, shown):
     """The two-column CSV of a profile, as the command line reads it (cli/scene_json.cpp)."""
     import os
-    if not os.path.isfile(path):  # only a regular file: a device or a pipe would be read forever
-        _fail(f'profile.file = "{shown}" is not a readable regular file ({path})')
+    if "\0" in path or not os.path.isfile(path):  # only a regular file: a device or a pipe would be read forever
+        _fail(f'profile.file = "{shown}" is not a readable regular file ({path!r})')
+    if os.path.getsize(path) > _MAX_TEXT_FILE_BYTES:
+        _fail(f'profile.file = "{shown}" is larger than the limit of {_MAX_TEXT_FILE_BYTES} bytes')
     try:
-        with open(path, encoding="utf-8") as f:
+        # utf-8-sig: a byte-order mark at the start is skipped, the rule of every CSV rhabel reads
+        with open(path, encoding="utf-8-sig") as f:
             lines = f.read().split("\n")
     except OSError:
         _fail(f'profile.file = "{shown}" cannot be read ({path})')

@@ -59,8 +59,14 @@ def solve(alpha, beta, lo, hi, leading, trailing, data, *, breakpoints=None, deg
         degree, status      "converged" or "not_converged"
         with_load(load)     nu = +1: the density with int g = load
 
+    status is "converged" only with a finite density and residual; with ``breakpoints`` only with
+    a residual of at most 1e-2 (piecewise data converge algebraically in piecewise_degree).
+
     Raises ValueError for alpha outside [0, 1), beta outside (-1, 1), lo >= hi, a class that
-    does not exist, or a non-finite F value (the library's message). Releases the GIL while
+    does not exist, a callable returning NaN or an infinity (naming it and the point), non-finite
+    coefficients, tolerance or load, polynomial data beyond the double range, piecewise_degree 0,
+    or a size above its limit (degree, max_degree, piecewise_degree and len(data) 16384,
+    residual_points 1024, len(breakpoints) 1024), checked before any work. Releases the GIL while
     computing (re-acquired for each call of a Python callable).
 
     Example (alpha = beta = 0: PV int_{-1}^{1} g(t)/(t - s) dt = -pi s, g = sqrt(1 - t^2))::

@@ -49,7 +49,9 @@ def solve_abel_rh(alpha, beta, a, b, data=None, leading="bounded", trailing="bou
 
     Measured accuracy (header): int g and int_a^y g to a few eps relative to int g for smooth F;
     g(y) to <= 50 eps for y >= 0.14 L from both ends (alpha <= 0.6), worse towards the ends.
-    Raises ValueError for parameters outside their ranges or y outside the domain. Releases the
+    Raises ValueError for parameters outside their ranges, y outside the domain, a callable
+    returning NaN or an infinity (naming it), a tolerance not finite and > 0, or order or
+    len(steps) above 1024. Releases the
     GIL while computing (re-acquired for each call of a Python callable).
     """
     return _riemann.solve_abel_rh(alpha, beta, a, b, data, leading, trailing, steps=list(steps), order=order,

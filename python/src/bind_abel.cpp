@@ -5,8 +5,10 @@
 
 #include <rhabel/abel/abel_solver.hpp>
 
+#include <cmath>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,6 +35,20 @@ solution solve(double alpha, double beta, double lo, double hi, const std::strin
                std::size_t degree, std::size_t max_degree, double tolerance, std::size_t residual_points,
                std::optional<double> load, std::size_t piecewise_degree) {
   const abel::edge lead = edge_from(leading, "leading"), trail = edge_from(trailing, "trailing");
+  constexpr const char* fn = "rhabel.abel.solve";
+  check_size(fn, "degree", degree, max_expansion_degree, "O(n^2) conversions");
+  check_size(fn, "max_degree", max_degree, max_expansion_degree, "O(n^2) conversions");
+  check_size(fn, "piecewise_degree", piecewise_degree, max_expansion_degree, "O(n^2) per piece");
+  check_size(fn, "residual_points", residual_points, max_residual_points, "a quadrature each");
+  if (!(tolerance >= 0) || !std::isfinite(tolerance)) {
+    throw py::value_error("rhabel.abel.solve: tolerance = " + std::string(py::repr(py::float_(tolerance))) +
+                          " must be finite and >= 0 (relative Chebyshev tail)");
+  }
+  if (load) check_finite(fn, "load", *load);
+  if (breakpoints) {
+    check_size(fn, "len(breakpoints)", breakpoints->size(), max_breakpoints, "a panel each");
+    for (const double b : *breakpoints) check_finite(fn, "a breakpoint", b);
+  }
   abel::solve_options<double> options;
   options.degree = degree;
   options.max_degree = max_degree;
@@ -53,12 +69,19 @@ solution solve(double alpha, double beta, double lo, double hi, const std::strin
           "rhabel.abel.solve: data must be a callable F(s) or a sequence of monomial coefficients of F");
     }
     if (breakpoints) throw py::value_error("rhabel.abel.solve: breakpoints need data given as a callable");
+    check_size(fn, "len(data)", coefficients.size(), max_expansion_degree, "polynomial coefficients");
+    for (const double c : coefficients) check_finite(fn, "a coefficient of data", c);
   }
   py::gil_scoped_release nogil;  // python_function takes the GIL back for each call of data
   const abel::abel_operator<double> op(alpha, beta, lo, hi);
-  if (!callable) return abel::solve_polynomial(op, lead, trail, coefficients, options);
-  if (breakpoints) return abel::solve_piecewise(op, lead, trail, f, *breakpoints, options);
-  return abel::solve(op, lead, trail, f, options);
+  try {
+    if (!callable) return abel::solve_polynomial(op, lead, trail, coefficients, options);
+    if (breakpoints) return abel::solve_piecewise(op, lead, trail, f, *breakpoints, options);
+    return abel::solve(op, lead, trail, f, options);
+  } catch (const std::overflow_error& e) {  // data near the double range: bad input, named
+    throw py::value_error(std::string("rhabel.abel.solve: data takes values beyond the double range on [lo, hi] (") +
+                          e.what() + ")");
+  }
 }
 
 }  // namespace
@@ -83,9 +106,18 @@ void bind_abel(py::module_& m) {
       .def("integral", &density::integral, "int_lo^hi g(t) dt (exact for the series).")
       .def(
           "integral_to",
-          [](const density& d, const double_array& t) { return map_array(t, [&d](double s) { return d.integral_to(s); }); },
+          [](const density& d, const double_array& t) {
+            for (py::ssize_t i = 0; i < t.size(); ++i) check_finite("JacobiDensity.integral_to", "t", t.data()[i]);
+            return map_array(t, [&d](double s) { return d.integral_to(s); });
+          },
           py::arg("t"), "int_lo^t g, elementwise (exact for the series: incomplete beta + Rodrigues form).")
-      .def("moment", &density::moment, py::arg("k"), "int_lo^hi t^k g(t) dt (Gauss-Jacobi, exact for the series).")
+      .def(
+          "moment",
+          [](const density& d, std::size_t k) {
+            check_size("JacobiDensity.moment", "k", k, max_moment_order, "t^k overflows a double long before");
+            return d.moment(k);
+          },
+          py::arg("k"), "int_lo^hi t^k g(t) dt (Gauss-Jacobi, exact for the series).")
       .def("intensity_leading", &density::intensity_leading, "K_a = lim_{t->lo+} g(t) (t - lo)^(-gam).")
       .def("intensity_trailing", &density::intensity_trailing, "K_b = lim_{t->hi-} g(t) (hi - t)^(-del).")
       .def("__repr__", [](const density& d) {
@@ -117,7 +149,10 @@ void bind_abel(py::module_& m) {
       .def_readonly("degree", &solution::degree, "number of image coefficients used")
       .def_property_readonly(
           "status", [](const solution& s) { return status_name(s.status); }, "'converged' or 'not_converged'")
-      .def("with_load", &solution::with_load, py::arg("load"),
+      .def(
+          "with_load",
+          [](const solution& s, double load) { return s.with_load(check_finite("AbelSolution.with_load", "load", load)); },
+          py::arg("load"),
            "nu = +1 only: the solution with int g = load (a JacobiDensity).")
       .def("__repr__", [](const solution& s) {
         return "AbelSolution(status='" + std::string(status_name(s.status)) + "', degree=" + std::to_string(s.degree) +

@@ -13,6 +13,7 @@ void bind_quadrature(py::module_& m) {
   m.def(
       "gauss_jacobi",
       [](std::size_t n, double p, double q, double lo, double hi) {
+        check_size("rhabel.gauss_jacobi", "n", n, max_quadrature_nodes, "32 bytes a node");
         quadrature::quadrature_rule<double> rule;
         {
           py::gil_scoped_release nogil;
@@ -27,6 +28,7 @@ void bind_quadrature(py::module_& m) {
   m.def(
       "jacobi_p",
       [](std::size_t n, double p, double q, const double_array& x) {
+        check_size("rhabel.jacobi_p", "n", n, max_quadrature_nodes, "O(n) a point");
         return map_array(x, [n, p, q](double t) { return quadrature::jacobi_p<double>(n, p, q, t); });
       },
       py::arg("n"), py::arg("p"), py::arg("q"), py::arg("x"),

@@ -41,19 +41,32 @@ solution solve(double alpha, double beta, double a, double b, const py::object& 
                const std::string& trailing, const std::vector<std::pair<double, double>>& steps, std::size_t order,
                std::optional<double> load, double tolerance) {
   const riemann::edge lead = edge_from(leading, "leading"), trail = edge_from(trailing, "trailing");
+  constexpr const char* fn = "rhabel.riemann.solve_abel_rh";
+  check_size(fn, "order", order, max_panel_order, "Gauss nodes per panel");
+  check_size(fn, "len(steps)", steps.size(), max_breakpoints, "a panel each");
+  if (!(tolerance > 0) || !std::isfinite(tolerance)) {
+    throw py::value_error(std::string(fn) + ": tolerance = " + std::string(py::repr(py::float_(tolerance))) +
+                          " must be finite and > 0");
+  }
+  if (load) check_finite(fn, "load", *load);
   riemann::piecewise_function<double> F;
   if (PyCallable_Check(data.ptr())) {
     F.smooth = python_function(py::reinterpret_borrow<py::function>(data), "rhabel.riemann.solve_abel_rh: data(s)");
   } else if (!data.is_none()) {
     try {
-      F.smooth = polynomial_function(data.cast<std::vector<double>>());
+      auto coefficients = data.cast<std::vector<double>>();
+      check_size(fn, "len(data)", coefficients.size(), max_expansion_degree, "polynomial coefficients");
+      for (const double c : coefficients) check_finite(fn, "a coefficient of data", c);
+      F.smooth = polynomial_function(std::move(coefficients));
     } catch (const py::cast_error&) {
       throw py::type_error(
           "rhabel.riemann.solve_abel_rh: data must be a callable F(s), a sequence of monomial coefficients of F, "
           "or None (steps only)");
     }
   }
-  for (const auto& [position, size] : steps) F.steps.push_back({position, size});
+  for (const auto& [position, size] : steps) {
+    F.steps.push_back({check_finite(fn, "a step's position", position), check_finite(fn, "a step's size", size)});
+  }
   riemann::abel_rh_options<double> options;
   options.order = order;
   options.load = load;

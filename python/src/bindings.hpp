@@ -17,6 +17,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <cstddef>
 #include <functional>
 #include <memory>
@@ -32,6 +33,47 @@ void bind_punch(py::module_& m);
 void bind_quadrature(py::module_& m);
 void bind_abel(py::module_& m);
 void bind_riemann(py::module_& m);
+
+// ---- limits on sizes given from Python ------------------------------------------------------
+// Checked before anything is allocated or computed, so that a wrong size (10**9) is a ValueError
+// naming the argument and its limit at once, not minutes of work or a MemoryError after gigabytes.
+// Each is far above what an accurate double-precision result needs.
+
+/// Gauss-Jacobi nodes (gauss_jacobi n), the degree of jacobi_p: 10^6 nodes are 32 MB and under a
+/// second (the rules are O(n)); no double-precision rule needs more.
+inline constexpr std::size_t max_quadrature_nodes = 1'000'000;
+/// Image coefficients of rhabel.abel.solve (degree, max_degree, piecewise_degree, the number of
+/// polynomial coefficients): the conversions are O(n^2) (16384: about a second); smooth data
+/// converges below 1000, and piecewise data only algebraically, so more buys little.
+inline constexpr std::size_t max_expansion_degree = 16384;
+/// Points of the independent residual (each an adaptive quadrature of A g): 8 by default.
+inline constexpr std::size_t max_residual_points = 1024;
+/// Breakpoints of piecewise data (each adds a panel of piecewise_degree / 2 + 24 nodes).
+inline constexpr std::size_t max_breakpoints = 1024;
+/// JacobiDensity.moment(k): t^k of a double overflows long before (|t| > 1.0001 at k = 10^7).
+inline constexpr std::size_t max_moment_order = 100'000;
+/// Gauss nodes per panel of rhabel.riemann.solve_abel_rh (default 26; the error is at rounding
+/// level from 40).
+inline constexpr std::size_t max_panel_order = 1024;
+
+/// ValueError "<function>: <name> = <value> is above the limit of <limit> (<why>)" unless
+/// value <= limit.
+inline void check_size(const char* function, const char* name, std::size_t value, std::size_t limit,
+                       const char* why) {
+  if (value > limit) {
+    throw py::value_error(std::string(function) + ": " + name + " = " + std::to_string(value) +
+                          " is above the limit of " + std::to_string(limit) + " (" + why + ")");
+  }
+}
+
+/// ValueError "<function>: <name> = <value> must be a finite number" unless x is finite.
+inline double check_finite(const char* function, const char* name, double x) {
+  if (!std::isfinite(x)) {
+    throw py::value_error(std::string(function) + ": " + name + " = " + std::string(py::repr(py::float_(x))) +
+                          " must be a finite number");
+  }
+  return x;
+}
 
 /// A NumPy array that takes ownership of the vector's buffer (no element copy).
 inline py::array_t<double> to_numpy(std::vector<double>&& values) {
@@ -61,7 +103,7 @@ py::object map_array(const double_array& x, F&& f) {
 
 /// A Python callable float -> float usable from C++ without the GIL held (see the top).
 /// `what` names the callable in the TypeError raised when it returns something that is not a
-/// real number.
+/// real number, and in the ValueError raised when it returns NaN or an infinity.
 inline std::function<double(double)> python_function(const py::function& f, std::string what) {
   std::shared_ptr<py::function> held(new py::function(f), [](py::function* p) {
     py::gil_scoped_acquire gil;
@@ -70,12 +112,20 @@ inline std::function<double(double)> python_function(const py::function& f, std:
   return [held, what = std::move(what)](double x) -> double {
     py::gil_scoped_acquire gil;
     py::object value = (*held)(x);
+    double v = 0;
     try {
-      return value.cast<double>();
+      v = value.cast<double>();
     } catch (const py::cast_error&) {
       throw py::type_error(what + " must return a real number, got " +
                            std::string(py::str(py::type::of(value).attr("__name__"))));
     }
+    // A NaN or an infinity would pass through the solver's arithmetic (a NaN density reported as
+    // converged): refused where it appears, naming the callable and the point.
+    if (!std::isfinite(v)) {
+      throw py::value_error(what + " returned " + std::string(py::repr(value)) + " at s = " +
+                            std::string(py::repr(py::float_(x))) + ": it must return finite numbers");
+    }
+    return v;
   };
 }
 

@@ -117,3 +117,27 @@ TEST_CASE("piecewise data in the class nu = -1 with 2 alpha + beta >= 1 is rejec
   CHECK_THROWS_AS(solve_piecewise(ok, edge::bounded, edge::unbounded, [](double) { return 1.0; }, {2.0}),
                   std::domain_error);
 }
+
+// Regression (issue 31): piecewise_degree = 0 crashed (d.back() of an empty vector); 1, 2 and 4
+// coefficients for |s| or s^2 with a breakpoint left residuals 0.2-0.98 and were reported
+// converged. The status now rests on the residual (piecewise_residual_acceptance).
+TEST_CASE("piecewise: degree 0 refused, a few coefficients not converged, the default converged") {
+  abel_operator<double> op(0.3, 0.1, -1.0, 1.0);
+  auto kink = [](double s) { return std::abs(s); };
+  solve_options<double> options;
+  options.piecewise_degree = 0;
+  CHECK_THROWS_AS(solve_piecewise(op, edge::bounded, edge::unbounded, kink, {0.0}, options), std::domain_error);
+  for (const edge trailing : {edge::bounded, edge::unbounded}) {
+    for (std::size_t degree : {1, 2, 4}) {
+      options.piecewise_degree = degree;
+      const auto sol = solve_piecewise(op, edge::bounded, trailing, kink, {0.0}, options);
+      INFO("degree " << degree);
+      CHECK(sol.residual > piecewise_residual_acceptance);
+      CHECK(sol.status == solve_status::not_converged);
+    }
+    options.piecewise_degree = 256;
+    const auto sol = solve_piecewise(op, edge::bounded, trailing, kink, {0.0}, options);
+    CHECK(sol.residual < piecewise_residual_acceptance);
+    CHECK(sol.status == solve_status::converged);
+  }
+}

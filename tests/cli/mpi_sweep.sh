@@ -3,7 +3,7 @@
 #   bash mpi_sweep.sh <path-to-rhabel-binary> <source-dir> <mpiexec>
 # 2 ranks on loopback must write the same rows as the threaded single process (every column but
 # `seconds`, compared as text, so bit for bit), also when resuming a file that already holds an
-# unordered subset of the rows.
+# unordered subset of the rows; bad input ends every rank cleanly with one line and exit code 2.
 set -u
 rhabel="$(cd "$(dirname "$1")" && pwd)/$(basename "$1")"; src="$2"; mpiexec="$3"
 failures=0
@@ -65,6 +65,28 @@ JSON
 diff <(sed 's/"seconds":[^,]*,//' "$tmp/r_threads.jsonl") <(sed 's/"seconds":[^,]*,//' "$tmp/r_mpi.jsonl") > /dev/null \
   || fail "master-curve sweep: MPI differs from threads"
 [ "$(wc -l < "$tmp/r_mpi.jsonl")" -eq 13 ] || fail "master-curve sweep: expected 13 rows"
+
+# Bad input and rows not ok (issue 31): every rank ends with MPI_Finalize and the same code, rank 0
+# alone prints one line, and no MPI_ABORT banner; with mpirun -q nothing else is printed at all.
+cat > "$tmp/bad_axis.json" <<'JSON'
+{"scene": {"material": {"alpha": 0.3, "E1": 1e6, "nu": 0.3, "coulomb": 0}, "speed": 1,
+           "indentors": [{"shape": "flat", "width": 0.01, "load": 1}]},
+ "axes": [{"path": "sped", "values": [1, 2]}]}
+JSON
+"${mpi[@]}" "$rhabel" sweep "$tmp/bad_axis.json" --out "$tmp/bad.csv" > /dev/null 2> "$tmp/err"; rc=$?
+[ "$rc" -eq 2 ] || fail "bad axis under mpirun: exit $rc, expected 2"
+[ "$(grep -c '^rhabel: ' "$tmp/err")" -eq 1 ] && grep -q '^rhabel: sweep: axes\[0\].path = "sped"' "$tmp/err" \
+  || fail "bad axis under mpirun: not one rhabel line: $(cat "$tmp/err")"
+grep -q "MPI_ABORT" "$tmp/err" && fail "bad axis under mpirun: MPI_ABORT banner"
+[ -e "$tmp/bad.csv" ] && fail "bad axis under mpirun: an output file was created"
+"${mpi[@]}" -q "$rhabel" sweep "$tmp/bad_axis.json" --out "$tmp/bad.csv" > /dev/null 2> "$tmp/err"; rc=$?
+[ "$rc" -eq 2 ] && [ "$(wc -l < "$tmp/err")" -eq 1 ] || fail "bad axis under mpirun -q: exit $rc, $(cat "$tmp/err")"
+echo "junk" > "$tmp/foreign.jsonl"
+"${mpi[@]}" -q "$rhabel" sweep "$tmp/rubber.json" --jsonl --out "$tmp/foreign.jsonl" > /dev/null 2> "$tmp/err"; rc=$?
+[ "$rc" -eq 2 ] && [ "$(wc -l < "$tmp/err")" -eq 1 ] && grep -q "foreign.jsonl line 1" "$tmp/err" \
+  || fail "foreign output under mpirun -q: exit $rc, $(cat "$tmp/err")"
+"${mpi[@]}" -q "$rhabel" sweep "$tmp/sweep.json" --out "$tmp/not_ok.csv" > /dev/null 2> "$tmp/err"; rc=$?
+[ "$rc" -eq 3 ] && [ ! -s "$tmp/err" ] || fail "rows not ok under mpirun -q: exit $rc (expected 3), $(cat "$tmp/err")"
 
 [ "$failures" -eq 0 ] && echo "mpi_sweep: all checks passed"
 exit $(( failures > 0 ))

@@ -18,6 +18,7 @@
 #include "scene_json.hpp"
 #include "scene_solve.hpp"
 #include "commands.hpp"
+#include "fuzz_support.hpp"
 
 #include <cstddef>
 #include <cstdint>
@@ -28,10 +29,7 @@
 
 namespace {
 
-[[noreturn]] void finding(const char* what, const char* message) {
-  std::fprintf(stderr, "fuzz_scene: %s: %s\n", what, message);
-  std::abort();
-}
+[[noreturn]] void finding(const char* what, const char* message) { rhabel::fuzz::finding("fuzz_scene", what, message); }
 
 constexpr std::size_t fuzz_grid = 7;  // samples per field: exercises the sampling, costs little
 constexpr std::size_t max_fuzz_samples = 12;  // profile samples solved per input
@@ -62,12 +60,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace rhabel::cli;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   scene_spec scene;
-  try {
-    scene = parse_scene(text, "(fuzz)");
-  } catch (const input_error&) {
+  if (!rhabel::fuzz::accepted<input_error>("fuzz_scene", "parse_scene", [&] { scene = parse_scene(text, "(fuzz)"); })) {
     return 0;  // refused cleanly
-  } catch (const std::exception& e) {
-    finding("parse_scene threw something other than input_error", e.what());
   }
   if (scene.material.curve) return 0;
   if (scene.profile) {

@@ -169,6 +169,45 @@ TEST_CASE("bad curves: one-line errors naming row and column") {
   CHECK_THROWS_AS(read_master_curve("/nonexistent/curve.csv"), std::invalid_argument);
 }
 
+// Regression (issue 31): C's hexadecimal floats were read by strtod; a byte-order mark made the
+// header an unknown column with an invisible character in the message.
+TEST_CASE("hexadecimal numbers refused, a byte-order mark at the start skipped") {
+  const std::string rows = "1,1,0.5\n10,2,1\n100,4,2\n";
+  CHECK(error_of("omega,E_storage,E_loss\n1,1,0\n10,0x1p+23,0\n100,4,0\n")
+            .find("row 3, column 2 (E_storage): '0x1p+23' is a hexadecimal number") != std::string::npos);
+  const auto plain = parse_master_curve("omega,E_storage,E_loss\n" + rows, "plain");
+  const auto bom = parse_master_curve("\xEF\xBB\xBFomega,E_storage,E_loss\n" + rows, "bom");
+  CHECK(bom.omega == plain.omega);
+  CHECK(bom.modulus == plain.modulus);
+  // elsewhere it is an ordinary (unknown) byte
+  CHECK(error_of("omega,\xEF\xBB\xBF" "E_storage,E_loss\n" + rows).find("unknown column") != std::string::npos);
+}
+
+// Regression (issue 31): a directory failed inside the stream library, /dev/zero was read until
+// memory ran out, a FIFO without a writer blocked forever, a NUL in the name read another file.
+TEST_CASE("read_text_file: only regular files, bounded") {
+  auto refusal = [](const std::string& path, std::size_t limit = max_text_file_bytes) {
+    try {
+      (void)read_text_file(path, "master curve", limit);
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  CHECK(refusal("/tmp").find("cannot read master curve '/tmp': it is a directory") != std::string::npos);
+  CHECK(refusal("/dev/zero").find("it is a device") != std::string::npos);
+  CHECK(refusal(std::string("/etc/hostname\0junk", 18)).find("the name contains a NUL byte") != std::string::npos);
+  CHECK(refusal("/nonexistent/curve.csv").find("No such file") != std::string::npos);
+  const std::string file = "test_master_curve_bounded.csv";
+  if (std::FILE* f = std::fopen(file.c_str(), "wb")) {
+    std::fputs("omega,E_storage,E_loss\n", f);
+    std::fclose(f);
+    CHECK(refusal(file, 8).find("larger than the limit of 8 bytes") != std::string::npos);
+    CHECK(read_text_file(file, "master curve") == "omega,E_storage,E_loss\n");
+    std::remove(file.c_str());
+  }
+}
+
 TEST_CASE("fit outside the range or with a slope outside [0, 1) is refused") {
   const auto curve = parse_master_curve(power_law_csv(0.3, 1e6, 0, 40), "range");
   CHECK_THROWS_AS(fit_at(curve, 0.5), std::domain_error);

@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <cmath>
 #include <initializer_list>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -419,3 +420,17 @@ TEST_CASE("solve_abel_rh rejects bad input, naming parameter, value and range") 
   CHECK(message([&] { sol.integral(1.5); }).find("y = 1.5") != std::string::npos);
   CHECK(message([&] { sol.density(-1.0); }).find("y = -1") != std::string::npos);
 }
+
+// Regression (issue 31): NaN data gave a NaN total whose NaN error estimate failed no comparison,
+// so the status was converged. Every class now reports not_converged.
+TEST_CASE("NaN data is never converged") {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (const edge leading : {edge::bounded, edge::unbounded}) {
+    for (const edge trailing : {edge::bounded, edge::unbounded}) {
+      const auto sol = solve_abel_rh(0.3, 0.1, -1.0, 1.0, piecewise_function<double>{[nan](double) { return nan; }, {}},
+                                     leading, trailing);
+      CHECK(sol.status() != abel_status::converged);
+    }
+  }
+}
+

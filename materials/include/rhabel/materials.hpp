@@ -2,3 +2,4 @@
 #pragma once
 
 #include "rhabel/materials/master_curve.hpp"
+#include "rhabel/materials/text_file.hpp"

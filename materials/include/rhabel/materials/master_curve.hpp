@@ -43,7 +43,8 @@
 //     `omega,E_abs,tan_delta` / `f_hz,E_abs,tan_delta` (|E*| in Pa), columns in that order; lines
 //     starting with '#' and blank lines are ignored; at least 3 data rows; frequencies > 0 and
 //     strictly increasing; E_storage > 0, E_loss >= 0, E_abs > 0, tan_delta >= 0; every value a finite
-//     number. Any violation: std::invalid_argument, one line naming the source, the row (line number
+//     decimal number (no hexadecimal floats); a UTF-8 byte-order mark at the start is skipped
+//     (materials::without_bom, the rule of every CSV rhabel reads). Any violation: std::invalid_argument, one line naming the source, the row (line number
 //     in the file, from 1) and the column (name and position, from 1).
 //   * omega0 must lie inside the measured range (no extrapolation: std::domain_error). The slope must
 //     give alpha in [0, 1) (else std::domain_error: no such power law).
@@ -80,7 +81,9 @@ struct master_curve {
 /// messages. Throws std::invalid_argument: "master curve 'F': row 7, column 2 (E_storage): ...".
 master_curve parse_master_curve(std::string_view csv_text, const std::string& source);
 
-/// Reads and parses a master-curve file; an unreadable file is a std::invalid_argument too.
+/// Reads and parses a master-curve file (materials::read_text_file: a regular file of at most
+/// max_text_file_bytes); an unreadable file or a path that is not a regular file is a
+/// std::invalid_argument too.
 master_curve read_master_curve(const std::string& path);
 
 /// Williams-Landel-Ferry shift: log10 a_T = -C1 (T - T_ref) / (C2 + T - T_ref).

@@ -800,9 +800,14 @@ class abel_rh_solution {
     const Real tol = options.tolerance;
     const estimated<Real> t = total();
     status_ = abel_status::converged;
-    if (t.error_estimate > tol * std::max<Real>(abs_value(t.value), std::numeric_limits<Real>::min()))
+    // Written as !(within): a NaN estimate or value (NaN data) is not converged, never the reverse.
+    using std::isfinite;
+    if (!(t.error_estimate <= tol * std::max<Real>(abs_value(t.value), std::numeric_limits<Real>::min())) ||
+        !isfinite(t.value))
       status_ = abel_status::not_converged;
-    if (nu_ == -1 && abs_value(defect_.value) > tol * defect_scale_) status_ = abel_status::orthogonality_not_satisfied;
+    if (nu_ == -1 && !(abs_value(defect_.value) <= tol * defect_scale_)) {
+      status_ = isfinite(defect_.value) ? abel_status::orthogonality_not_satisfied : abel_status::not_converged;
+    }
   }
 
   /// nu in {-1, 0, +1}.
