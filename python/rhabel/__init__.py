@@ -148,7 +148,10 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
         - With a profile: ``contacts`` instead of ``indentors`` (each with its ``tip``, the
           highest sample inside it, and the fields above but ``shape``/``name``), ``clearance``
           {``min``, ``at``} (the smallest gap between surface and profile at the samples outside
-          the contacts, relative to max z - min z) and ``diagnostics.rounds``.
+          the contacts, relative to max z - min z), ``penetrations`` (where the profile
+          penetrates the surface outside the contacts found: the contacts a result that is not
+          ok is missing), ``diagnostics.rounds`` and ``diagnostics.load_fraction`` (the fraction
+          of the body's load the contacts carry; below 1 only with a status that is not ok).
 
         ``result.to_dict()`` is the same as plain dicts and lists with the NumPy arrays;
         ``result.to_plain()`` / ``result.to_json()`` give the command line's document.
