@@ -1,0 +1,691 @@
+// An independent boundary-element oracle for a SAMPLED rigid profile pressed with a total load
+// (docs/theory.md section 9): finite window or periodic, the contact set unknown.
+//
+// SHARES NO CODE WITH RHABEL: this header includes only the C++ standard library, Eigen (dense LU),
+// Boost.Math special functions (zeta, Bernoulli numbers) and the test suite's own boundary-element
+// oracle bem_oracle.hpp (for its kernel Psi, its collocation point and its Richardson step). Its
+// cubic splines are its own.
+//
+// WHAT IT COMPUTES. One rigid body whose lower surface is given by samples (x_i, z_i) (z in the sign
+// convention of bem_oracle.hpp's f: towards the half-space; a parabola with vertex c is
+// z = -(x - c)^2/(2R)) slides towards -x (a contact's leading edge is its lower end a) over the
+// power-law half-space (alpha in [0, 1), beta in [0, 1), alpha + beta <= 1) and is pressed with the
+// load P = int g (per period in periodic mode; pressure p = (pi/2) E_U g, `load_from_pressure`). The
+// profile between samples is
+//   (a) FINITE: the natural cubic spline of the samples on [x_0, x_n] (the window: the surface
+//       points that can touch);
+//   (b) PERIODIC with period lambda: the samples lie in [x_0, x_0 + lambda), the profile is the
+//       periodic cubic spline closed by the knot (x_0 + lambda, z_0) and repeats.
+// Unknowns: the density g >= 0 and ONE rigid approach delta. Conditions (bem_oracle.hpp's height
+// formulation, same signs): u(s) + delta = z(s) on the contacts, u(s) + delta - z(s) >= 0 (the gap)
+// elsewhere, int g = P (over one period), with u(s) = Gamma(1 - alpha) int g(t) Psi(t, s) dt and
+// bem_oracle.hpp's Psi (u' is the slope operator of paper eq. (8) applied to g).
+//
+// THE PERIODIC KERNEL. u(s) of a periodic g is the image sum over t + j lambda, which diverges (Psi
+// grows like d^alpha); its regularisation is the Fourier series without the q = 0 mode: for
+// g = e^{iqt}, Gamma(1-alpha) H = Gamma(1-alpha) M(q) e^{iqs},
+//     M(q) = Gamma(alpha) |q|^-alpha [e^{i pi alpha s/2} - kappa e^{-i pi alpha s/2}] / (i q),  s = sign q
+// (alpha = 0: pi/|q| - i pi tan(beta pi/2)/q), and the mean pressure only moves delta. `periodic_panel`
+// evaluates the periodic displacement of a unit-density panel [0, h] EXACTLY in real space: the
+// panel and its images |j| <= 4 by bem_oracle.hpp's closed-form panel integrals, the images |j| >= 5
+// by the Taylor series of Psi in (t - s)/(j lambda) summed over j in closed form (Hurwitz zeta
+// values zeta(k - alpha, 5), k = 1 .. 30, by Euler-Maclaurin; the k = 1 term, divergent as a sum,
+// by its continuation, which is what dropping q = 0 does: the slope then has zero mean over a
+// period); constants independent of s are dropped (they only move delta). Verified in
+// test_bem_profile_oracle.cpp against the Fourier multiplier above summed directly, against the
+// alpha = beta = 0 closed form -log|2 sin(pi (t - s)/lambda)|, and its second differences against
+// the brute-force image sum (which converges for them).
+//
+// DISCRETISATION (one level). n uniform panels over the window (one period), piecewise-constant g,
+// collocation at 3/4 of each panel (bem_oracle.hpp's `collocation_theta`: the checkerboard mode
+// stays regular for kappa -> -1); the influence matrix is Toeplitz (finite) or circulant (periodic)
+// and is tabulated once per level (2n - 1 or n entries). Active set on panels: solve the active
+// panels and delta by dense LU (Eigen); grow every run of active panels into adjacent penetrating
+// panels (by up to a quarter of the run per side and iteration), seed each penetrating component
+// that touches no run at its deepest panel; only when nothing grows drop every panel with g < 0.
+// The first level starts from the highest panel, each finer level from the previous one's set.
+// Per level: the patches (runs of active panels), each with [a, b] (the run's ends), load int g and
+// C_f = int z' g / int g (panel integrals of z' exact: z(t1) - z(t0)).
+//
+// EXTRAPOLATION (`solve`). Levels n = start_panels * 2^k; refinement stops once the last three
+// levels have the same patches (matched by overlap) and the narrowest of them spans at least
+// min_span panels on the coarsest of the three (or at max_panels: converged = false). Loads, C_f
+// (per patch and of the body) and the contact fraction: bem_oracle.hpp's `richardson` on the last
+// three levels (observed order; bar = the whole correction plus the last difference, or 4 x the
+// largest difference when no order is observed). Edges: on a fixed uniform grid a run's end is
+// known only to a panel and jumps with the grid's alignment, so they are not extrapolated: a/b
+// report the finest run's ends moved by half a panel outwards... see `edge_estimate`.
+// All bars are ESTIMATES, not bounds.
+//
+// MEASURED ACCURACY AND COST: see the end of this comment (filled in from the measurements).
+#pragma once
+
+#include "punch/bem_oracle.hpp"
+
+#include <Eigen/Dense>
+#include <boost/math/special_functions/bernoulli.hpp>
+#include <boost/math/special_functions/gamma.hpp>
+#include <boost/math/special_functions/zeta.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace punch_test::bem_profile {
+
+using bem::pi;
+
+[[noreturn]] inline void bad(const std::string& fn, const std::string& what) {
+  throw std::domain_error("punch_test::bem_profile::" + fn + ": " + what);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Cubic splines (own implementation: natural, and periodic closed by (x0 + lambda, z0)).
+struct spline {
+  std::vector<double> x, z, m;  ///< knots (periodic: with the closing knot appended), second derivatives
+  bool periodic = false;
+  double period = 0;
+
+  double lo() const { return x.front(); }
+  double hi() const { return x.back(); }
+
+  std::size_t interval(double& t) const {
+    if (periodic) {
+      t = t - period * std::floor((t - x.front()) / period);
+      if (t >= x.back()) t = x.front();
+    }
+    const auto it = std::upper_bound(x.begin(), x.end(), t);
+    std::size_t i = it == x.begin() ? 0 : static_cast<std::size_t>(it - x.begin()) - 1;
+    return std::min(i, x.size() - 2);
+  }
+  /// z(t) (periodic: any t; finite: t in [x_0, x_n], extrapolated by the end cubic outside).
+  double value(double t) const {
+    const std::size_t i = interval(t);
+    const double h = x[i + 1] - x[i], A = (x[i + 1] - t) / h, B = (t - x[i]) / h;
+    return A * z[i] + B * z[i + 1] + ((A * A * A - A) * m[i] + (B * B * B - B) * m[i + 1]) * h * h / 6;
+  }
+  double slope(double t) const {
+    const std::size_t i = interval(t);
+    const double h = x[i + 1] - x[i], A = (x[i + 1] - t) / h, B = (t - x[i]) / h;
+    return (z[i + 1] - z[i]) / h + (-(3 * A * A - 1) * m[i] + (3 * B * B - 1) * m[i + 1]) * h / 6;
+  }
+};
+
+/// The natural cubic spline of (x, z): x strictly increasing, at least 3 samples.
+inline spline natural_spline(std::vector<double> x, std::vector<double> z) {
+  const std::size_t n = x.size();
+  if (n < 3 || z.size() != n) bad("natural_spline", "need >= 3 samples and z.size() == x.size()");
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    if (!(x[i + 1] > x[i])) bad("natural_spline", "x must be strictly increasing (at index " + std::to_string(i) + ")");
+  // Thomas algorithm for m_1 .. m_{n-2}.
+  std::vector<double> a(n, 0), b(n, 1), c(n, 0), r(n, 0), m(n, 0);
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    const double h0 = x[i] - x[i - 1], h1 = x[i + 1] - x[i];
+    a[i] = h0;
+    b[i] = 2 * (h0 + h1);
+    c[i] = h1;
+    r[i] = 6 * ((z[i + 1] - z[i]) / h1 - (z[i] - z[i - 1]) / h0);
+  }
+  for (std::size_t i = 1; i < n; ++i) {
+    const double w = a[i] / b[i - 1];
+    b[i] -= w * c[i - 1];
+    r[i] -= w * r[i - 1];
+  }
+  m[n - 1] = r[n - 1] / b[n - 1];
+  for (std::size_t i = n - 1; i-- > 0;) m[i] = (r[i] - c[i] * m[i + 1]) / b[i];
+  spline s;
+  s.x = std::move(x);
+  s.z = std::move(z);
+  s.m = std::move(m);
+  return s;
+}
+
+/// The periodic cubic spline of samples in [x_0, x_0 + lambda), closed by (x_0 + lambda, z_0).
+inline spline periodic_spline(std::vector<double> x, std::vector<double> z, double lambda) {
+  const std::size_t n = x.size();
+  if (n < 3 || z.size() != n) bad("periodic_spline", "need >= 3 samples and z.size() == x.size()");
+  if (!(lambda > 0) || !(x.back() < x.front() + lambda))
+    bad("periodic_spline", "period = " + std::to_string(lambda) + ": the samples must lie in [x_0, x_0 + period)");
+  for (std::size_t i = 0; i + 1 < n; ++i)
+    if (!(x[i + 1] > x[i])) bad("periodic_spline", "x must be strictly increasing (at index " + std::to_string(i) + ")");
+  auto H = [&](std::size_t i) { return i + 1 < n ? x[i + 1] - x[i] : x[0] + lambda - x[n - 1]; };  // interval i
+  auto Z = [&](std::size_t i) { return z[i % n]; };
+  // Cyclic tridiagonal: H(i-1) m_{i-1} + 2 (H(i-1) + H(i)) m_i + H(i) m_{i+1} = rhs_i (indices mod n),
+  // by Sherman-Morrison on the Thomas algorithm.
+  std::vector<double> a(n), b(n), c(n), r(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double h0 = H((i + n - 1) % n), h1 = H(i);
+    a[i] = h0;
+    b[i] = 2 * (h0 + h1);
+    c[i] = h1;
+    r[i] = 6 * ((Z(i + 1) - Z(i)) / h1 - (Z(i) - Z(i + n - 1)) / h0);
+  }
+  auto thomas = [&](std::vector<double> bb, std::vector<double> d) {
+    std::vector<double> cc = c;
+    for (std::size_t i = 1; i < n; ++i) {
+      const double w = a[i] / bb[i - 1];
+      bb[i] -= w * cc[i - 1];
+      d[i] -= w * d[i - 1];
+    }
+    std::vector<double> y(n);
+    y[n - 1] = d[n - 1] / bb[n - 1];
+    for (std::size_t i = n - 1; i-- > 0;) y[i] = (d[i] - cc[i] * y[i + 1]) / bb[i];
+    return y;
+  };
+  const double gamma = -b[0], alpha_c = c[n - 1], beta_c = a[0];  // corners A(n-1, 0), A(0, n-1)
+  std::vector<double> bb = b;
+  bb[0] -= gamma;
+  bb[n - 1] -= alpha_c * beta_c / gamma;
+  std::vector<double> u(n, 0);
+  u[0] = gamma;
+  u[n - 1] = alpha_c;
+  const auto y = thomas(bb, r), q = thomas(bb, u);
+  const double fact = (y[0] + beta_c * y[n - 1] / gamma) / (1 + q[0] + beta_c * q[n - 1] / gamma);
+  std::vector<double> m(n + 1);
+  for (std::size_t i = 0; i < n; ++i) m[i] = y[i] - fact * q[i];
+  m[n] = m[0];
+  spline s;
+  s.x = std::move(x);
+  s.x.push_back(s.x.front() + lambda);
+  s.z = std::move(z);
+  s.z.push_back(s.z.front());
+  s.m = std::move(m);
+  s.periodic = true;
+  s.period = lambda;
+  return s;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The periodic kernel.
+namespace detail {
+
+/// Hurwitz zeta zeta(s, a) for real s != 1, a >= 1 (analytic continuation for s < 1), by
+/// Euler-Maclaurin after shifting a by 12; `alpha_times` returns (1 - s) zeta(s, a) instead, which
+/// stays finite as s -> 1 (used for s = 1 - alpha: alpha zeta(1 - alpha, a)).
+inline double hurwitz_zeta(double s, double a, bool alpha_times = false) {
+  const int N = 12;
+  const double one_minus_s = 1 - s;
+  double sum = 0;
+  for (int i = 0; i < N; ++i) sum += std::pow(a + i, -s);
+  const double b = a + N;
+  if (alpha_times) sum *= one_minus_s;
+  // b^(1-s)/(s-1) [x (1 - s): -b^(1 - s)]
+  double tail = alpha_times ? -std::pow(b, one_minus_s) : std::pow(b, one_minus_s) / (s - 1);
+  double rest = std::pow(b, -s) / 2;
+  double poch = s;  // (s)_(2k-1)
+  double bpow = std::pow(b, -s - 1);
+  double fact = 2;  // (2k)!
+  for (int k = 1; k <= 10; ++k) {
+    rest += boost::math::bernoulli_b2n<double>(k) / fact * poch * bpow;
+    poch *= (s + 2 * k - 1) * (s + 2 * k);
+    bpow /= b * b;
+    fact *= (2 * k + 1) * (2 * k + 2);
+  }
+  if (alpha_times) rest *= one_minus_s;
+  return sum + tail + rest;
+}
+
+}  // namespace detail
+
+/// Periodic displacement kernel: u(sigma) / Gamma(1 - alpha) of a unit density on [0, h] and its
+/// images [j lambda, j lambda + h], at sigma (any real; 0 < h < lambda), up to a constant
+/// independent of sigma and h-proportional (the q = 0 mode; see the top of the file).
+struct periodic_kernel {
+  bem::kernel K;
+  double lambda;
+  static constexpr int near_images = 4, terms = 30;
+  std::vector<double> coef;  ///< coef[k]: the tail's coefficient of int (t - sigma)^k dt
+
+  periodic_kernel(double alpha, double beta, double lambda_) : K(alpha, beta), lambda(lambda_) {
+    const double a0 = near_images + 1;
+    coef.assign(terms + 1, 0);
+    // Tail over j >= 5 of Psi(j lambda + u) + Psi(-(j lambda - u)) with u = t - sigma:
+    //   -(1/alpha) sum_k binom(alpha, k) (1 + kappa (-1)^k) u^k (j lambda)^(alpha - k).
+    // k = 1: -(1 - kappa) lambda^(alpha-1) zeta(1 - alpha, 5) = -c1 lambda^(alpha-1) [alpha zeta(1-alpha, 5)].
+    coef[1] = -K.c1 * std::pow(lambda, alpha - 1) * detail::hurwitz_zeta(1 - alpha, a0, true);
+    double bc = 1;  // (1/alpha) binom(alpha, k) = prod_{i=1}^{k-1} (alpha - i) / k!
+    for (int k = 2; k <= terms; ++k) {
+      bc *= (alpha - (k - 1)) / k;
+      const double sgn = k % 2 == 0 ? 1.0 : -1.0;
+      coef[static_cast<std::size_t>(k)] = -bc * (1 + K.kappa * sgn) * std::pow(lambda, alpha - k) * detail::hurwitz_zeta(k - alpha, a0);
+    }
+  }
+  double operator()(double h, double sigma) const {
+    sigma -= lambda * std::floor(sigma / lambda);  // [0, lambda)
+    double s = 0;
+    for (int j = -near_images; j <= near_images; ++j) s += K.panel(j * lambda, j * lambda + h, sigma);
+    // int_0^h (t - sigma)^k dt = ((h - sigma)^(k+1) - (-sigma)^(k+1)) / (k+1)
+    double p1 = (h - sigma), p0 = -sigma, tail = 0;
+    for (int k = 1; k <= terms; ++k) {
+      p1 *= (h - sigma);
+      p0 *= -sigma;
+      tail += coef[static_cast<std::size_t>(k)] * (p1 - p0) / (k + 1);
+    }
+    return s + tail;
+  }
+};
+
+/// The same periodic displacement / Gamma(1 - alpha) by the Fourier series of the multiplier M(q),
+/// modes 0 < |m| <= modes (for verification: the truncation error decays like modes^(-1 - alpha)).
+inline double periodic_panel_fourier(double alpha, double beta, double lambda, double h, double sigma, long modes) {
+  const bem::kernel K(alpha, beta);
+  const std::complex<double> I(0, 1);
+  const double ga = alpha == 0 ? 0 : boost::math::tgamma(alpha);
+  double sum = 0;
+  for (long m = 1; m <= modes; ++m)
+    for (int sg : {1, -1}) {
+      const double q = sg * 2 * pi * static_cast<double>(m) / lambda;
+      std::complex<double> M;
+      if (alpha == 0) M = pi / std::abs(q) - I * pi * std::tan(beta * pi / 2) / q;
+      else M = ga * std::pow(std::abs(q), -alpha) * (std::exp(I * (pi * alpha * sg / 2)) - K.kappa * std::exp(-I * (pi * alpha * sg / 2))) / (I * q);
+      const std::complex<double> ghat = (1.0 - std::exp(-I * q * h)) / (I * q) / lambda;
+      sum += std::real(M * ghat * std::exp(I * q * sigma));
+    }
+  return sum;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Scene
+struct scene {
+  spline profile;        ///< natural (finite window) or periodic
+  double alpha = 0, beta = 0;
+  double load = 0;       ///< P = int g over the window / one period, > 0
+};
+
+/// p = (pi/2) E_U g: the load int g for a physical load per unit length (per period) and E_U.
+inline double load_from_pressure(double physical_load, double E_U) { return 2 * physical_load / (pi * E_U); }
+/// E_U = E1 Gamma(1 - alpha) U^alpha / (1 - nu^2) (docs/theory.md section 2).
+inline double effective_modulus(double E1, double alpha, double nu, double speed) {
+  return E1 * boost::math::tgamma(1 - alpha) * std::pow(speed, alpha) / (1 - nu * nu);
+}
+
+/// The scene the product gets from the same samples: natural spline (period <= 0) or periodic spline.
+inline scene make_scene(std::vector<double> x, std::vector<double> z, double alpha, double beta, double load, double period = 0) {
+  if (!(alpha >= 0 && alpha < 1)) bad("make_scene", "alpha = " + std::to_string(alpha) + " outside [0, 1)");
+  if (!(beta >= 0 && beta < 1)) bad("make_scene", "beta = " + std::to_string(beta) + " outside [0, 1)");
+  if (alpha + beta > 1 + 1e-12) bad("make_scene", "alpha + beta > 1 (kappa < -1) is outside the validated range");
+  if (!(load > 0)) bad("make_scene", "load = " + std::to_string(load) + " must be > 0");
+  scene sc;
+  sc.profile = period > 0 ? periodic_spline(std::move(x), std::move(z), period) : natural_spline(std::move(x), std::move(z));
+  sc.alpha = alpha;
+  sc.beta = beta;
+  sc.load = load;
+  return sc;
+}
+
+// ---------------------------------------------------------------------------------------------
+// One level.
+struct patch_values {
+  double a = 0, b = 0;       ///< run of active panels [t0 of its first, t1 of its last] (periodic: a may be < x0)
+  double load = 0, moment = 0;  ///< int g, int z' g
+  double friction() const { return moment / load; }
+  int panels = 0;
+};
+
+struct level_result {
+  int n = 0;                 ///< panels over the window / period
+  double h = 0;
+  std::vector<double> g;     ///< per panel (0 where inactive)
+  std::vector<char> active;
+  double delta = 0;          ///< rigid approach (height convention of bem_oracle.hpp)
+  std::vector<patch_values> patches;  ///< in order of a (periodic: the patch through x0 first if any)
+  double friction = 0;       ///< int z' g / P
+  double fraction = 0;       ///< active length / window
+  double min_density = 0;    ///< min g / mean g over the active panels
+  double min_gap = 0;        ///< min gap over inactive collocation points / (max z - min z)
+  bool touches_end = false;  ///< finite: an end panel of the window is active (the data's end touches)
+  int iterations = 0;
+  bool converged = false;
+};
+
+namespace detail {
+
+struct level_data {
+  int n;
+  double h, x0, W;
+  bool periodic;
+  std::vector<double> kern;  ///< finite: kern[d + n - 1] for d = i - j; periodic: kern[(i - j) mod n]
+  std::vector<double> f, df;  ///< z at collocation points, z(t1) - z(t0)
+  double coeff(int i, int j) const {
+    return periodic ? kern[static_cast<std::size_t>(((i - j) % n + n) % n)] : kern[static_cast<std::size_t>(i - j + n - 1)];
+  }
+};
+
+inline level_data make_level(const scene& sc, int n) {
+  level_data L;
+  L.n = n;
+  L.periodic = sc.profile.periodic;
+  L.x0 = sc.profile.lo();
+  L.W = sc.profile.hi() - sc.profile.lo();
+  L.h = L.W / n;
+  const double th = bem::collocation_theta, g1 = boost::math::tgamma(1 - sc.alpha);
+  if (L.periodic) {
+    const periodic_kernel P(sc.alpha, sc.beta, L.W);
+    L.kern.resize(static_cast<std::size_t>(n));
+    for (int d = 0; d < n; ++d) L.kern[static_cast<std::size_t>(d)] = g1 * P(L.h, (d + th) * L.h);
+  } else {
+    const bem::kernel K(sc.alpha, sc.beta);
+    L.kern.resize(static_cast<std::size_t>(2 * n - 1));
+    for (int d = -(n - 1); d <= n - 1; ++d) L.kern[static_cast<std::size_t>(d + n - 1)] = g1 * K.panel(0, L.h, (d + th) * L.h);
+  }
+  L.f.resize(static_cast<std::size_t>(n));
+  L.df.resize(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const double t0 = L.x0 + i * L.h, t1 = i + 1 == n ? L.x0 + L.W : L.x0 + (i + 1) * L.h;
+    L.f[static_cast<std::size_t>(i)] = sc.profile.value(t0 + th * L.h);
+    L.df[static_cast<std::size_t>(i)] = sc.profile.value(t1) - sc.profile.value(t0);
+  }
+  return L;
+}
+
+/// Runs of active panels as (first, length); periodic runs may wrap (first + length > n).
+inline std::vector<std::pair<int, int>> runs(const std::vector<char>& act, bool periodic) {
+  const int n = static_cast<int>(act.size());
+  std::vector<std::pair<int, int>> r;
+  int all = 0;
+  for (char c : act) all += c;
+  if (all == n) return {{0, n}};
+  int start = 0;
+  if (periodic) {  // begin at an inactive panel so that no run is cut
+    while (act[static_cast<std::size_t>(start)]) ++start;
+  }
+  for (int k = 0; k < n;) {
+    const int i = (start + k) % n;
+    if (!act[static_cast<std::size_t>(i)]) { ++k; continue; }
+    int len = 0;
+    while (k + len < n && act[static_cast<std::size_t>((start + k + len) % n)]) ++len;
+    r.emplace_back(i, len);
+    k += len;
+  }
+  std::sort(r.begin(), r.end());
+  return r;
+}
+
+}  // namespace detail
+
+/// Active-set solve on n uniform panels, from `start` (per-panel activity; empty: the highest panel).
+inline level_result solve_level(const scene& sc, int n, std::vector<char> start = {}, int max_iterations = 400) {
+  if (n < 8) bad("solve_level", "n = " + std::to_string(n) + " must be >= 8");
+  const auto L = detail::make_level(sc, n);
+  const bool per = L.periodic;
+  double zmax = -std::numeric_limits<double>::infinity(), zmin = -zmax;
+  for (double v : L.f) { zmax = std::max(zmax, v); zmin = std::min(zmin, v); }
+  const double zscale = std::max(zmax - zmin, std::numeric_limits<double>::min());
+  std::vector<char> act = std::move(start);
+  if (act.size() != static_cast<std::size_t>(n)) {
+    act.assign(static_cast<std::size_t>(n), 0);
+    act[static_cast<std::size_t>(std::max_element(L.f.begin(), L.f.end()) - L.f.begin())] = 1;
+  }
+  level_result res;
+  res.n = n;
+  res.h = L.h;
+  std::vector<double> g(static_cast<std::size_t>(n), 0.0), gap(static_cast<std::size_t>(n), 0.0);
+  double delta = 0;
+  auto nb = [&](int i, int d) -> int {  // neighbour index or -1
+    const int k = i + d;
+    if (per) return ((k % n) + n) % n;
+    return k < 0 || k >= n ? -1 : k;
+  };
+  for (res.iterations = 1; res.iterations <= max_iterations; ++res.iterations) {
+    std::vector<int> idx;
+    for (int i = 0; i < n; ++i)
+      if (act[static_cast<std::size_t>(i)]) idx.push_back(i);
+    if (idx.empty()) bad("solve_level", "active set emptied");
+    const auto m = static_cast<Eigen::Index>(idx.size());
+    Eigen::MatrixXd A(m + 1, m + 1);
+    Eigen::VectorXd rhs(m + 1);
+    for (Eigen::Index r = 0; r < m; ++r) {
+      for (Eigen::Index c = 0; c < m; ++c) A(r, c) = L.coeff(idx[static_cast<std::size_t>(r)], idx[static_cast<std::size_t>(c)]);
+      A(r, m) = 1;
+      A(m, r) = L.h;
+      rhs(r) = L.f[static_cast<std::size_t>(idx[static_cast<std::size_t>(r)])];
+    }
+    A(m, m) = 0;
+    rhs(m) = sc.load;
+    const Eigen::VectorXd sol = A.partialPivLu().solve(rhs);
+    std::fill(g.begin(), g.end(), 0.0);
+    for (Eigen::Index r = 0; r < m; ++r) g[static_cast<std::size_t>(idx[static_cast<std::size_t>(r)])] = sol(r);
+    delta = sol(m);
+    // Gaps at every inactive collocation point.
+    for (int i = 0; i < n; ++i) {
+      if (act[static_cast<std::size_t>(i)]) { gap[static_cast<std::size_t>(i)] = 0; continue; }
+      double u = 0;
+      for (int j : idx) u += L.coeff(i, j) * g[static_cast<std::size_t>(j)];
+      gap[static_cast<std::size_t>(i)] = u + delta - L.f[static_cast<std::size_t>(i)];
+    }
+    const double floor = -1e-12 * (zscale + std::abs(delta));
+    auto pen = [&](int i) { return i >= 0 && !act[static_cast<std::size_t>(i)] && gap[static_cast<std::size_t>(i)] < floor; };
+    std::vector<char> next = act;
+    // Growth of every run into adjacent penetrating panels.
+    for (auto [first, len] : detail::runs(act, per)) {
+      const int step = std::max(1, len / 4);
+      for (int k = 1, i = nb(first, -1); k <= step && pen(i); ++k, i = nb(i, -1)) next[static_cast<std::size_t>(i)] = 1;
+      const int last = (first + len - 1) % n;
+      for (int k = 1, i = nb(last, 1); k <= step && pen(i); ++k, i = nb(i, 1)) next[static_cast<std::size_t>(i)] = 1;
+    }
+    // Seeds: each penetrating component touching no run, at its deepest panel.
+    {
+      std::vector<char> seen(static_cast<std::size_t>(n), 0);
+      for (int i0 = 0; i0 < n; ++i0) {
+        if (seen[static_cast<std::size_t>(i0)] || !pen(i0)) continue;
+        // component of penetrating panels containing i0
+        int lo = i0, hi = i0, cnt = 1;
+        while (cnt < n && pen(nb(lo, -1)) && nb(lo, -1) != hi) { lo = nb(lo, -1); ++cnt; }
+        while (cnt < n && pen(nb(hi, 1)) && nb(hi, 1) != lo) { hi = nb(hi, 1); ++cnt; }
+        bool touches = false;
+        const int l1 = nb(lo, -1), h1 = nb(hi, 1);
+        touches = (l1 >= 0 && act[static_cast<std::size_t>(l1)]) || (h1 >= 0 && act[static_cast<std::size_t>(h1)]);
+        int worst = lo;
+        for (int k = 0, i = lo; k < cnt; ++k, i = nb(i, 1)) {
+          seen[static_cast<std::size_t>(i)] = 1;
+          if (gap[static_cast<std::size_t>(i)] < gap[static_cast<std::size_t>(worst)]) worst = i;
+        }
+        if (!touches) next[static_cast<std::size_t>(worst)] = 1;
+      }
+    }
+    if (next != act) { act = std::move(next); continue; }
+    bool changed = false;
+    for (int i : idx)
+      if (g[static_cast<std::size_t>(i)] < 0) { act[static_cast<std::size_t>(i)] = 0; changed = true; }
+    if (!changed) { res.converged = true; break; }
+  }
+  // Outputs.
+  res.g = g;
+  res.active = act;
+  res.delta = delta;
+  double gmin = std::numeric_limits<double>::infinity(), gsum = 0, moment = 0;
+  int na = 0;
+  res.min_gap = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) {
+    const auto u = static_cast<std::size_t>(i);
+    if (act[u]) {
+      gmin = std::min(gmin, g[u]);
+      gsum += g[u];
+      moment += g[u] * L.df[u];
+      ++na;
+    } else {
+      res.min_gap = std::min(res.min_gap, gap[u] / zscale);
+    }
+  }
+  if (na == n) res.min_gap = 0;
+  res.min_density = na ? gmin / (gsum / na) : 0;
+  res.friction = moment / sc.load;
+  res.fraction = static_cast<double>(na) / n;
+  res.touches_end = !per && (act.front() || act.back());
+  for (auto [first, len] : detail::runs(act, per)) {
+    patch_values p;
+    p.a = L.x0 + first * L.h;
+    p.b = p.a + len * L.h;
+    p.panels = len;
+    for (int k = 0; k < len; ++k) {
+      const auto u = static_cast<std::size_t>((first + k) % n);
+      p.load += g[u] * L.h;
+      p.moment += g[u] * L.df[u];
+    }
+    res.patches.push_back(p);
+  }
+  return res;
+}
+
+/// Edge of a patch from its run ends on three levels (h: the finest panel width): the finest run
+/// end, bar = the panel width plus the spread of the three levels (a run end is known to a panel).
+inline bem::estimate edge_estimate(double e0, double e1, double e2, double h) {
+  bem::estimate e;
+  e.value = e.finest = e2;
+  e.error = h + std::max(std::abs(e2 - e1), std::abs(e2 - e0));
+  return e;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Refinement and extrapolation.
+struct options {
+  int start_panels = 0;     ///< first level's panels over the window (0: 2^k >= max(256, samples))
+  int min_levels = 3;       ///< at least this many levels (>= 3)
+  int min_span = 8;         ///< every patch spans >= this many panels on the third-last level
+  int max_panels = 1 << 15; ///< refinement stops here (then converged = false unless already settled)
+};
+
+/// Options for the sanitizer build: coarser (every check still runs, on fewer panels).
+inline options test_options() {
+  options o;
+  if (bem::sanitizer_build) { o.min_span = 4; o.max_panels = 1 << 12; }
+  return o;
+}
+
+struct patch_estimate {
+  bem::estimate a, b;          ///< edges (see `edge_estimate`)
+  bem::estimate load, friction;
+  std::vector<patch_values> levels;  ///< the matched patch on each of the last three levels
+};
+
+struct result {
+  std::vector<patch_estimate> patches;  ///< of the finest level, in order of a
+  bem::estimate friction;      ///< C_f of the body: int z' g / P (tangential over normal force per period)
+  bem::estimate fraction;      ///< contact fraction (active length / window)
+  double mean_load = 0;        ///< P / window (mean g; mean pressure = (pi/2) E_U mean_load), exact
+  double min_density = 0;      ///< finest level: min g / mean g on the contacts (>= 0 by construction)
+  double min_gap = 0;          ///< finest level: min gap / (max z - min z) off the contacts
+  bool touches_end = false;    ///< finite: the finest level's contact reaches an end of the window
+  bool converged = false;      ///< every level's active set converged, the last three have matching patches
+  std::vector<int> panels;     ///< panels per level
+  std::vector<int> patch_counts;  ///< patches per level
+  double seconds = 0;          ///< wall time (reported, never asserted)
+  level_result finest;
+};
+
+namespace detail {
+
+inline bool overlap(const patch_values& p, const patch_values& q, double W, bool periodic) {
+  for (int s = periodic ? -1 : 0; s <= (periodic ? 1 : 0); ++s)
+    if (p.a < q.b + s * W && q.a + s * W < p.b) return true;
+  return false;
+}
+
+/// For each patch of `fine`, the index of the one patch of `coarse` overlapping it (-1: none or
+/// not one-to-one).
+inline std::vector<int> match(const level_result& coarse, const level_result& fine, double W, bool periodic) {
+  std::vector<int> m(fine.patches.size(), -1);
+  std::vector<int> used(coarse.patches.size(), 0);
+  for (std::size_t i = 0; i < fine.patches.size(); ++i) {
+    int hit = -1, cnt = 0;
+    for (std::size_t j = 0; j < coarse.patches.size(); ++j)
+      if (overlap(fine.patches[i], coarse.patches[j], W, periodic)) { hit = static_cast<int>(j); ++cnt; }
+    if (cnt == 1) { m[i] = hit; ++used[static_cast<std::size_t>(hit)]; }
+  }
+  for (std::size_t i = 0; i < m.size(); ++i)
+    if (m[i] >= 0 && used[static_cast<std::size_t>(m[i])] != 1) m[i] = -1;
+  return m;
+}
+
+}  // namespace detail
+
+/// The whole oracle: levels n = start * 2^k until the contact set is stable, Richardson on the last three.
+inline result solve(const scene& sc, const options& opt = {}) {
+  const auto t_start = std::chrono::steady_clock::now();
+  if (opt.min_levels < 3) bad("solve", "min_levels must be >= 3");
+  const bool per = sc.profile.periodic;
+  const double W = sc.profile.hi() - sc.profile.lo();
+  int n = opt.start_panels;
+  if (n <= 0) {
+    n = 256;
+    while (n < static_cast<int>(sc.profile.x.size())) n *= 2;
+  }
+  result res;
+  res.mean_load = sc.load / W;
+  std::vector<level_result> lv;
+  std::vector<char> start;
+  bool settled = false;
+  for (;; n *= 2) {
+    lv.push_back(solve_level(sc, n, start));
+    const auto& cur = lv.back();
+    res.panels.push_back(n);
+    res.patch_counts.push_back(static_cast<int>(cur.patches.size()));
+    start.assign(static_cast<std::size_t>(2 * n), 0);
+    for (int i = 0; i < n; ++i) start[static_cast<std::size_t>(2 * i)] = start[static_cast<std::size_t>(2 * i + 1)] = cur.active[static_cast<std::size_t>(i)];
+    const std::size_t L = lv.size();
+    if (L >= static_cast<std::size_t>(opt.min_levels)) {
+      const auto &l0 = lv[L - 3], &l1 = lv[L - 2], &l2 = lv[L - 1];
+      bool ok = l0.converged && l1.converged && l2.converged && l0.patches.size() == l2.patches.size() &&
+                l1.patches.size() == l2.patches.size();
+      if (ok) {
+        const auto m1 = detail::match(l1, l2, W, per), m0 = detail::match(l0, l2, W, per);
+        for (std::size_t i = 0; i < m1.size(); ++i) ok = ok && m1[i] >= 0 && m0[i] >= 0;
+        for (const auto& p : l0.patches) ok = ok && p.panels >= opt.min_span;
+      }
+      if (ok) { settled = true; break; }
+    }
+    if (2 * n > opt.max_panels) break;
+  }
+  const std::size_t L = lv.size();
+  res.finest = lv.back();
+  res.converged = settled;
+  res.min_density = res.finest.min_density;
+  res.min_gap = res.finest.min_gap;
+  res.touches_end = res.finest.touches_end;
+  if (L < 3) {
+    bad("solve", "fewer than three levels below max_panels");
+  }
+  const auto &l0 = lv[L - 3], &l1 = lv[L - 2], &l2 = lv[L - 1];
+  double slope = 0;
+  for (std::size_t i = 0; i + 1 < sc.profile.x.size(); ++i)
+    slope = std::max(slope, std::abs(sc.profile.slope(sc.profile.x[i])));
+  res.friction = bem::richardson(l0.friction, l1.friction, l2.friction, slope);
+  res.fraction = bem::richardson(l0.fraction, l1.fraction, l2.fraction, 1.0);
+  const auto m1 = detail::match(l1, l2, W, per), m0 = detail::match(l0, l2, W, per);
+  for (std::size_t i = 0; i < l2.patches.size(); ++i) {
+    patch_estimate pe;
+    const auto& p2 = l2.patches[i];
+    if (m0[i] < 0 || m1[i] < 0) {
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      pe.load = pe.friction = bem::estimate{p2.load, nan, 0, p2.load};
+      pe.friction.value = pe.friction.finest = p2.friction();
+      pe.a = bem::estimate{p2.a, nan, 0, p2.a};
+      pe.b = bem::estimate{p2.b, nan, 0, p2.b};
+      pe.levels = {p2};
+      res.patches.push_back(pe);
+      continue;
+    }
+    auto p0 = l0.patches[static_cast<std::size_t>(m0[i])], p1 = l1.patches[static_cast<std::size_t>(m1[i])];
+    // periodic: bring the coarser patches to the same period image as p2
+    for (auto* p : {&p0, &p1}) {
+      const double shift = W * std::round(((p2.a + p2.b) - (p->a + p->b)) / (2 * W));
+      p->a += shift;
+      p->b += shift;
+    }
+    pe.levels = {p0, p1, p2};
+    pe.load = bem::richardson(p0.load, p1.load, p2.load, sc.load);
+    pe.friction = bem::richardson(p0.friction(), p1.friction(), p2.friction(), slope);
+    pe.a = edge_estimate(p0.a, p1.a, p2.a, l2.h);
+    pe.b = edge_estimate(p0.b, p1.b, p2.b, l2.h);
+    res.patches.push_back(pe);
+  }
+  res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t_start).count();
+  return res;
+}
+
+}  // namespace punch_test::bem_profile
