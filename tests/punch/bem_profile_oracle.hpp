@@ -63,6 +63,7 @@
 #include "punch/bem_oracle.hpp"
 
 #include <Eigen/Dense>
+#include <unsupported/Eigen/FFT>
 #include <boost/math/special_functions/bernoulli.hpp>
 #include <boost/math/special_functions/gamma.hpp>
 #include <boost/math/special_functions/zeta.hpp>
@@ -352,11 +353,9 @@ struct level_data {
   int n;
   double h, x0, W;
   bool periodic;
-  std::vector<double> kern;  ///< finite: kern[d + n - 1] for d = i - j; periodic: kern[(i - j) mod n]
+  std::vector<double> kern;  ///< kern[d + n - 1]: influence at offset d = i - j (periodic: of (i - j) mod n)
   std::vector<double> f, df;  ///< z at collocation points, z(t1) - z(t0)
-  double coeff(int i, int j) const {
-    return periodic ? kern[static_cast<std::size_t>(((i - j) % n + n) % n)] : kern[static_cast<std::size_t>(i - j + n - 1)];
-  }
+  double coeff(int i, int j) const { return kern[static_cast<std::size_t>(i - j + n - 1)]; }
 };
 
 inline level_data make_level(const scene& sc, int n) {
@@ -369,8 +368,10 @@ inline level_data make_level(const scene& sc, int n) {
   const double th = bem::collocation_theta, g1 = boost::math::tgamma(1 - sc.alpha);
   if (L.periodic) {
     const periodic_kernel P(sc.alpha, sc.beta, L.W);
-    L.kern.resize(static_cast<std::size_t>(n));
-    for (int d = 0; d < n; ++d) L.kern[static_cast<std::size_t>(d)] = g1 * P(L.h, (d + th) * L.h);
+    std::vector<double> c(static_cast<std::size_t>(n));
+    for (int d = 0; d < n; ++d) c[static_cast<std::size_t>(d)] = g1 * P(L.h, (d + th) * L.h);
+    L.kern.resize(static_cast<std::size_t>(2 * n - 1));
+    for (int d = -(n - 1); d <= n - 1; ++d) L.kern[static_cast<std::size_t>(d + n - 1)] = c[static_cast<std::size_t>((d + n) % n)];
   } else {
     const bem::kernel K(sc.alpha, sc.beta);
     L.kern.resize(static_cast<std::size_t>(2 * n - 1));
@@ -409,6 +410,117 @@ inline std::vector<std::pair<int, int>> runs(const std::vector<char>& act, bool 
   return r;
 }
 
+/// Solve A x = b, A the active panels' influence matrix (idx), by GMRES (restarted every 60)
+/// right-preconditioned with the exact inverse of each run's own block (block Jacobi: the runs
+/// interact through smooth far fields). Relative residual 1e-13.
+struct block_solver {
+  const level_data& L;
+  const std::vector<int>& idx;
+  std::vector<std::pair<int, int>> blocks;  // (offset in idx, size)
+  std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> lu;
+  block_solver(const level_data& L_, const std::vector<int>& idx_) : L(L_), idx(idx_) {
+    const int m = static_cast<int>(idx.size());
+    for (int r = 0; r < m;) {
+      int e = r + 1;
+      while (e < m && (idx[static_cast<std::size_t>(e)] == idx[static_cast<std::size_t>(e - 1)] + 1)) ++e;
+      blocks.emplace_back(r, e - r);
+      r = e;
+    }
+    for (auto [o, len] : blocks) {
+      Eigen::MatrixXd B(len, len);
+      for (int i = 0; i < len; ++i)
+        for (int j = 0; j < len; ++j) B(i, j) = L.coeff(idx[static_cast<std::size_t>(o + i)], idx[static_cast<std::size_t>(o + j)]);
+      lu.emplace_back(B);
+    }
+  }
+  Eigen::VectorXd apply(const Eigen::VectorXd& x) const {
+    const auto m = static_cast<Eigen::Index>(idx.size());
+    Eigen::VectorXd y(m);
+    for (Eigen::Index r = 0; r < m; ++r) {
+      const double* k = L.kern.data() + (idx[static_cast<std::size_t>(r)] + L.n - 1);
+      double acc = 0;
+      for (Eigen::Index c = 0; c < m; ++c) acc += k[-idx[static_cast<std::size_t>(c)]] * x(c);
+      y(r) = acc;
+    }
+    return y;
+  }
+  Eigen::VectorXd precondition(const Eigen::VectorXd& x) const {
+    Eigen::VectorXd y(x.size());
+    for (std::size_t b = 0; b < blocks.size(); ++b) {
+      const auto [o, len] = blocks[b];
+      y.segment(o, len) = lu[b].solve(x.segment(o, len));
+    }
+    return y;
+  }
+  Eigen::VectorXd solve(const Eigen::VectorXd& b, bool& ok) const {
+    const Eigen::Index m = b.size();
+    const int restart = 60, max_cycles = 40;
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(m);
+    const double bn = b.norm();
+    ok = true;
+    if (bn == 0) return x;
+    for (int cycle = 0; cycle < max_cycles; ++cycle) {
+      Eigen::VectorXd r = b - apply(x);
+      const double beta = r.norm();
+      if (beta <= 1e-13 * bn) return x;
+      Eigen::MatrixXd V(m, restart + 1), Hm = Eigen::MatrixXd::Zero(restart + 1, restart);
+      V.col(0) = r / beta;
+      Eigen::VectorXd gvec = Eigen::VectorXd::Zero(restart + 1);
+      gvec(0) = beta;
+      std::vector<double> cs(restart), sn(restart);
+      int k = 0;
+      for (; k < restart; ++k) {
+        Eigen::VectorXd w = apply(precondition(V.col(k)));
+        for (int i = 0; i <= k; ++i) {
+          Hm(i, k) = V.col(i).dot(w);
+          w -= Hm(i, k) * V.col(i);
+        }
+        Hm(k + 1, k) = w.norm();
+        if (Hm(k + 1, k) > 0) V.col(k + 1) = w / Hm(k + 1, k);
+        for (int i = 0; i < k; ++i) {
+          const double t = cs[static_cast<std::size_t>(i)] * Hm(i, k) + sn[static_cast<std::size_t>(i)] * Hm(i + 1, k);
+          Hm(i + 1, k) = -sn[static_cast<std::size_t>(i)] * Hm(i, k) + cs[static_cast<std::size_t>(i)] * Hm(i + 1, k);
+          Hm(i, k) = t;
+        }
+        const double den = std::hypot(Hm(k, k), Hm(k + 1, k));
+        cs[static_cast<std::size_t>(k)] = Hm(k, k) / den;
+        sn[static_cast<std::size_t>(k)] = Hm(k + 1, k) / den;
+        Hm(k, k) = den;
+        Hm(k + 1, k) = 0;
+        gvec(k + 1) = -sn[static_cast<std::size_t>(k)] * gvec(k);
+        gvec(k) = cs[static_cast<std::size_t>(k)] * gvec(k);
+        if (std::abs(gvec(k + 1)) <= 1e-13 * bn) { ++k; break; }
+      }
+      const Eigen::VectorXd yk = Hm.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(gvec.head(k));
+      x += precondition(V.leftCols(k) * yk);
+    }
+    ok = (b - apply(x)).norm() <= 1e-10 * bn;
+    return x;
+  }
+};
+
+/// u_i = sum_j kern[i - j + n - 1] g_j for all i (Toeplitz; the periodic kern is circulant), by
+/// one FFT convolution of length >= 3n (Eigen's FFT; exact up to rounding: ~1e-16 x sum |kern g|).
+inline std::vector<double> convolve(const level_data& L, const std::vector<double>& g) {
+  const int n = L.n;
+  int N = 1;
+  while (N < 3 * n) N *= 2;
+  std::vector<double> a(static_cast<std::size_t>(N), 0.0), b(static_cast<std::size_t>(N), 0.0);
+  for (int d = -(n - 1); d <= n - 1; ++d) a[static_cast<std::size_t>((d + N) % N)] = L.kern[static_cast<std::size_t>(d + n - 1)];
+  for (int j = 0; j < n; ++j) b[static_cast<std::size_t>(j)] = g[static_cast<std::size_t>(j)];
+  Eigen::FFT<double> fft;
+  std::vector<std::complex<double>> A, B;
+  fft.fwd(A, a);
+  fft.fwd(B, b);
+  for (std::size_t k = 0; k < A.size(); ++k) A[k] *= B[k];
+  std::vector<double> c;
+  fft.inv(c, A);
+  return std::vector<double>(c.begin(), c.begin() + n);
+}
+
+/// Panels above which the active system is solved by block-preconditioned GMRES instead of dense LU.
+inline constexpr int dense_limit = 600;
+
 }  // namespace detail
 
 /// Active-set solve on n uniform panels, from `start` (per-panel activity; empty: the highest panel).
@@ -440,6 +552,18 @@ inline level_result solve_level(const scene& sc, int n, std::vector<char> start 
       if (act[static_cast<std::size_t>(i)]) idx.push_back(i);
     if (idx.empty()) bad("solve_level", "active set emptied");
     const auto m = static_cast<Eigen::Index>(idx.size());
+    if (m > detail::dense_limit) {
+      // g = x1 - delta x2 with A x1 = f, A x2 = 1; delta from the load.
+      const detail::block_solver S(L, idx);
+      Eigen::VectorXd f(m);
+      for (Eigen::Index r = 0; r < m; ++r) f(r) = L.f[static_cast<std::size_t>(idx[static_cast<std::size_t>(r)])];
+      bool ok1 = false, ok2 = false;
+      const Eigen::VectorXd x1 = S.solve(f, ok1), x2 = S.solve(Eigen::VectorXd::Ones(m), ok2);
+      if (!ok1 || !ok2) bad("solve_level", "GMRES did not converge on " + std::to_string(m) + " active panels");
+      delta = (L.h * x1.sum() - sc.load) / (L.h * x2.sum());
+      std::fill(g.begin(), g.end(), 0.0);
+      for (Eigen::Index r = 0; r < m; ++r) g[static_cast<std::size_t>(idx[static_cast<std::size_t>(r)])] = x1(r) - delta * x2(r);
+    } else {
     Eigen::MatrixXd A(m + 1, m + 1);
     Eigen::VectorXd rhs(m + 1);
     for (Eigen::Index r = 0; r < m; ++r) {
@@ -454,12 +578,19 @@ inline level_result solve_level(const scene& sc, int n, std::vector<char> start 
     std::fill(g.begin(), g.end(), 0.0);
     for (Eigen::Index r = 0; r < m; ++r) g[static_cast<std::size_t>(idx[static_cast<std::size_t>(r)])] = sol(r);
     delta = sol(m);
-    // Gaps at every inactive collocation point.
-    for (int i = 0; i < n; ++i) {
-      if (act[static_cast<std::size_t>(i)]) { gap[static_cast<std::size_t>(i)] = 0; continue; }
-      double u = 0;
-      for (int j : idx) u += L.coeff(i, j) * g[static_cast<std::size_t>(j)];
-      gap[static_cast<std::size_t>(i)] = u + delta - L.f[static_cast<std::size_t>(i)];
+    }
+    // Gaps at every inactive collocation point (the displacement by FFT convolution above 4096 panels).
+    if (idx.size() > 1000 && n > 4096) {
+      const std::vector<double> u = detail::convolve(L, g);
+      for (int i = 0; i < n; ++i)
+        gap[static_cast<std::size_t>(i)] = act[static_cast<std::size_t>(i)] ? 0 : u[static_cast<std::size_t>(i)] + delta - L.f[static_cast<std::size_t>(i)];
+    } else {
+      for (int i = 0; i < n; ++i) {
+        if (act[static_cast<std::size_t>(i)]) { gap[static_cast<std::size_t>(i)] = 0; continue; }
+        double u = 0;
+        for (int j : idx) u += L.coeff(i, j) * g[static_cast<std::size_t>(j)];
+        gap[static_cast<std::size_t>(i)] = u + delta - L.f[static_cast<std::size_t>(i)];
+      }
     }
     const double floor = -1e-12 * (zscale + std::abs(delta));
     auto pen = [&](int i) { return i >= 0 && !act[static_cast<std::size_t>(i)] && gap[static_cast<std::size_t>(i)] < floor; };
@@ -577,16 +708,18 @@ inline bem::estimate extrapolate(double q0, double q1, double q2, double scale) 
 // ---------------------------------------------------------------------------------------------
 // Refinement and extrapolation.
 struct options {
-  int start_panels = 0;     ///< first level's panels over the window (0: 2^k >= max(256, samples))
+  int start_panels = 0;     ///< first level's panels over the window (0: the samples' intervals, doubled to >= 256)
   int min_levels = 3;       ///< at least this many levels (>= 3)
-  int min_span = 8;         ///< every patch spans >= this many panels on the third-last level
-  int max_panels = 1 << 15; ///< refinement stops here (then converged = false unless already settled)
+  int min_span = 16;        ///< every patch spans >= this many panels on the finest level
+  int max_panels = 1 << 18; ///< refinement stops here (then converged = false unless already settled)
+  double span_load = 1e-4;  ///< min_span applies to patches carrying at least this fraction of the load
+  double friction_tol = 1e-4;  ///< refine until the body's C_f bar is below this x max |z'| of the samples
 };
 
 /// Options for the sanitizer build: coarser (every check still runs, on fewer panels).
 inline options test_options() {
   options o;
-  if (bem::sanitizer_build) { o.min_span = 4; o.max_panels = 1 << 12; }
+  if (bem::sanitizer_build) { o.min_span = 8; o.max_panels = 1 << 13; }
   return o;
 }
 
@@ -607,6 +740,8 @@ struct result {
   bool converged = false;      ///< every level's active set converged, the last three have matching patches
   std::vector<int> panels;     ///< panels per level
   std::vector<int> patch_counts;  ///< patches per level
+  std::vector<int> iterations;    ///< active-set iterations per level
+  std::vector<double> level_friction;  ///< C_f of the body per level
   double seconds = 0;          ///< wall time (reported, never asserted)
   level_result finest;
 };
@@ -644,20 +779,25 @@ inline result solve(const scene& sc, const options& opt = {}) {
   const bool per = sc.profile.periodic;
   const double W = sc.profile.hi() - sc.profile.lo();
   int n = opt.start_panels;
-  if (n <= 0) {
-    n = 256;
-    while (n < static_cast<int>(sc.profile.x.size())) n *= 2;
+  if (n <= 0) {  // panel ends on the knots (uniform samples): the spline is one cubic per panel
+    n = static_cast<int>(sc.profile.x.size()) - 1;
+    while (n < 256) n *= 2;
   }
   result res;
   res.mean_load = sc.load / W;
   std::vector<level_result> lv;
   std::vector<char> start;
+  double slope = 0;  // natural scale of C_f: the steepest slope at the samples
+  for (std::size_t i = 0; i + 1 < sc.profile.x.size(); ++i)
+    slope = std::max(slope, std::abs(sc.profile.slope(sc.profile.x[i])));
   bool settled = false;
   for (;; n *= 2) {
     lv.push_back(solve_level(sc, n, start));
     const auto& cur = lv.back();
     res.panels.push_back(n);
     res.patch_counts.push_back(static_cast<int>(cur.patches.size()));
+    res.iterations.push_back(cur.iterations);
+    res.level_friction.push_back(cur.friction);
     start.assign(static_cast<std::size_t>(2 * n), 0);
     for (int i = 0; i < n; ++i) start[static_cast<std::size_t>(2 * i)] = start[static_cast<std::size_t>(2 * i + 1)] = cur.active[static_cast<std::size_t>(i)];
     const std::size_t L = lv.size();
@@ -668,7 +808,8 @@ inline result solve(const scene& sc, const options& opt = {}) {
       if (ok) {
         const auto m1 = detail::match(l1, l2, W, per), m0 = detail::match(l0, l2, W, per);
         for (std::size_t i = 0; i < m1.size(); ++i) ok = ok && m1[i] >= 0 && m0[i] >= 0;
-        for (const auto& p : l0.patches) ok = ok && p.panels >= opt.min_span;
+        for (const auto& p : l2.patches) ok = ok && (p.panels >= opt.min_span || p.load < opt.span_load * sc.load);
+        ok = ok && extrapolate(l0.friction, l1.friction, l2.friction, slope).error <= opt.friction_tol * slope;
       }
       if (ok) { settled = true; break; }
     }
@@ -684,20 +825,16 @@ inline result solve(const scene& sc, const options& opt = {}) {
     bad("solve", "fewer than three levels below max_panels");
   }
   const auto &l0 = lv[L - 3], &l1 = lv[L - 2], &l2 = lv[L - 1];
-  double slope = 0;
-  for (std::size_t i = 0; i + 1 < sc.profile.x.size(); ++i)
-    slope = std::max(slope, std::abs(sc.profile.slope(sc.profile.x[i])));
   res.friction = extrapolate(l0.friction, l1.friction, l2.friction, slope);
   const auto m1 = detail::match(l1, l2, W, per), m0 = detail::match(l0, l2, W, per);
   for (std::size_t i = 0; i < l2.patches.size(); ++i) {
     patch_estimate pe;
     const auto& p2 = l2.patches[i];
-    if (m0[i] < 0 || m1[i] < 0) {
-      const double nan = std::numeric_limits<double>::quiet_NaN();
-      pe.load = pe.friction = bem::estimate{p2.load, nan, 0, p2.load};
-      pe.friction.value = pe.friction.finest = p2.friction();
-      pe.a = bem::estimate{p2.ea, nan, 0, p2.ea};
-      pe.b = bem::estimate{p2.eb, nan, 0, p2.eb};
+    if (m0[i] < 0 || m1[i] < 0) {  // not on every level: its existence is uncertain, bars to match
+      pe.load = bem::estimate{p2.load, p2.load, 0, p2.load};
+      pe.friction = bem::estimate{p2.friction(), slope, 0, p2.friction()};
+      pe.a = bem::estimate{p2.ea, p2.b - p2.a + l2.h, 0, p2.ea};
+      pe.b = bem::estimate{p2.eb, p2.b - p2.a + l2.h, 0, p2.eb};
       pe.levels = {p2};
       res.patches.push_back(pe);
       continue;
