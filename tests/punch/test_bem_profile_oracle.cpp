@@ -12,6 +12,7 @@
 #include <boost/math/special_functions/gamma.hpp>
 
 #include <cmath>
+#include <random>
 #include <vector>
 
 namespace bp = punch_test::bem_profile;
@@ -217,5 +218,55 @@ TEST_CASE("periodic vs finite: a narrow bump in a growing period approaches the 
   for (std::size_t k = 1; k < diff.size(); ++k) {
     CAPTURE(k); CAPTURE(diff[k] / diff[k - 1]);
     CHECK(std::abs(diff[k] / diff[k - 1] - std::exp2(alpha - 1)) < 0.1);
+  }
+}
+
+TEST_CASE("self-affine periodic profile: ~20 patches, internal consistency and two panel sequences agreeing within the bars") {
+  // 1000 samples a period of a self-affine profile (H = 0.8, rms 1e-3, highest sample at 0; phases
+  // from std::mt19937's raw output, portable), alpha 0.3, nu 0, E1 = U = 1, load 3e-3 per period:
+  // the scenes of studies/scenes/self_affine_profile.py (other phases). Exercises the GMRES and FFT
+  // paths. Two panel sequences (on the knots, 1000 x 2^k, and 1024 x 2^k) are independent
+  // discretisations: their C_f must agree within the sum of their bars.
+  const int N = 1000;
+  std::mt19937 rng(1);
+  std::vector<double> x(N), z(N, 0.0);
+  for (int i = 0; i < N; ++i) x[static_cast<std::size_t>(i)] = static_cast<double>(i) / N;
+  for (int k = 1; k <= N / 2; ++k) {
+    const double phase = 2 * pi * static_cast<double>(rng()) / 4294967296.0, amp = std::pow(k, -(1 + 2 * 0.8) / 2);
+    for (int i = 0; i < N; ++i) z[static_cast<std::size_t>(i)] += amp * std::cos(2 * pi * k * x[static_cast<std::size_t>(i)] + phase);
+  }
+  double ms = 0, zmax = -1e300;
+  for (double v : z) { ms += v * v / N; zmax = std::max(zmax, v); }
+  for (double& v : z) v = (v - zmax) * 1e-3 / std::sqrt(ms);
+  const auto sc = bp::make_scene_physical(x, z, 1, 0.3, 0, 0, 1, bp::sanitizer_build ? 1e-2 : 3e-3, 1.0);
+  bp::options o = bp::test_options();
+  if (bp::sanitizer_build) { o.max_panels = 1 << 14; o.min_span = 4; o.friction_tol = 1; }
+  const auto r = bp::solve(sc, o);
+  CAPTURE(r.patches.size()); CAPTURE(r.friction.value); CAPTURE(r.friction.error); CAPTURE(r.seconds);
+  REQUIRE(r.converged);
+  CHECK(r.patches.size() >= 10);
+  CHECK_FALSE(r.touches_end);
+  CHECK(r.min_density >= 0);
+  CHECK(r.min_gap > -1e-12);
+  // the finest level's patches add up to the load and to the body's C_f (to rounding)
+  double load = 0, moment = 0, load_bar = 0;
+  for (const auto& p : r.patches) {
+    load += p.levels.back().load;
+    moment += p.levels.back().moment;
+    load_bar += p.load.error;
+  }
+  CHECK(std::abs(load - sc.load) < 1e-10 * sc.load);
+  CHECK(std::abs(moment / sc.load - r.friction.finest) < 1e-10 * std::abs(r.friction.finest));
+  double extrapolated = 0;
+  for (const auto& p : r.patches) extrapolated += p.load.value;
+  CHECK(std::abs(extrapolated - sc.load) <= load_bar);
+  if (!bp::sanitizer_build) {
+    bp::options o2 = o;
+    o2.start_panels = 1024;
+    const auto r2 = bp::solve(sc, o2);
+    CAPTURE(r2.friction.value); CAPTURE(r2.friction.error);
+    REQUIRE(r2.converged);
+    CHECK(r2.patches.size() == r.patches.size());
+    CHECK(std::abs(r2.friction.value - r.friction.value) <= r.friction.error + r2.friction.error);
   }
 }
