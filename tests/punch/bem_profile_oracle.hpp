@@ -79,7 +79,8 @@
 //     // r.converged, r.patches[i].{a, b, load, friction} (estimate: value, error), r.friction (C_f of
 //     // the body), r.fraction, r.mean_load (x (pi/2) E_U: mean pressure), r.min_density, r.min_gap,
 //     // r.touches_end; loads are int g = 2 (physical load) / (pi E_U).
-//   The self-test (test_bem_profile_oracle.cpp) runs in ~8 s in Release, ~2 s under ASan + UBSan.
+//   The self-test (test_bem_profile_oracle.cpp) runs in ~8 s in Release on a quiet core (16 s measured
+//   on a loaded one), ~6 s under ASan + UBSan at -O1 (one case per loop, coarser self-affine case).
 //
 // MEASURED ACCURACY (Release; test_bem_profile_oracle.cpp):
 //   * periodic kernel: against the Fourier multiplier summed to 2e5 modes 3e-12 .. 3e-15 (alpha > 0,
