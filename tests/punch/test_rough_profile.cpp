@@ -1,0 +1,97 @@
+// Self-affine rough profiles, the workload most users bring (rhabel/punch/profile.hpp), against
+// the boundary-element oracle for sampled profiles (bem_profile_oracle.hpp), which shares no code
+// with rhabel: its own splines, its own active set on uniform panels, Richardson extrapolation.
+//
+// The contract checked is the product's: a result that says ok agrees with the oracle (patch
+// count and C_f within the oracle's error bar), and a result that is not ok says what is wrong (a
+// partial load is named as such, never presented as the answer to the full load). How many of
+// these scenes are ok is pinned below as measured, so that a regression of the search shows.
+#include <doctest/doctest.h>
+
+#include "punch/bem_profile_oracle.hpp"
+#include "punch/rough_profiles.hpp"
+#include "rhabel/punch.hpp"
+
+#include <cmath>
+#include <cstddef>
+#include <stdexcept>
+#include <string>
+
+namespace {
+namespace pu = rhabel::punch;
+namespace bp = punch_test::bem_profile;
+
+// The acceptance a measured profile is worth (profile.hpp: the spline's forcing is only C1).
+constexpr double acceptance = 1e-6;
+// C_f of an ok result against the oracle's: the oracle's bar (an estimate) twice, plus what the
+// acceptance allows of rhabel's own C_f (its residual and error estimate are within 1e-6).
+constexpr double bar_factor = 2;
+
+struct outcome {
+  bool ok = false, refused = false;
+};
+
+outcome check_scene(std::size_t n, std::uint64_t seed, double load) {
+  CAPTURE(n);
+  CAPTURE(seed);
+  CAPTURE(load);
+  const auto samples = punch_test::self_affine(n, seed);
+  pu::profile_scene ps;
+  ps.material.alpha = 0.3;  // nu 0, k 0, E1 1, speed 1 (the defaults)
+  ps.load = load;
+  ps.profile.x = samples.x;
+  ps.profile.z = samples.z;
+  pu::solve_options o;
+  o.tolerance = 1e-10;
+  o.acceptance = acceptance;
+  outcome out;
+  pu::profile_result r;
+  try {
+    r = pu::solve_profile(ps, o);
+  } catch (const std::domain_error& e) {
+    // Contacts at an end of the samples: refused naming body.load (the oracle's first level finds
+    // the end panel loaded too, and a finite window has nothing beyond it).
+    const std::string message = e.what();
+    CAPTURE(message);
+    CHECK(message.find("body.load") != std::string::npos);
+    out.refused = true;
+    return out;
+  }
+  CAPTURE(r.diagnostics.status);
+  if (r.diagnostics.load_fraction < 1) {
+    CHECK(r.diagnostics.code != pu::status_code::ok);
+    CHECK(r.diagnostics.status.rfind("the search reached only", 0) == 0);
+  }
+  if (r.diagnostics.code != pu::status_code::ok) {
+    CHECK(!r.diagnostics.status.empty());
+    return out;
+  }
+  out.ok = true;
+  const double E_U = ps.material.effective_modulus(ps.speed);
+  const auto oracle = bp::solve(bp::make_scene(samples.x, samples.z, 0.3, 0.0, bp::load_from_pressure(load, E_U)),
+                                bp::test_options());
+  REQUIRE(oracle.converged);
+  CHECK(r.contacts.size() == oracle.patches.size());
+  double moment = 0, total = 0;
+  for (const auto& c : r.contacts) moment += c.hysteretic_friction * c.load, total += c.load;
+  const double cf = moment / total;
+  CHECK(total == doctest::Approx(load).epsilon(acceptance));
+  CHECK(std::abs(cf - oracle.friction.value) <= bar_factor * oracle.friction.error + acceptance * std::abs(cf));
+  return out;
+}
+}  // namespace
+
+TEST_CASE("self-affine profiles: ok agrees with the boundary-element oracle, anything else says what is missing") {
+  // 1000 samples of H = 0.8, rms 1e-3 on a unit length (rough_profiles.hpp), alpha 0.3, loads
+  // giving 3 to 10 patches; three seeds.
+  std::size_t ok = 0;
+  for (const std::uint64_t seed : {1, 2, 3})
+    for (const double load : {3e-4, 1e-3}) {
+      if (bp::sanitizer_build && !(seed == 3 && load == 3e-4)) continue;  // the oracle: minutes under ASan
+      ok += check_scene(1000, seed, load).ok ? 1 : 0;
+    }
+  // Measured: seed 3 at 3e-4 is ok (3 patches, C_f within 6e-7 of the oracle's, bar 3.2e-6); the
+  // others end not_converged (residual of (8) 1e-6 .. 6e-5 against the spline, a valley in tension,
+  // or a partial load) or refused (contacts at x = 0).
+  CHECK(ok >= 1);
+}
