@@ -68,8 +68,10 @@ outcome check_scene(std::size_t n, std::uint64_t seed, double load) {
   }
   out.ok = true;
   const double E_U = ps.material.effective_modulus(ps.speed);
+  // The oracle's default grids also under the sanitizers: test_options()' coarser ones (2^13
+  // panels at most) do not settle on this profile (measured under ASan: converged = false).
   const auto oracle = bp::solve(bp::make_scene(samples.x, samples.z, 0.3, 0.0, bp::load_from_pressure(load, E_U)),
-                                bp::test_options());
+                                bp::options{});
   REQUIRE(oracle.converged);
   CHECK(r.contacts.size() == oracle.patches.size());
   double moment = 0, total = 0;
