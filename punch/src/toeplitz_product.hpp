@@ -46,12 +46,17 @@ class toeplitz_product {
     return convolve();
   }
 
+  /// (T restricted to the columns `columns`) v, v of length columns.size(): all n rows.
+  Eigen::VectorXd apply(const std::vector<std::size_t>& columns, const Eigen::VectorXd& v) {
+    std::fill(padded_.begin(), padded_.end(), 0.0);
+    for (std::size_t c = 0; c < columns.size(); ++c) padded_[columns[c]] = v[static_cast<Eigen::Index>(c)];
+    return convolve();
+  }
+
   /// (T restricted to the rows `rows` and the columns `columns`) v, v of length columns.size().
   Eigen::VectorXd apply(const std::vector<std::size_t>& rows, const std::vector<std::size_t>& columns,
                         const Eigen::VectorXd& v) {
-    std::fill(padded_.begin(), padded_.end(), 0.0);
-    for (std::size_t c = 0; c < columns.size(); ++c) padded_[columns[c]] = v[static_cast<Eigen::Index>(c)];
-    const Eigen::VectorXd full = convolve();
+    const Eigen::VectorXd full = apply(columns, v);
     Eigen::VectorXd out(static_cast<Eigen::Index>(rows.size()));
     for (std::size_t r = 0; r < rows.size(); ++r) out[static_cast<Eigen::Index>(r)] = full[static_cast<Eigen::Index>(rows[r])];
     return out;
