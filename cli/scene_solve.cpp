@@ -18,7 +18,6 @@
 #include <rhabel/punch/profile.hpp>
 
 #include <cmath>
-#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
@@ -164,16 +163,17 @@ void begin_document(run_outcome& out, const run_request& request, const Result& 
   out.result["effective_modulus"] = effective_modulus;
 }
 
-// The tail of a result document: the diagnostics (with `rounds` for a profile's search), the
-// status that decides the exit code, the echo of the scene; every number checked finite.
+// The tail of a result document: the diagnostics (with `rounds` and `load_fraction` for a
+// profile's search: the fields its diagnostics have), the status that decides the exit code, the
+// echo of the scene; every number checked finite.
 template <class Diagnostics>
-void end_document(run_outcome& out, const scene_spec& spec, const Diagnostics& d,
-                  std::optional<std::size_t> rounds = std::nullopt) {
+void end_document(run_outcome& out, const scene_spec& spec, const Diagnostics& d) {
   ordered_json diagnostics = {{"residual", d.residual}, {"seconds", d.seconds}};
-  if (rounds) diagnostics["rounds"] = *rounds;
+  if constexpr (requires { d.rounds; }) diagnostics["rounds"] = d.rounds;
   diagnostics["iterations"] = d.iterations;
   diagnostics["status"] = punch::to_string(d.code);
   diagnostics["status_message"] = d.status;
+  if constexpr (requires { d.load_fraction; }) diagnostics["load_fraction"] = d.load_fraction;
   out.result["diagnostics"] = std::move(diagnostics);
   out.ok = d.code == punch::status_code::ok;
   out.result["scene"] = echo_scene(spec);
@@ -250,8 +250,7 @@ run_outcome run_profile(const scene_spec& spec, const run_request& request, cons
   doc["contacts"] = std::move(contacts);
   if (!std::isnan(r.clearance)) doc["clearance"] = {{"min", r.clearance}, {"at", r.clearance_at}};
   doc["penetrations"] = r.penetrations;
-  end_document(out, spec, r.diagnostics, r.diagnostics.rounds);
-  out.result["diagnostics"]["load_fraction"] = r.diagnostics.load_fraction;
+  end_document(out, spec, r.diagnostics);
   return out;
 }
 
