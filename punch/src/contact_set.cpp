@@ -89,33 +89,45 @@ std::string element(const char* field, std::size_t i) {
   return os.str();
 }
 
-void validate_profile(const profile_scene& s) {
-  validate_material(s.material, s.speed, who);
-  if (!(s.load > 0) || !std::isfinite(s.load)) bad("load = " + num(s.load) + " must be finite and > 0");
+}  // namespace
+
+void validate_profile(const profile_scene& s, const char* caller) {
+  auto refuse = [caller](const std::string& what) { throw std::invalid_argument(std::string(caller) + ": " + what); };
+  validate_material(s.material, s.speed, caller);
+  if (!(s.load > 0) || !std::isfinite(s.load)) refuse("load = " + num(s.load) + " must be finite and > 0");
   const auto& p = s.profile;
   if (p.x.size() != p.z.size())
-    bad("profile.x has " + std::to_string(p.x.size()) + " samples and profile.z " + std::to_string(p.z.size()) +
+    refuse("profile.x has " + std::to_string(p.x.size()) + " samples and profile.z " + std::to_string(p.z.size()) +
         "; give one z per x");
-  if (p.x.size() < 4) bad("profile.x has " + std::to_string(p.x.size()) + " samples; give at least 4");
+  if (p.x.size() < 4) refuse("profile.x has " + std::to_string(p.x.size()) + " samples; give at least 4");
   for (std::size_t i = 0; i < p.x.size(); ++i) {
-    if (!std::isfinite(p.x[i])) bad(element("profile.x", i) + " = " + num(p.x[i]) + " must be finite");
-    if (!std::isfinite(p.z[i])) bad(element("profile.z", i) + " = " + num(p.z[i]) + " must be finite");
+    if (!std::isfinite(p.x[i])) refuse(element("profile.x", i) + " = " + num(p.x[i]) + " must be finite");
+    if (!std::isfinite(p.z[i])) refuse(element("profile.z", i) + " = " + num(p.z[i]) + " must be finite");
     if (i > 0 && !(p.x[i] > p.x[i - 1]))
-      bad(element("profile.x", i) + " = " + num(p.x[i]) + " must be > " + element("profile.x", i - 1) + " = " + num(p.x[i - 1]));
+      refuse(element("profile.x", i) + " = " + num(p.x[i]) + " must be > " + element("profile.x", i - 1) + " = " + num(p.x[i - 1]));
   }
   // Spacing and heights far from the double range: the spline forms differences and their
   // squares (the relative spacing 1e-12 leaves 4 digits to a slope).
   const double span_x = p.x.back() - p.x.front();
   for (std::size_t i = 1; i < p.x.size(); ++i)
     if (!((p.x[i] - p.x[i - 1]) >= 1e-12 * span_x) || !(std::abs(p.x[i]) < 1e100 && span_x > 1e-100))
-      bad(element("profile.x", i) + " - " + element("profile.x", i - 1) + " = " +
+      refuse(element("profile.x", i) + " - " + element("profile.x", i - 1) + " = " +
           num(p.x[i] - p.x[i - 1]) + " must be >= 1e-12 of the profile's length " + num(span_x) +
           " and the abscissae within (1e-100, 1e100)");
   const auto [lo, hi] = std::minmax_element(p.z.begin(), p.z.end());
-  if (!(*hi - *lo > 0)) bad("profile.z is constant; a flat profile has no contact with smooth edges");
+  if (!(*hi - *lo > 0)) refuse("profile.z is constant; a flat profile has no contact with smooth edges");
   if (!(*hi - *lo > 1e-100 * span_x) || !(std::max(std::abs(*hi), std::abs(*lo)) < 1e100))
-    bad("profile.z spans " + num(*hi - *lo) + " over a length " + num(span_x) +
+    refuse("profile.z spans " + num(*hi - *lo) + " over a length " + num(span_x) +
         ": the slopes must be within (1e-100, 1e100) and the heights below 1e100");
+  if (!(p.period >= 0) || !std::isfinite(p.period))
+    refuse("profile.period = " + num(p.period) + " must be finite and > 0 (or absent: a finite window)");
+  if (p.period > 0) {
+    if (!(p.x.back() < p.x.front() + p.period) || !(p.x.front() + p.period - p.x.back() >= 1e-12 * p.period))
+      refuse("profile.period = " + num(p.period) + ": the samples must lie in [x_0, x_0 + period) = [" + num(p.x.front()) +
+          ", " + num(p.x.front() + p.period) + "), the last at least 1e-12 of the period before its end; profile.x[" +
+          std::to_string(p.x.size() - 1) + "] = " + num(p.x.back()));
+    if (!p.corners.empty()) refuse("profile.corners cannot be given with profile.period (the periodic spline has no corners)");
+  }
   std::vector<double> corners = p.corners;
   std::sort(corners.begin(), corners.end());
   std::size_t previous = 0;
@@ -123,13 +135,15 @@ void validate_profile(const profile_scene& s) {
     const double c = corners[k];
     const auto it = std::lower_bound(p.x.begin() + 1, p.x.end() - 1, c);
     const std::string name = "profile.corners (" + num(c) + ")";
-    if (it == p.x.end() - 1 || *it != c) bad(name + " must each be one of profile.x[1] .. profile.x[n-2]");
+    if (it == p.x.end() - 1 || *it != c) refuse(name + " must each be one of profile.x[1] .. profile.x[n-2]");
     const std::size_t at = static_cast<std::size_t>(it - p.x.begin());
-    if (at - previous < 3) bad(name + ": give at least 4 samples between corners and from the ends");
+    if (at - previous < 3) refuse(name + ": give at least 4 samples between corners and from the ends");
     previous = at;
   }
-  if (p.x.size() - 1 - previous < 3) bad("profile.corners: give at least 4 samples between the last corner and the end");
+  if (p.x.size() - 1 - previous < 3) refuse("profile.corners: give at least 4 samples between the last corner and the end");
 }
+
+namespace {
 
 /// A contact candidate: a run of adjacent bumps [first, last] (indices into the bumps).
 struct run {
@@ -608,8 +622,11 @@ profile_result report_profile(const profile_model& m, const context& cx, const s
 profile_result solve_profile(const profile_scene& s, const solve_options& options) {
   using namespace detail;
   const auto start = std::chrono::steady_clock::now();
-  validate_profile(s);
+  validate_profile(s, who);
   validate_options(options, who);
+  if (s.profile.period > 0)
+    bad("profile.period = " + num(s.profile.period) + ": the spectral contact search solves finite windows; a "
+        "periodic profile is solved by the boundary-element solver (rhabel::punch::solve_profile_bem)");
   const profile_model m(s);
   if (m.bumps.empty())
     bad("profile.z has no local maximum inside the data (its highest samples are at an end): extend the samples "

@@ -4,11 +4,27 @@
 #include <gsl/gsl_spline.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iterator>
 
 namespace rhabel::punch::detail {
 
-profile_curve::profile_curve(const sampled_profile& p) : x_(p.x), z_(p.z), corners_(p.corners) {
+profile_curve::profile_curve(const sampled_profile& p) : x_(p.x), z_(p.z), corners_(p.corners), period_(p.period) {
+  if (period_ > 0) {
+    // One periodic piece through the closing knot (x_0 + period, z_0) (corners are refused with a
+    // period: validate_profile).
+    std::vector<double> x = x_, z = z_;
+    x.push_back(x_.front() + period_);
+    z.push_back(z_.front());
+    piece pc;
+    pc.lo = x.front();
+    pc.hi = x.back();
+    pc.spline.reset(gsl_spline_alloc(gsl_interp_cspline_periodic, x.size()), gsl_spline_free);
+    if (!pc.spline) throw std::bad_alloc();
+    gsl_spline_init(pc.spline.get(), x.data(), z.data(), x.size());
+    pieces_.push_back(std::move(pc));
+    return;
+  }
   std::sort(corners_.begin(), corners_.end());
   // Piece boundaries: the ends and the corners (each a sample abscissa, validated).
   std::vector<std::size_t> cuts{0};
@@ -35,7 +51,14 @@ const profile_curve::piece& profile_curve::piece_at(double x) const {
   return pieces_.back();
 }
 
+double profile_curve::reduce(double x) const {
+  if (period_ <= 0) return x;
+  const double r = x - period_ * std::floor((x - x_.front()) / period_);
+  return std::clamp(r, x_.front(), x_.front() + period_);
+}
+
 double profile_curve::value(double x) const {
+  x = reduce(x);
   const piece& pc = piece_at(x);
   // Linear continuation beyond the data with the end slope (gsl_spline_eval refuses x outside).
   const double at = std::clamp(x, pc.lo, pc.hi);
@@ -44,6 +67,7 @@ double profile_curve::value(double x) const {
 }
 
 double profile_curve::slope(double x) const {
+  x = reduce(x);
   const piece& pc = piece_at(x);
   return gsl_spline_eval_deriv(pc.spline.get(), std::clamp(x, pc.lo, pc.hi), nullptr);
 }

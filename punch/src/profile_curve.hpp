@@ -5,6 +5,8 @@
 // between declared corners (rhabel/punch/profile.hpp, "THE INTERPOLANT" for why). Outside the
 // samples it is continued linearly with the end slope, so that a quadrature point that strays
 // beyond the data gets a finite value (a contact must not reach there: contact_set.cpp checks).
+// A periodic profile (sampled_profile::period > 0) is GSL's periodic cubic spline of the samples
+// closed by the knot (x_0 + period, z_0), evaluated at any x by reduction into one period.
 #pragma once
 
 #include "rhabel/punch/profile.hpp"
@@ -25,6 +27,8 @@ class profile_curve {
   double slope(double x) const;
   double lo() const { return x_.front(); }
   double hi() const { return x_.back(); }
+  /// The period (> 0) of a periodic profile; 0 for a finite window.
+  double period() const { return period_; }
   const std::vector<double>& x() const { return x_; }
   const std::vector<double>& z() const { return z_; }
   const std::vector<double>& corners() const { return corners_; }
@@ -35,9 +39,16 @@ class profile_curve {
     std::shared_ptr<gsl_spline> spline;
   };
   const piece& piece_at(double x) const;
+  /// x reduced into [x_0, x_0 + period) (periodic profiles; x itself otherwise).
+  double reduce(double x) const;
   std::vector<double> x_, z_, corners_;
+  double period_ = 0;
   std::vector<piece> pieces_;
 };
+
+/// Validates a profile scene (every field; std::invalid_argument "caller: field ..." naming it);
+/// shared by solve_profile (contact_set.cpp) and solve_profile_bem (profile_bem.cpp).
+void validate_profile(const profile_scene& s, const char* caller);
 
 /// A bump of the profile: its tip (a sample that is a local maximum of z) and its basin, the
 /// samples between the lowest samples towards the neighbouring tips (the data's ends for the

@@ -9,3 +9,4 @@
 #include "rhabel/riemann.hpp"
 #include "rhabel/punch/contact.hpp"
 #include "rhabel/punch/profile.hpp"
+#include "rhabel/punch/profile_bem.hpp"

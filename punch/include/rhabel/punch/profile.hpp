@@ -122,6 +122,10 @@ struct sampled_profile {
   std::vector<double> x;        ///< abscissae [m], finite, strictly increasing
   std::vector<double> z;        ///< heights [m], finite, z.size() == x.size()
   std::vector<double> corners;  ///< abscissae of slope jumps: each one of x[1] .. x[n-2]
+  /// > 0: the profile repeats with this period [m]; the samples lie in [x_0, x_0 + period) and
+  /// the interpolant is the periodic cubic spline closed by (x_0 + period, z_0) (no corners).
+  /// Solved by solve_profile_bem (rhabel/punch/profile_bem.hpp); solve_profile refuses it.
+  double period = 0;
 };
 
 /// The scene of a sampled profile: one rigid body with a total load, the contacts unknown.

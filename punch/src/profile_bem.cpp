@@ -1,0 +1,257 @@
+// punch/src/profile_bem.cpp: a sampled profile on one rigid body by the boundary-element method
+// (rhabel/punch/profile_bem.hpp): grids refined until the extrapolated loads and C_f meet the
+// acceptance.
+#include "rhabel/punch/profile_bem.hpp"
+
+#include "internal.hpp"
+#include "panel_grid.hpp"
+#include "profile_curve.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+namespace rhabel::punch {
+namespace detail {
+namespace {
+
+constexpr const char* who = "rhabel::punch::solve_profile_bem";
+// The first grid (every panel active; its LU: 256^3 flops) and the grids below n0, refined by 4.
+constexpr std::size_t first_panels = 256;
+// Geometric convergence is taken as observed when the ratio of the last two differences is
+// positive and below this (h^1 gives 0.5, h^2 0.25; above 0.75 the extrapolation would multiply
+// the last difference by more than 3 on a guess).
+constexpr double max_ratio = 0.75;
+
+std::string num(double v, int digits = 3) {
+  std::ostringstream os;
+  os.precision(digits);
+  os << v;
+  return os.str();
+}
+
+/// One patch of one grid: edges, int g and int z' g (units of int g; z' g physical / length).
+struct raw_patch {
+  double a = 0, b = 0, load = 0, moment = 0, peak = 0;
+};
+
+/// What one grid gives: its patches and the body's C_f and contact fraction.
+struct level {
+  std::size_t n = 0;
+  double h_length = 0;  // a panel [m]
+  std::vector<raw_patch> patches;
+  double friction = 0, fraction = 0;
+};
+
+/// The patches of the active panels idx with densities g (periodic: a run through the window's end
+/// and one through its start are one patch, reported from its start in the last period).
+level measure(const panel_grid& gr, const std::vector<std::size_t>& idx, const Eigen::VectorXd& g, double load) {
+  level lv;
+  lv.n = gr.n;
+  lv.h_length = gr.h * gr.length;
+  for (const auto& [s, e] : runs_of(idx)) {
+    raw_patch p;
+    p.a = gr.edge(idx[static_cast<std::size_t>(s)]);
+    p.b = gr.edge(idx[static_cast<std::size_t>(e - 1)] + 1);
+    for (Eigen::Index c = s; c < e; ++c) {
+      const double gc = g[c];
+      p.load += gr.h * gc;
+      p.moment += gc * gr.rise[idx[static_cast<std::size_t>(c)]] / gr.length;
+      p.peak = std::max(p.peak, gc / gr.length);
+    }
+    lv.patches.push_back(p);
+  }
+  if (gr.periodic && lv.patches.size() > 1 && idx.front() == 0 && idx.back() == gr.n - 1) {
+    raw_patch& first = lv.patches.front();
+    raw_patch& last = lv.patches.back();
+    last.b = first.b + gr.length;
+    last.load += first.load;
+    last.moment += first.moment;
+    last.peak = std::max(last.peak, first.peak);
+    lv.patches.erase(lv.patches.begin());
+  }
+  double moment = 0, width = 0;
+  for (const auto& p : lv.patches) moment += p.moment, width += p.b - p.a;
+  lv.friction = moment / load;
+  lv.fraction = width / gr.length;
+  return lv;
+}
+
+/// The limit of v0, v1, v2 (grids h, h/2, h/4) with its error estimate (profile_bem.hpp, THE METHOD).
+bem_estimate extrapolate(double v0, double v1, double v2) {
+  const double d1 = v1 - v0, d2 = v2 - v1;
+  if (d1 != 0 && d2 / d1 > 0 && d2 / d1 < max_ratio) {
+    const double r = d2 / d1, limit = v2 + d2 * r / (1 - r);
+    return {limit, std::abs(limit - v2) + std::abs(d2)};
+  }
+  return {v2, 2 * std::max(std::abs(d1), std::abs(d2))};
+}
+
+/// The finite window's contacts must stay inside the samples (profile_bem.hpp, LIMITS).
+void refuse_end_contact(const panel_grid& gr, const std::vector<std::size_t>& idx, double load_phys) {
+  if (gr.periodic || idx.empty() || (idx.front() != 0 && idx.back() != gr.n - 1)) return;
+  const double at = idx.front() == 0 ? gr.edge(0) : gr.edge(gr.n);
+  throw std::domain_error(std::string(who) + ": at body.load = " + num(load_phys, 17) +
+                          " the contacts reach the end of the samples at x = " + num(at, 17) +
+                          ": extend profile.x and profile.z beyond it, lower body.load, or give profile.period");
+}
+
+/// The panels n0 of the first extrapolation grid: the samples' intervals doubled to >= 256.
+std::size_t base_panels(const profile_curve& curve) {
+  std::size_t n = curve.period() > 0 ? curve.x().size() : curve.x().size() - 1;
+  while (n < first_panels) n *= 2;
+  return n;
+}
+
+/// The search over the grids: levels holds the grids n0 2^k solved (the evidence).
+struct grid_search {
+  std::vector<level> levels;
+  std::size_t steps = 0;
+  std::string stopped;  // why the refinement stopped before the acceptance was met ("" if it was)
+};
+
+/// Whether the last three levels meet the acceptance (profile_bem.hpp, STATUS).
+bool accepted(const std::vector<level>& lv, double tol, double slope, double load) {
+  if (lv.size() < 3) return false;
+  const level &l0 = lv[lv.size() - 3], &l1 = lv[lv.size() - 2], &l2 = lv.back();
+  if (l0.patches.size() != l2.patches.size() || l1.patches.size() != l2.patches.size()) return false;
+  if (extrapolate(l0.friction, l1.friction, l2.friction).error > tol * slope) return false;
+  for (std::size_t k = 0; k < l2.patches.size(); ++k)
+    if (extrapolate(l0.patches[k].load, l1.patches[k].load, l2.patches[k].load).error > tol * load) return false;
+  return true;
+}
+
+grid_search refine(const profile_curve& curve, double load, double load_phys, const context& cx, const bem_options& bo,
+                   double slope) {
+  const auto [lo, hi] = std::minmax_element(curve.z().begin(), curve.z().end());
+  const double top = *hi, span = *hi - *lo;
+  const std::size_t n0 = base_panels(curve);
+  grid_search gs;
+  std::size_t n = std::min(first_panels, n0);
+  std::vector<char> active(n, 1);
+  Eigen::VectorXd g;
+  std::vector<std::size_t> idx;
+  try {
+    for (;;) {
+      panel_grid gr = make_panel_grid(curve, n, cx, top);
+      double D = 0;
+      if (!settle(gr, load, span, active, g, idx, D, cx, gs.steps, gs.steps == 0 ? first_grid_steps : refined_grid_steps)) {
+        gs.stopped = "the active set did not settle on " + std::to_string(n) + " panels";
+        return gs;
+      }
+      if (n >= n0) {
+        if (n == n0) refuse_end_contact(gr, idx, load_phys);
+        gs.levels.push_back(measure(gr, idx, g, load));
+        if (accepted(gs.levels, cx.options.acceptance, slope, load)) return gs;
+      }
+      const std::size_t next = n < n0 ? std::min(4 * n, n0) : 2 * n;
+      if (next > bo.max_panels) {
+        gs.stopped = "the next grid would exceed max_panels = " + std::to_string(bo.max_panels);
+        return gs;
+      }
+      active = refine_active(active, next);
+      n = next;
+    }
+  } catch (const time_limit_reached&) {
+    gs.stopped = cx.time_limit_message();
+  }
+  return gs;
+}
+
+/// The reported values from the last (up to three) levels.
+void report(const grid_search& gs, double pressure_scale, double length, profile_bem_result& out) {
+  const level& last = gs.levels.back();
+  const std::size_t m = gs.levels.size();
+  const bool three = m >= 3 && gs.levels[m - 3].patches.size() == last.patches.size() &&
+                     gs.levels[m - 2].patches.size() == last.patches.size();
+  auto estimate = [&](auto value_of) -> bem_estimate {
+    if (three) return extrapolate(value_of(gs.levels[m - 3]), value_of(gs.levels[m - 2]), value_of(last));
+    if (m >= 2) return {value_of(last), 2 * std::abs(value_of(last) - value_of(gs.levels[m - 2]))};
+    return {value_of(last), std::abs(value_of(last))};
+  };
+  for (std::size_t k = 0; k < last.patches.size(); ++k) {
+    const raw_patch& p = last.patches[k];
+    bem_patch bp;
+    bp.a = p.a;
+    bp.b = p.b;
+    bp.edge_error = last.h_length;
+    if (three) {
+      auto at = [k](const level& l) { return l.patches[k]; };
+      bp.load = extrapolate(at(gs.levels[m - 3]).load, at(gs.levels[m - 2]).load, p.load);
+      bp.hysteretic_friction = extrapolate(at(gs.levels[m - 3]).moment / at(gs.levels[m - 3]).load,
+                                           at(gs.levels[m - 2]).moment / at(gs.levels[m - 2]).load, p.moment / p.load);
+    } else {  // a patch not matched on three grids: its own size as its error
+      bp.load = {p.load, p.load};
+      bp.hysteretic_friction = {p.moment / p.load, std::abs(p.moment / p.load)};
+    }
+    bp.load.value *= pressure_scale;
+    bp.load.error *= pressure_scale;
+    bp.peak_pressure = pressure_scale * p.peak;
+    out.patches.push_back(bp);
+  }
+  out.hysteretic_friction = estimate([](const level& l) { return l.friction; });
+  out.contact_fraction = {last.fraction, 2 * static_cast<double>(last.patches.size()) * last.h_length / length};
+  for (const level& l : gs.levels) {
+    out.diagnostics.level_panels.push_back(l.n);
+    out.diagnostics.level_patches.push_back(l.patches.size());
+    out.diagnostics.level_friction.push_back(l.friction);
+  }
+  out.diagnostics.panels = last.n;
+}
+
+}  // namespace
+}  // namespace detail
+
+profile_bem_result solve_profile_bem(const profile_scene& s, const solve_options& options, const bem_options& bem) {
+  using namespace detail;
+  const auto start = std::chrono::steady_clock::now();
+  validate_profile(s, who);
+  validate_options(options, who);
+  if (bem.max_panels < first_panels)
+    throw std::invalid_argument(std::string(who) + ": bem_options::max_panels = " + std::to_string(bem.max_panels) +
+                                " must be >= " + std::to_string(first_panels));
+  const context cx = make_context(s.material, s.speed, options);
+  const profile_curve curve(s.profile);
+  const double length = s.profile.period > 0 ? s.profile.period : s.profile.x.back() - s.profile.x.front();
+  // max |z'| of the spline at the samples and the panel ends of the first grid: the scale of C_f.
+  double slope = 0;
+  for (double x : s.profile.x) slope = std::max(slope, std::abs(curve.slope(x)));
+  const grid_search gs = refine(curve, s.load / cx.pressure_scale, s.load, cx, bem, slope);
+
+  profile_bem_result out;
+  out.beta = cx.beta;
+  out.kappa = cx.kappa;
+  out.regime = regime(s.material);
+  out.period = s.profile.period;
+  out.mean_pressure = s.load / length;
+  out.diagnostics.active_set_steps = gs.steps;
+  if (gs.levels.empty()) {
+    out.diagnostics.code = status_code::not_converged;
+    out.diagnostics.status = "no grid of " + std::to_string(base_panels(curve)) + " panels or more was solved: " +
+                             gs.stopped;
+  } else {
+    report(gs, cx.pressure_scale, length, out);
+    out.total_friction = out.hysteretic_friction.value + s.material.coulomb;
+    if (!gs.stopped.empty()) {
+      out.diagnostics.code = status_code::not_converged;
+      std::ostringstream os;
+      os.precision(3);
+      os << gs.stopped << " before the acceptance " << options.acceptance << " was met: C_f "
+         << out.hysteretic_friction.value << " +- " << out.hysteretic_friction.error << " (bar "
+         << options.acceptance * slope << " = acceptance x max |z'|), patches on the last grids:";
+      const auto& lp = out.diagnostics.level_patches;
+      for (std::size_t k = lp.size() > 3 ? lp.size() - 3 : 0; k < lp.size(); ++k) os << ' ' << lp[k];
+      out.diagnostics.status = os.str();
+    } else {
+      out.diagnostics.status = "ok";
+    }
+  }
+  out.total_friction = out.hysteretic_friction.value + s.material.coulomb;
+  out.diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return out;
+}
+
+}  // namespace rhabel::punch
