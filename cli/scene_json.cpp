@@ -358,18 +358,34 @@ profile_spec parse_profile(const json& value, const std::string& base_dir) {
   require_object(value, "profile");
   profile_spec p;
   if (value.contains("file")) {
-    only_keys(value, "profile", {"file", "corners"}, " with a file");
+    only_keys(value, "profile", {"file", "corners", "period", "solver"}, " with a file");
     p.file = optional_string(value, "profile", "file");
     const std::filesystem::path path(p.file);
     read_profile_csv(path.is_absolute() || base_dir.empty() ? p.file : (std::filesystem::path(base_dir) / path).string(),
                      p.file, p);
   } else {
-    only_keys(value, "profile", {"x", "z", "corners"});
+    only_keys(value, "profile", {"x", "z", "corners", "period", "solver"});
     p.x = number_array(require(value, "profile", "x", "the sample abscissae (or \"file\")"), "profile.x", "sample abscissa");
     p.z = number_array(require(value, "profile", "z", "the sample heights"), "profile.z", "sample height");
   }
   if (const auto it = value.find("corners"); it != value.end())
     p.corners = number_array(*it, "profile.corners", "abscissa of a slope jump");
+  if (const auto it = value.find("period"); it != value.end())
+    p.period = number(*it, "profile.period", positive, "the period: the samples lie in [x_0, x_0 + period)");
+  // The solver: the spectral contact search (finite windows) or the boundary-element method
+  // (finite or periodic; the only one for a period).
+  const std::string solver = optional_string(value, "profile", "solver");
+  if (solver.empty()) {
+    p.boundary_element = p.period > 0;
+  } else if (solver == "boundary_element") {
+    p.boundary_element = true;
+  } else if (solver == "spectral") {
+    if (p.period > 0)
+      fail_scene("profile.solver = \"spectral\" solves finite windows only; a profile.period needs \"boundary_element\" "
+                 "(or no profile.solver)");
+  } else {
+    fail_scene("profile.solver = \"" + solver.substr(0, 40) + "\" is not a solver (known: spectral, boundary_element)");
+  }
   return p;
 }
 

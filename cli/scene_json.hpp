@@ -36,7 +36,8 @@
 //                                     (the split is solved) and may have a `height`
 // profile          object, optional   instead of indentors (with a body): a sampled rigid profile
 //                                     whose contacts are found, {"x": [..], "z": [..]} or
-//                                     {"file": "FILE.csv"}, optional "corners": [..] (profile_spec)
+//                                     {"file": "FILE.csv"}, optional "corners": [..], "period" (0, inf)
+//                                     and "solver" ("spectral" | "boundary_element") (profile_spec)
 //
 // Policy (decided deliberately, each one is tested in tests/cli/test_solve_errors.sh):
 // - Every field listed is required except `apex`, `name`, `description` (and `material.name`),
@@ -118,6 +119,10 @@ struct indentor_spec {
 struct profile_spec {
   std::vector<double> x, z, corners;
   std::string file;  ///< as written in the scene ("" for inline samples)
+  double period = 0;  ///< "period" (> 0: periodic; 0: a finite window)
+  /// "solver": "boundary_element" (punch::solve_profile_bem; the default with a period) or
+  /// "spectral" (punch::solve_profile; the default without).
+  bool boundary_element = false;
 };
 
 /// A validated scene: every number finite and inside its documented range.

@@ -16,6 +16,7 @@
 
 #include <rhabel/punch/contact.hpp>
 #include <rhabel/punch/profile.hpp>
+#include <rhabel/punch/profile_bem.hpp>
 
 #include <cmath>
 #include <random>
@@ -97,6 +98,8 @@ ordered_json echo_scene(const scene_spec& spec) {
     profile["samples"] = spec.profile->x.size();
     if (!spec.profile->x.empty()) profile["x_range"] = {spec.profile->x.front(), spec.profile->x.back()};
     profile["corners"] = spec.profile->corners;
+    if (spec.profile->period > 0) profile["period"] = spec.profile->period;
+    profile["solver"] = spec.profile->boundary_element ? "boundary_element" : "spectral";
     out["profile"] = std::move(profile);
   } else {
     out["indentors"] = std::move(indentors);
@@ -225,13 +228,58 @@ ordered_json contact_item(punch::indentor_result& ir, std::size_t index, const s
 }
 
 
-// A sampled profile: its contacts as found by punch::solve_profile.
-run_outcome run_profile(const scene_spec& spec, const run_request& request, const punch::solve_options& options) {
+punch::profile_scene profile_scene_of(const scene_spec& spec) {
   punch::profile_scene ps;
   ps.material = to_punch(spec.material);
   ps.speed = spec.speed;
   ps.load = *spec.body_load;
-  ps.profile = {spec.profile->x, spec.profile->z, spec.profile->corners};
+  ps.profile = {spec.profile->x, spec.profile->z, spec.profile->corners, spec.profile->period};
+  return ps;
+}
+
+ordered_json estimate_json(const punch::bem_estimate& e) { return {{"value", e.value}, {"error", e.error}}; }
+
+// A sampled profile by the boundary-element method (profile.solver): its patches, no sampled
+// fields (punch::solve_profile_bem has none; --grid is refused for it by the command).
+run_outcome run_profile_bem(const scene_spec& spec, const run_request& request, const punch::solve_options& options) {
+  if (request.grid > 0)
+    throw input_error("solve: --grid and --csv sample the fields of profile.solver \"spectral\"; the boundary-element "
+                      "solver reports its patches only");
+  const punch::profile_scene ps = profile_scene_of(spec);
+  const punch::profile_bem_result r = solve_or_refuse([&] { return punch::solve_profile_bem(ps, options); });
+  run_outcome out;
+  auto& doc = out.result;
+  begin_document(out, request, r, ps.material.effective_modulus(spec.speed));
+  ordered_json patches = ordered_json::array();
+  for (const auto& p : r.patches)
+    patches.push_back({{"contact", {p.a, p.b}},
+                       {"edge_error", p.edge_error},
+                       {"load", estimate_json(p.load)},
+                       {"hysteretic_friction", estimate_json(p.hysteretic_friction)},
+                       {"peak_pressure", p.peak_pressure}});
+  doc["patches"] = std::move(patches);
+  doc["hysteretic_friction"] = estimate_json(r.hysteretic_friction);
+  doc["total_friction"] = r.total_friction;
+  doc["mean_pressure"] = r.mean_pressure;
+  doc["contact_fraction"] = estimate_json(r.contact_fraction);
+  const auto& d = r.diagnostics;
+  doc["diagnostics"] = {{"seconds", d.seconds},
+                        {"panels", d.panels},
+                        {"active_set_steps", d.active_set_steps},
+                        {"level_panels", d.level_panels},
+                        {"level_patches", d.level_patches},
+                        {"level_friction", d.level_friction},
+                        {"status", punch::to_string(d.code)},
+                        {"status_message", d.status}};
+  out.ok = d.code == punch::status_code::ok;
+  doc["scene"] = echo_scene(spec);
+  require_finite(doc, "result");
+  return out;
+}
+
+// A sampled profile: its contacts as found by punch::solve_profile.
+run_outcome run_profile(const scene_spec& spec, const run_request& request, const punch::solve_options& options) {
+  const punch::profile_scene ps = profile_scene_of(spec);
   punch::profile_result r = solve_or_refuse([&] { return punch::solve_profile(ps, options); });
   run_outcome out;
   auto& doc = out.result;
@@ -263,7 +311,8 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   options.threads = request.threads;
   options.time_limit = request.time_limit;
   options.tolerance = request.tolerance;
-  if (spec.profile) return run_profile(spec, request, options);
+  if (spec.profile)
+    return spec.profile->boundary_element ? run_profile_bem(spec, request, options) : run_profile(spec, request, options);
   punch::scene_result r = solve_or_refuse([&] { return punch::solve(to_punch(spec), options); });
   run_outcome out;
   auto& doc = out.result;

@@ -81,6 +81,9 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
         ``{"file": "FILE.csv"}``, two columns x,z, relative to the working directory, or to the
         scene file's directory with load_scene) and optional ``"corners"``: a sampled rigid
         profile whose contacts are found (examples/README.md, "A sampled (measured) profile").
+        Optional ``"period"`` (> 0: the profile repeats, samples in [x_0, x_0 + period), the load
+        is per period) and ``"solver"``: ``"spectral"`` (finite windows; the default without a
+        period) or ``"boundary_element"`` (finite or periodic; the default with a period).
 
         Every field is required except ``apex``, ``name``, ``description``, ``body`` and
         ``height`` (with a body an indentor has no ``load``; flat punches on a body are not
@@ -152,6 +155,15 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
           penetrates the surface outside the contacts found: the contacts a result that is not
           ok is missing), ``diagnostics.rounds`` and ``diagnostics.load_fraction`` (the fraction
           of the body's load the contacts carry; below 1 only with a status that is not ok).
+        - With ``profile.solver = "boundary_element"``: ``patches`` (each ``contact`` (a, b),
+          ``edge_error`` (one panel), ``load`` and ``hysteretic_friction`` as {``value``,
+          ``error``}: extrapolated over the last three grids with an error estimate, not a bound;
+          ``peak_pressure``, a panel mean), ``hysteretic_friction`` and ``contact_fraction`` of
+          the body {``value``, ``error``}, ``total_friction``, ``mean_pressure`` (load per window
+          or period length), ``diagnostics`` {``seconds``, ``panels``, ``active_set_steps``,
+          ``level_panels``, ``level_patches``, ``level_friction``, ``status``,
+          ``status_message``}. "ok" when the C_f estimate is within acceptance x max |z'| and
+          every patch load's within acceptance x load (use 1e-3 .. 1e-5: a first-order method).
 
         ``result.to_dict()`` is the same as plain dicts and lists with the NumPy arrays;
         ``result.to_plain()`` / ``result.to_json()`` give the command line's document.
@@ -187,14 +199,22 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
     if not (layered_below >= 0 and layered_below < float("inf")):
         raise ValueError(f"layered_below = {layered_below!r} must be finite and >= 0 (0: never)")
     if "profile" in spec:
-        result = _rhabel._solve_profile(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance, threads,
-                                        time_limit, layered_below)
-        # The command line's echo of a profile: the samples stand as their count and range.
         profile = spec["profile"]
+        if profile["solver"] == "boundary_element":
+            if grid:
+                raise ValueError('grid samples the fields of profile.solver "spectral"; the boundary-element solver '
+                                 "reports its patches only")
+            result = _rhabel._solve_profile_bem(spec, acceptance, time_limit)
+        else:
+            result = _rhabel._solve_profile(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance,
+                                            threads, time_limit, layered_below)
+        # The command line's echo of a profile: the samples stand as their count and range.
         echo = Record({k: v for k, v in spec.items() if k != "profile"})
         echo["profile"] = Record({**({"file": profile["file"]} if "file" in profile else {}),
                                   "samples": len(profile["x"]), "x_range": [profile["x"][0], profile["x"][-1]],
-                                  "corners": profile["corners"]})
+                                  "corners": profile["corners"],
+                                  **({"period": profile["period"]} if "period" in profile else {}),
+                                  "solver": profile["solver"]})
         result["scene"] = echo
         return Result(result)
     result = _rhabel._solve(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance, threads, time_limit,

@@ -76,6 +76,8 @@ class Result(Record):
     __slots__ = ()
 
     def __repr__(self):
+        if "patches" in self:
+            return self._patches_repr()
         contacts = self.get("indentors", self.get("contacts", []))
         diagnostics = self.get("diagnostics", {})
         head = (f"rhabel.Result: {len(contacts)} contact{'s' if len(contacts) != 1 else ''}, "
@@ -90,6 +92,25 @@ class Result(Record):
                          f"C_f {_g(c.get('hysteretic_friction'))}, status {c.get('status', '?')}")
         if len(shown) < len(contacts):
             lines.append(f"  ... {len(contacts) - len(shown)} more (r.{'indentors' if 'indentors' in self else 'contacts'})")
+        return "\n".join(lines)
+
+    def _patches_repr(self):
+        """A profile solved by the boundary-element method: C_f and contact fraction with their error
+        estimates, then one line per patch."""
+        patches = self["patches"]
+        diagnostics = self.get("diagnostics", {})
+        cf, fraction = self.get("hysteretic_friction", {}), self.get("contact_fraction", {})
+        lines = [f"rhabel.Result: {len(patches)} patch{'es' if len(patches) != 1 else ''}, "
+                 f"status {diagnostics.get('status', '?')}, C_f {_g(cf.get('value'))} +- {_g(cf.get('error'))}, "
+                 f"contact fraction {_g(fraction.get('value'))} +- {_g(fraction.get('error'))}, "
+                 f"{diagnostics.get('panels', '?')} panels"]
+        shown = patches if len(patches) <= _REPR_MAX_CONTACTS else patches[:_REPR_MAX_CONTACTS - 1]
+        for i, p in enumerate(shown):
+            a, b = p.get("contact", (float("nan"), float("nan")))
+            lines.append(f"  [{i}] [{_g(a)}, {_g(b)}], load {_g(p['load']['value'])}, "
+                         f"C_f {_g(p['hysteretic_friction']['value'])}")
+        if len(shown) < len(patches):
+            lines.append(f"  ... {len(patches) - len(shown)} more (r.patches)")
         return "\n".join(lines)
 
 

@@ -261,16 +261,31 @@ def _profile(value):
     _require_object(value, "profile")
     out = Record()
     if "file" in value:
-        _only_keys(value, "profile", ("file", "corners"), " with a file")
+        _only_keys(value, "profile", ("file", "corners", "period", "solver"), " with a file")
         out["file"] = _optional_string(value, "profile", "file")
         out["x"], out["z"] = _read_profile_csv(out["file"], out["file"])
     else:
-        _only_keys(value, "profile", ("x", "z", "corners"))
+        _only_keys(value, "profile", ("x", "z", "corners", "period", "solver"))
         out["x"] = _number_array(_require(value, "profile", "x", 'the sample abscissae (or "file")'), "profile.x",
                                  "sample abscissa")
         out["z"] = _number_array(_require(value, "profile", "z", "the sample heights"), "profile.z", "sample height")
     out["corners"] = (_number_array(value["corners"], "profile.corners", "abscissa of a slope jump")
                       if "corners" in value else [])
+    if "period" in value:
+        out["period"] = _number(value["period"], "profile.period", _POSITIVE,
+                                "the period: the samples lie in [x_0, x_0 + period)")
+    # The solver: the spectral contact search (finite windows) or the boundary-element method
+    # (finite or periodic; the only one for a period), as the command line decides.
+    solver = _optional_string(value, "profile", "solver")
+    if not solver:
+        solver = "boundary_element" if "period" in out else "spectral"
+    elif solver == "spectral":
+        if "period" in out:
+            _fail('profile.solver = "spectral" solves finite windows only; a profile.period needs "boundary_element" '
+                  '(or no profile.solver)')
+    elif solver != "boundary_element":
+        _fail(f'profile.solver = "{solver[:40]}" is not a solver (known: spectral, boundary_element)')
+    out["solver"] = solver
     return out
 
 

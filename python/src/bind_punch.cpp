@@ -11,6 +11,7 @@
 
 #include <rhabel/punch/contact.hpp>
 #include <rhabel/punch/profile.hpp>
+#include <rhabel/punch/profile_bem.hpp>
 
 #include <cmath>
 #include <string>
@@ -225,6 +226,67 @@ py::dict solve_profile(const py::dict& spec, std::size_t grid, bool displacement
   return out;
 }
 
+/// A value with its error estimate: Record {value, error}, as in the JSON result.
+py::dict estimate_record(const punch::bem_estimate& e) {
+  py::dict out = record();
+  out["value"] = e.value;
+  out["error"] = e.error;
+  return out;
+}
+
+/// punch::solve_profile_bem for a validated scene with a "profile" and profile.solver
+/// "boundary_element"; keys as in the JSON result.
+py::dict solve_profile_bem(const py::dict& spec, double acceptance, double time_limit) {
+  punch::profile_scene ps;
+  ps.material = to_material(spec["material"]);
+  ps.speed = number(spec, "speed");
+  ps.load = number(spec["body"], "load");
+  const py::dict profile = spec["profile"];
+  ps.profile.x = profile["x"].cast<std::vector<double>>();
+  ps.profile.z = profile["z"].cast<std::vector<double>>();
+  ps.profile.corners = profile["corners"].cast<std::vector<double>>();
+  if (profile.contains("period")) ps.profile.period = profile["period"].cast<double>();
+  punch::solve_options options;
+  options.acceptance = acceptance;
+  options.time_limit = time_limit;
+  punch::profile_bem_result r;
+  {
+    py::gil_scoped_release nogil;
+    r = punch::solve_profile_bem(ps, options);
+  }
+  py::dict out = record();
+  out["beta"] = r.beta;
+  out["kappa"] = r.kappa;
+  out["regime"] = r.regime;
+  out["effective_modulus"] = ps.material.effective_modulus(ps.speed);
+  py::list patches;
+  for (const auto& p : r.patches) {
+    py::dict item = record();
+    item["contact"] = py::make_tuple(p.a, p.b);
+    item["edge_error"] = p.edge_error;
+    item["load"] = estimate_record(p.load);
+    item["hysteretic_friction"] = estimate_record(p.hysteretic_friction);
+    item["peak_pressure"] = p.peak_pressure;
+    patches.append(std::move(item));
+  }
+  out["patches"] = std::move(patches);
+  out["hysteretic_friction"] = estimate_record(r.hysteretic_friction);
+  out["total_friction"] = r.total_friction;
+  out["mean_pressure"] = r.mean_pressure;
+  out["contact_fraction"] = estimate_record(r.contact_fraction);
+  py::dict diagnostics = record();
+  diagnostics["seconds"] = r.diagnostics.seconds;
+  diagnostics["panels"] = r.diagnostics.panels;
+  diagnostics["active_set_steps"] = r.diagnostics.active_set_steps;
+  diagnostics["level_panels"] = py::cast(r.diagnostics.level_panels);
+  diagnostics["level_patches"] = py::cast(r.diagnostics.level_patches);
+  diagnostics["level_friction"] = py::cast(r.diagnostics.level_friction);
+  diagnostics["status"] = punch::to_string(r.diagnostics.code);
+  diagnostics["status_message"] = r.diagnostics.status;
+  out["diagnostics"] = std::move(diagnostics);
+  return out;
+}
+
 /// punch::trial_interval for the scene's single indentor on [a, b]; a Record {load,
 /// hysteretic_friction, error_estimate}.
 py::dict trial_interval(const py::dict& spec, double a, double b, double tolerance) {
@@ -252,6 +314,9 @@ void bind_punch(py::module_& m) {
   m.def("_solve_profile", &solve_profile, py::arg("scene"), py::arg("grid"), py::arg("displacement"),
         py::arg("tolerance"), py::arg("residual"), py::arg("acceptance"), py::arg("threads"), py::arg("time_limit"),
         py::arg("layered_below"), "Solves a VALIDATED scene dict with a sampled profile (rhabel.solve validates first).");
+  m.def("_solve_profile_bem", &solve_profile_bem, py::arg("scene"), py::arg("acceptance"), py::arg("time_limit"),
+        "Solves a VALIDATED scene dict with a sampled profile by the boundary-element method (rhabel.solve "
+        "validates first).");
   m.def("_trial_interval", &trial_interval, py::arg("scene"), py::arg("a"), py::arg("b"), py::arg("tolerance"),
         "punch::trial_interval for a VALIDATED one-indentor scene dict (rhabel.trial_interval validates "
         "first). Returns a Record {load, hysteretic_friction, error_estimate}.");

@@ -64,3 +64,43 @@ def test_python_profile_inputs():
         rhabel.solve({**base, "profile": {"x": [0, 1, 2, 3], "z": [0, 1, 0, -1]}}, acceptance=1.0)
     with pytest.raises(ValueError, match=r'profile.file = "no-such.csv" is not a readable regular file'):
         rhabel.solve({**base, "profile": {"file": "no-such.csv"}})
+
+
+PERIODIC = SOURCE_DIR / "examples" / "rough_periodic.json"
+
+
+def test_periodic_example_equals_the_command_line(cli):
+    # profile.period: the boundary-element solver; the same document as `rhabel solve`, bit for bit.
+    run = subprocess.run([str(cli), "solve", str(PERIODIC), "--acceptance", "1e-4", "--compact"],
+                         capture_output=True, text=True)
+    assert run.returncode == 0, run.stderr
+    expected = json.loads(run.stdout)
+    result = rhabel.solve(rhabel.load_scene(PERIODIC), acceptance=1e-4)
+    ours = result.to_plain()
+    for doc in (expected, ours):
+        del doc["diagnostics"]["seconds"]
+        doc["scene"]["profile"].pop("file")
+    assert ours == expected
+    assert repr(result).startswith(f"rhabel.Result: {len(result.patches)} patches, status ok, C_f ")
+    assert len(repr(result).splitlines()) <= 1 + rhabel._record._REPR_MAX_CONTACTS
+
+
+def test_periodic_profile_validation():
+    base = {"material": {"alpha": 0.3, "E1": 1.0, "nu": 0.0, "coulomb": 0.0}, "speed": 1.0, "body": {"load": 1e-3}}
+    x = [0.0, 0.25, 0.5, 0.75]
+    z = [0.0, -0.01, -0.02, -0.01]
+    with pytest.raises(ValueError, match="a profile.period needs"):
+        rhabel.solve({**base, "profile": {"x": x, "z": z, "period": 1.0, "solver": "spectral"}})
+    with pytest.raises(ValueError, match="is not a solver"):
+        rhabel.solve({**base, "profile": {"x": x, "z": z, "solver": "bem"}})
+    with pytest.raises(ValueError, match=r"profile.period = 0 is outside the valid range \(0, inf\)"):
+        rhabel.solve({**base, "profile": {"x": x, "z": z, "period": 0}})
+    with pytest.raises(ValueError, match="the samples must lie in"):
+        rhabel.solve({**base, "profile": {"x": x, "z": z, "period": 0.75}})
+    with pytest.raises(ValueError, match="reports its patches only"):
+        rhabel.solve({**base, "profile": {"x": x, "z": z, "period": 1.0}}, grid=5)
+    # A finite window by the boundary-element method on request.
+    xs = np.linspace(-1, 1, 201)
+    r = rhabel.solve({**base, "profile": {"x": xs, "z": -xs ** 2 / 2, "solver": "boundary_element"}}, acceptance=1e-4)
+    assert r.diagnostics.status == "ok", r.diagnostics.status_message
+    assert len(r.patches) == 1 and r.scene.profile.solver == "boundary_element"
