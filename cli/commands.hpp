@@ -89,12 +89,14 @@ inline CLI::Validator number_in(double lo, double hi, bool lo_open = false) {
       bounded ? "FLOAT in " + range : "FLOAT " + range);
 }
 
-/// --acceptance of `solve` and `sweep`: punch::solve_options::acceptance, the bar of status "ok".
+/// --acceptance of `solve` and `sweep`: punch::solve_options::acceptance, the bar of status "ok";
+/// left at 0 when not given (the solver's default: run_request::acceptance).
 inline CLI::Option* add_acceptance_option(CLI::App* command, double& acceptance) {
   return command
       ->add_option("--acceptance", acceptance,
                    "the bar of status \"ok\": relative residual of (8), negative pressure, load defect and error "
-                   "estimate (default 1e-9; a sampled profile is worth ~1e-6)")
+                   "estimate (default 1e-9; 1e-4 for profile.solver boundary_element, a first-order method; a "
+                   "sampled profile is worth ~1e-6)")
       ->check(number_in(1e-15, 0.1));
 }
 

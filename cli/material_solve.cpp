@@ -37,10 +37,24 @@ double fit_length(const indentor_spec& indentor, const nlohmann::ordered_json& s
   return indentor.shape == shape_kind::flat ? indentor.width : solved.at("contact_length").get<double>();
 }
 
+// The L of omega0 = U/L: the mean over the indentors of fit_length; for a sampled profile, the
+// load-weighted mean width of the contacts found (of the patches of the boundary-element solver).
 double mean_contact_length(const scene_spec& scene, const run_outcome& outcome) {
+  const auto& doc = outcome.result;
+  if (scene.profile) {
+    double sum = 0, load = 0;
+    const bool patches = doc.contains("patches");
+    for (const auto& item : doc.at(patches ? "patches" : "contacts")) {
+      const double w = patches ? item.at("load").at("value").get<double>() : item.at("load").get<double>();
+      const auto& c = item.at("contact");
+      sum += w * (c.at(1).get<double>() - c.at(0).get<double>());
+      load += w;
+    }
+    return load > 0 ? sum / load : 0.0;
+  }
   double sum = 0;
   std::size_t n = 0;
-  for (const auto& item : outcome.result.at("indentors")) {
+  for (const auto& item : doc.at("indentors")) {
     sum += fit_length(scene.indentors.at(n), item);
     ++n;
   }
@@ -62,14 +76,17 @@ materials::master_curve load_master_curve(const master_curve_spec& spec, const s
 run_outcome run_scene_with_material(const scene_spec& scene, const run_request& request, std::string* warning) {
   if (warning) warning->clear();
   if (!scene.material.curve) return run_scene(scene, request);
-  if (scene.profile)
-    throw input_error("solve: material.master_curve with a profile is not supported (the fit uses the indentors' "
-                      "contact lengths): give material.alpha and material.E1");
   const auto& spec = *scene.material.curve;
   const auto curve = load_master_curve(spec, "solve");
   scene_spec trial = scene;
   run_request fit_request;  // the fixed point's trial solves: no samples, the run's tolerance
   fit_request.tolerance = request.tolerance;
+  // A profile's trial solves: its contact search at the run's acceptance and time limit (a
+  // profile's contacts are only verified to what its data is worth: 1e-9 would never be ok).
+  if (scene.profile) {
+    fit_request.acceptance = request.acceptance;
+    fit_request.time_limit = request.time_limit;
+  }
   auto length = [&](const materials::local_fit& f) {
     trial.material.alpha = f.alpha;
     trial.material.E1 = f.E1;

@@ -304,10 +304,14 @@ run_outcome run_profile(const scene_spec& spec, const run_request& request, cons
 
 }  // namespace
 
+double default_acceptance(const scene_spec& scene) {
+  return scene.profile && scene.profile->boundary_element ? 1e-4 : 1e-9;
+}
+
 run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   punch::solve_options options;
   options.grid_points = request.grid;
-  options.acceptance = request.acceptance;
+  options.acceptance = request.acceptance > 0 ? request.acceptance : default_acceptance(spec);
   options.threads = request.threads;
   options.time_limit = request.time_limit;
   options.tolerance = request.tolerance;

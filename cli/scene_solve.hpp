@@ -18,7 +18,9 @@ namespace rhabel::cli {
 /// What `rhabel solve` was asked to add to the summary.
 struct run_request {
   std::size_t grid = 0;  ///< 0: no sampled fields; otherwise points per field (>= 2)
-  double acceptance = 1e-9;  ///< punch::solve_options::acceptance: the bar of status "ok"
+  /// punch::solve_options::acceptance, the bar of status "ok"; 0: the solver's default,
+  /// default_acceptance (1e-9; 1e-4 for a profile by the boundary-element method).
+  double acceptance = 0;
   std::size_t threads = 1;   ///< punch::solve_options::threads (rhabel sweep keeps 1: it runs rows in parallel)
   double time_limit = 0;     ///< punch::solve_options::time_limit (seconds; 0 = none)
   double tolerance = 1e-12;  ///< punch::solve_options::tolerance (--tolerance; commands.hpp)
@@ -53,6 +55,10 @@ struct run_outcome {
 /// the same bytes as dumping a document that held the arrays. `write` receives consecutive
 /// pieces of it.
 void write_document(const run_outcome& outcome, bool compact, const std::function<void(std::string_view)>& write);
+
+/// The bar of status "ok" when none is given: 1e-9, or 1e-4 for a profile solved by the
+/// boundary-element method (first order: 1e-9 would refine to its panel limit and never be ok).
+double default_acceptance(const scene_spec& scene);
 
 /// Solves `scene`. Throws input_error if the solver rejects the scene (e.g. indentors whose
 /// contact intervals would overlap), std::runtime_error if it fails or produces a non-finite

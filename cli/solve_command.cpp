@@ -10,7 +10,8 @@
 //   --csv PREFIX   also writes PREFIX_pressure.csv (indentor,x,pressure) and
 //                  PREFIX_displacement.csv (indentor,x,displacement): all indentors in one file
 //                  each, `indentor` is the index in the scene; implies --grid 201 unless given.
-//   --acceptance TOL  the bar of status "ok" (punch::solve_options::acceptance, default 1e-9).
+//   --acceptance TOL  the bar of status "ok" (punch::solve_options::acceptance, default 1e-9; 1e-4 for
+//                     profile.solver boundary_element).
 //   --tolerance TOL   relative tolerance of the root finders and expansions
 //                  (punch::solve_options::tolerance, default 1e-12, in [1e-15, 1e-2]).
 //   --threads N    threads for the Jacobian columns of several contacts (punch::solve_options::threads;
@@ -62,7 +63,7 @@ struct solve_arguments {
   std::string csv_prefix;
   bool csv = false;  // --csv given (an empty prefix is an error, not "no CSV")
   bool compact = false;
-  double acceptance = 1e-9;
+  double acceptance = 0;  // 0: not given, the solver's default (run_request::acceptance)
   double tolerance = 1e-12;
   std::size_t threads = 0;  // every core
   double time_limit = 0;    // none

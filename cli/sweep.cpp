@@ -130,14 +130,19 @@ std::vector<json> expand_range(const json& spec, const std::string& where, bool 
 }
 
 // Makes a relative master_curve path absolute against `dir`.
-void absolutize_curve(json& scene, const fs::path& dir) {
+// The scene's file names (material.master_curve, profile.file) made absolute against the
+// directory of the scene they were written in: each row's scene is parsed without a directory.
+void absolutize_paths(json& scene, const fs::path& dir) {
   if (!scene.is_object()) return;
-  const auto m = scene.find("material");
-  if (m == scene.end() || !m->is_object()) return;
-  const auto c = m->find("master_curve");
-  if (c == m->end() || !c->is_string()) return;
-  const fs::path p = c->get<std::string>();
-  if (!p.empty() && p.is_relative()) *c = fs::absolute(dir / p).lexically_normal().string();
+  auto absolutize = [&](json& value) {
+    if (!value.is_string()) return;
+    const fs::path p = value.get<std::string>();
+    if (!p.empty() && p.is_relative()) value = fs::absolute(dir / p).lexically_normal().string();
+  };
+  if (const auto m = scene.find("material"); m != scene.end() && m->is_object())
+    if (const auto c = m->find("master_curve"); c != m->end()) absolutize(*c);
+  if (const auto pr = scene.find("profile"); pr != scene.end() && pr->is_object())
+    if (const auto f = pr->find("file"); f != pr->end()) absolutize(*f);
 }
 
 std::string number_text(double x) { return json(x).dump(); }  // shortest round trip
@@ -185,11 +190,12 @@ sweep_spec parse_sweep(const std::string& text, const std::string& source, const
   } else {
     fail_sweep("scene must be an object or a file name");
   }
-  absolutize_curve(sweep.base, scene_dir);
+  absolutize_paths(sweep.base, scene_dir);
   // The base scene must be valid by itself (its errors name the field: "sweep: scene: ...").
   try {
     const auto spec = parse_scene(sweep.base.dump(), "(base scene)");
     sweep.indentors = spec.indentors.size();
+    sweep.profile = spec.profile.has_value();
     // A bad master curve is bad input of the whole sweep (exit 2), not a failed row each time.
     if (spec.material.curve) {
       try {
@@ -314,6 +320,9 @@ std::vector<std::string> row_columns(const sweep_spec& sweep) {
     const std::string p = "ind" + std::to_string(i) + "_";
     for (const char* c : {"a", "b", "contact_length", "load", "C_f", "total_friction"}) cols.push_back(p + c);
   }
+  // A sampled profile: its contacts' count and the body's friction and contact fraction.
+  if (sweep.profile)
+    for (const char* c : {"contacts", "C_f", "C_f_error", "total_friction", "contact_fraction"}) cols.emplace_back(c);
   for (const char* c : {"residual", "seconds", "message"}) cols.emplace_back(c);
   return cols;
 }
@@ -406,7 +415,27 @@ std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format forma
         message = fit.at("warning").get<std::string>();
       }
     }
-    const auto& inds = r.at("indentors");
+    if (r.contains("patches")) {  // profile.solver "boundary_element"
+      set("contacts", std::to_string(r.at("patches").size()));
+      set("C_f", number_text(r.at("hysteretic_friction").at("value").get<double>()));
+      set("C_f_error", number_text(r.at("hysteretic_friction").at("error").get<double>()));
+      set("total_friction", number_text(r.at("total_friction").get<double>()));
+      set("contact_fraction", number_text(r.at("contact_fraction").at("value").get<double>()));
+    } else if (r.contains("contacts")) {  // the spectral search: load-weighted over the contacts
+      double load = 0, moment = 0, total = 0, width = 0;
+      for (const auto& c : r.at("contacts")) {
+        const double w = c.at("load").get<double>();
+        load += w;
+        moment += w * c.at("hysteretic_friction").get<double>();
+        total += w * c.at("total_friction").get<double>();
+        width += c.at("contact_length").get<double>();
+      }
+      const auto& range = r.at("scene").at("profile").at("x_range");
+      set("contacts", std::to_string(r.at("contacts").size()));
+      if (load > 0) set("C_f", number_text(moment / load)), set("total_friction", number_text(total / load));
+      set("contact_fraction", number_text(width / (range.at(1).get<double>() - range.at(0).get<double>())));
+    }
+    const nlohmann::ordered_json inds = r.contains("indentors") ? r.at("indentors") : nlohmann::ordered_json::array();
     for (std::size_t i = 0; i < inds.size(); ++i) {
       const std::string p = "ind" + std::to_string(i) + "_";
       const auto& ind = inds[i];
@@ -417,7 +446,7 @@ std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format forma
       set(p + "C_f", number_text(ind.at("hysteretic_friction").get<double>()));
       set(p + "total_friction", number_text(ind.at("total_friction").get<double>()));
     }
-    set("residual", number_text(diag.at("residual").get<double>()));
+    if (diag.contains("residual")) set("residual", number_text(diag.at("residual").get<double>()));
   } catch (const input_error& e) {
     if (status == "ok") status = "no_solution";
     message = e.what();

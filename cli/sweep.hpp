@@ -47,6 +47,7 @@ struct sweep_spec {
   bool zip = false;
   std::size_t rows = 0;
   std::size_t indentors = 0;      ///< of the base scene (every row has as many)
+  bool profile = false;           ///< the base scene is a sampled profile (its own columns)
 };
 
 /// Reads and validates a sweep file (and its base scene). Throws input_error ("sweep: ...").

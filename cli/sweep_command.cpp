@@ -78,7 +78,7 @@ struct sweep_arguments {
   std::size_t threads = 0;
   double time_limit = 0;  // seconds per row's solve; 0 = none
   double tolerance = 1e-12;
-  double acceptance = 1e-9;
+  double acceptance = 0;  // 0: not given, the solver's default (run_request::acceptance)
   bool print_scenes = false;
   bool quiet = false;
 };

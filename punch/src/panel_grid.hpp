@@ -12,7 +12,7 @@
 //   periodic a circulant (n values): the panel and its images j lambda summed, the images |j| <= 4
 //            in closed form, the rest by the Taylor series of Psi about j lambda summed over j with
 //            Hurwitz zeta values (GSL), the divergent k = 1 sum by the zeta function's continuation
-//            (docs/theory.md section 11: this drops the q = 0 mode, which only moves the rigid
+//            (docs/theory.md section 10: this drops the q = 0 mode, which only moves the rigid
 //            level); constants independent of the collocation point are dropped for the same reason.
 // With x = lo + length x', Psi(length d) = length^alpha Psi(d) + const, so the kernel is scaled by
 // Gamma(1 - alpha) length^alpha and the density on [0, 1] is g' = length g (int g' dx' = P).
@@ -20,8 +20,12 @@
 // THE ACTIVE SET (`settle`). Unknowns g on the active panels and the level D:
 //     A g - D = z on the active panels,   >= D at the others,   g >= 0,   h sum g = P,
 // solved as g = g1 + D g0 (A g1 = z, A g0 = 1) by one LU up to 600 active panels, else GMRES
-// (abel/detail/block_gmres.hpp) preconditioned by the exact inverse of each run of active panels
-// (runs longer than 600 cut into blocks); every product by FFT (toeplitz_product.hpp). Each step
+// (abel/detail/block_gmres.hpp) preconditioned by the exact inverse of blocks of neighbouring runs
+// of active panels (up to 600 panels a block; longer runs cut); each product by FFT
+// (toeplitz_product.hpp) or, when the active panels m are few against the grid's n
+// (m^2 < 5 M log2 M, M ~ 2n), as the direct sum from the table. GMRES needs about one iteration
+// per block for the far coupling (the split of the load between blocks): with ~1000 contacts
+// on a fine grid that is hundreds of products a step (LIMITS of rhabel/punch/profile_bem.hpp). Each step
 // drops every panel with g < 0, and when none is negative adds every panel that penetrates
 // (w - z < D by more than 1e-9 of the profile's span), until neither happens (at most max_steps:
 // a grid started from the last grid's set settles in a few; the first grid, started with every

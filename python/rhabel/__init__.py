@@ -38,7 +38,7 @@ __all__ = ["solve", "trial_interval", "load_scene", "validate_scene", "Record", 
            "jacobi_p", "abel", "riemann", "__version__"]
 
 
-def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acceptance=1e-9, threads=1, time_limit=0,
+def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acceptance=None, threads=1, time_limit=0,
           layered_below=3e-3):
     """Solve a scene: rigid indentors sliding together at speed U towards -x over a power-law
     viscoelastic half-space E(t) = E1 t^-alpha (plane strain, steady state). Same schema, same
@@ -100,9 +100,10 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
     residual : bool
         Compute the independent residual of the Abel equation (the evidence that the density
         solves it). False skips it (a quarter to a third of a wedge solve); residuals are NaN.
-    acceptance : float in [1e-15, 0.1]
+    acceptance : float in [1e-15, 0.1] or None
         The bar of status "ok" (residual, negative pressure, load defect, error estimate;
-        default 1e-9). A sampled profile is worth ~1e-6 (its spline limits the residual).
+        default None: 1e-9, and 1e-4 for ``profile.solver = "boundary_element"``, a first-order
+        method). A sampled profile is worth ~1e-6 (its spline limits the residual).
     threads : int in [0, 1024]
         Threads for the finite-difference Jacobian of several contacts (default 1; 0: every
         core). The result is the same for any count, bit for bit.
@@ -187,6 +188,9 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
     """
     spec = _validate(scene)
     grid = _grid(grid)
+    if acceptance is None:  # the solver's default, as the command line's
+        bem = "profile" in spec and spec["profile"]["solver"] == "boundary_element"
+        acceptance = 1e-4 if bem else 1e-9
     acceptance = float(acceptance)
     if not 1e-15 <= acceptance <= 0.1:
         raise ValueError(f"acceptance = {acceptance!r} is outside the valid range [1e-15, 0.1]")

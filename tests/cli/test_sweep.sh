@@ -137,6 +137,32 @@ assert float(r[2]["omega0"]) == f["omega0"] and float(r[2]["alpha"]) == f["alpha
 assert float(r[2]["ind0_C_f"]) == s["indentors"][0]["hysteretic_friction"]
 PY
 
+# --- a rough periodic profile on the measured rubber: friction against speed, one sweep ------------
+# Its profile.file is relative to the example's directory (made absolute for every row); each row
+# equals its single solve bit for bit (the boundary-element solver's C_f with its error estimate).
+"$py" - "$src/examples/rough_periodic.json" "$tmp/rough_scene.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["material"] = {"master_curve": "materials/filled_rubber.csv", "nu": 0.5, "coulomb": 0.0}
+s["profile"]["file"] = "rough_periodic.csv"
+json.dump(s, open(sys.argv[2], "w"))
+PY
+cp "$src/examples/rough_periodic.csv" "$tmp/" && mkdir -p "$tmp/materials" && cp "$src/examples/materials/filled_rubber.csv" "$tmp/materials/"
+printf '%s' '{"scene": "rough_scene.json", "axes": [{"path": "speed", "values": [1e-4, 1.0]}]}' > "$tmp/rough.json"
+"$rhabel" sweep "$tmp/rough.json" --out "$tmp/rough.csv" --acceptance 1e-4 2> "$tmp/err"; rc=$?
+[ "$rc" -eq 0 ] || fail "rough-profile sweep: exit $rc ($(cat "$tmp/err"))"
+"$rhabel" sweep "$tmp/rough.json" --print-scenes | sed -n 2p > "$tmp/rough_row1.json"
+(cd "$tmp" && "$rhabel" solve rough_row1.json --acceptance 1e-4 --compact > rough_row1.out) || fail "rough-profile row 1: solve"
+"$py" - "$tmp/rough.csv" "$tmp/rough_row1.out" <<'PY' || fail "rough-profile row 1 against its single solve"
+import csv, json, sys
+r = list(csv.DictReader(open(sys.argv[1], newline="")))
+assert len(r) == 2 and all(x["status"] == "ok" for x in r), r
+s = json.load(open(sys.argv[2]))
+assert float(r[1]["C_f"]) == s["hysteretic_friction"]["value"] and float(r[1]["C_f_error"]) == s["hysteretic_friction"]["error"]
+assert int(r[1]["contacts"]) == len(s["patches"]) and float(r[1]["omega0"]) == s["material_fit"]["omega0"]
+assert float(r[0]["C_f"]) != float(r[1]["C_f"])  # the rubber's response differs over four decades
+PY
+
 # --- killed part-way (SIGKILL) and rerun: every row exactly once ----------------------------------
 cat > "$tmp/long.json" <<'JSON'
 {"scene": {"material": {"alpha": 0.3, "E1": 1.0e6, "nu": 0.3, "coulomb": 0.5}, "speed": 0.01,

@@ -13,7 +13,7 @@
 //   (tangential over normal force, per period), the mean pressure and the contact fraction; each
 //   value extrapolated over the last three grids with an ERROR ESTIMATE (not a bound).
 //
-// THE METHOD (docs/theory.md sections 9 and 11)
+// THE METHOD (docs/theory.md sections 9 and 10)
 //   The pressure piecewise constant on n uniform panels over the window (one period), collocation
 //   at 3/4 of each panel, the panel influences in closed form (periodic: plus the images' Taylor
 //   series summed by Hurwitz zeta values), an active set on the panels (every panel with negative
