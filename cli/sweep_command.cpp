@@ -481,7 +481,12 @@ void add_sweep_command(CLI::App& app, command_action& action) {
   cmd->add_flag("--quiet", args->quiet, "no progress bar");
   cmd->callback([&action, args] {
     action = [args] {
-      mpi_context mpi;
+      // Rank 0's context outlives main's report of a failure (below): MPI_Finalize, which waits
+      // for every rank, then runs at exit, so no rank ends (and mpirun tears the job down) before
+      // rank 0 has printed its line (measured: under load the line was sometimes lost).
+      static std::unique_ptr<mpi_context> kept;
+      auto owned = std::make_unique<mpi_context>();
+      mpi_context& mpi = *owned;
       if (!mpi.active) return run_sweep(*args, mpi);
       try {
         return run_sweep(*args, mpi);
@@ -497,6 +502,7 @@ void add_sweep_command(CLI::App& app, command_action& action) {
         // (the existing output): each rank ends with MPI_Finalize (~mpi_context) and the same
         // code; rank 0 alone prints the line (main).
         if (mpi.rank != 0) return exit_code_of(e);
+        kept = std::move(owned);
         throw;
       }
     };
