@@ -14,7 +14,12 @@
 //   contact.cpp        the public entry points (solve, solve_single, trial_interval), validation;
 //   contact_set.cpp    a sampled profile on one rigid body (solve_profile): the search for its
 //                      contact set, started from coarse_contact.hpp's boundary-element solve, on
-//                      the spline and bumps of profile_curve.hpp.
+//                      the spline and bumps of profile_curve.hpp;
+//   panel_grid.cpp     the boundary-element discretisation of a profile (finite: Toeplitz;
+//                      periodic: the regularised circulant) and its active set, shared by
+//                      coarse_contact.cpp and profile_bem.cpp;
+//   profile_bem.cpp    a sampled profile by the boundary-element method (solve_profile_bem):
+//                      grids refined until the extrapolated loads and C_f meet the acceptance.
 // A new shape: its forcing in shapes.cpp (own_slope, own_forcing), its isolated contact in
 // single_contact.cpp (solve_isolated), its role in the coupled system in coupled_solve.cpp
 // (role_of), its profile in surface.hpp. A new edge condition: coupled_solve.cpp (evaluate).

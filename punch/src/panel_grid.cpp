@@ -104,7 +104,10 @@ panel_grid make_panel_grid(const profile_curve& curve, std::size_t n, const cont
     // Circulant: A(i, j) = c((i - j) mod n), c(m) the periodic kernel at sigma = (m + theta) h.
     const periodic_panel_kernel W(alpha, kappa, c1);
     std::vector<double> c(n);
-    for (std::size_t m = 0; m < n; ++m) c[m] = scale * W(h, (static_cast<double>(m) + theta) * h);
+    for (std::size_t m = 0; m < n; ++m) {
+      if (m % 65536 == 0) cx.check_time();  // ~0.1 s of kernel values between checks
+      c[m] = scale * W(h, (static_cast<double>(m) + theta) * h);
+    }
     for (std::ptrdiff_t m = -last; m <= last; ++m)  // m = j - i
       gr.kernel[static_cast<std::size_t>(m + last)] = c[static_cast<std::size_t>((-m + static_cast<std::ptrdiff_t>(n)) % static_cast<std::ptrdiff_t>(n))];
   } else {
@@ -147,8 +150,9 @@ double fft_cost(std::size_t n) {
 }
 
 /// g on the active panels idx and the level D: A g - D = z there, h sum g = load. As g1 + D g0
-/// with A g1 = z and A g0 = 1. False when the solve fails.
-bool solve_active(panel_grid& gr, const std::vector<std::size_t>& idx, double load, Eigen::VectorXd& g, double& D) {
+/// with A g1 = z and A g0 = 1. False when the solve fails. Checks the time limit at each product.
+bool solve_active(panel_grid& gr, const std::vector<std::size_t>& idx, double load, Eigen::VectorXd& g, double& D,
+                  const context& cx) {
   const auto m = static_cast<Eigen::Index>(idx.size());
   auto at = [&](Eigen::Index r, Eigen::Index c) {
     return gr.A(idx[static_cast<std::size_t>(r)], idx[static_cast<std::size_t>(c)]);
@@ -187,6 +191,7 @@ bool solve_active(panel_grid& gr, const std::vector<std::size_t>& idx, double lo
     // grid (small contacts on a fine grid), as the sum over the active pairs from the table.
     const bool direct = static_cast<double>(m) * static_cast<double>(m) < fft_cost(gr.n);
     auto product = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
+      cx.check_time();  // a step on a fine grid may take many products: the limit is checked at each
       if (!direct) return gr.product->apply(idx, idx, v);
       Eigen::VectorXd out(m);
       for (Eigen::Index r = 0; r < m; ++r) {
@@ -219,7 +224,7 @@ bool settle(panel_grid& gr, double load, double span, std::vector<char>& active,
     idx.clear();
     for (std::size_t i = 0; i < gr.n; ++i)
       if (active[i]) idx.push_back(i);
-    if (idx.empty() || !solve_active(gr, idx, load, g, D)) return false;
+    if (idx.empty() || !solve_active(gr, idx, load, g, D, cx)) return false;
     bool dropped = false;
     for (std::size_t c = 0; c < idx.size(); ++c)
       if (g[static_cast<Eigen::Index>(c)] < 0) active[idx[c]] = 0, dropped = true;

@@ -31,7 +31,7 @@
 // a grid started from the last grid's set settles in a few; the first grid, started with every
 // panel active, sheds the panels outside the contacts a few per step: measured ~130 steps for one
 // contact of 1/30 of the window at alpha 0.7).
-// Each step checks solve_options::time_limit (time_limit_reached).
+// Each step and each GMRES product checks solve_options::time_limit (time_limit_reached).
 #pragma once
 
 #include "internal.hpp"

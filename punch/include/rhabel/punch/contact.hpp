@@ -293,8 +293,8 @@ struct solve_options {
   /// Seconds after which a coupled solve (several contacts; the sampled profile's contact search)
   /// stops and reports what it reached with status_code::not_converged and a message naming the
   /// limit; 0 = no limit. Checked at every evaluation of the coupled edge conditions (each
-  /// Jacobian column, each point of a line search) and every active-set step of a profile's coarse
-  /// search, so a solve stops within one evaluation of it (milliseconds to a few tenths of a
+  /// Jacobian column, each point of a line search) and every product of the boundary-element
+  /// active set (a profile's coarse search, solve_profile_bem), so a solve stops within one evaluation of it (milliseconds to a few tenths of a
   /// second) and then reports the last accepted state, with its report's own cost on top (the
   /// residuals and clearances of the contacts reached). A one-contact solve, which takes
   /// milliseconds, does not check it. The work done by a given time depends on

@@ -105,7 +105,11 @@
 //   Any alpha in [0, 1) and beta; contacts with smooth edges and no declared corner inside (see
 //   THE INTERPOLANT; either shows as tension or not_converged). The data must extend beyond
 //   the contacts. A contact that must cover many samples (a long contact on a rough profile)
-//   needs a degree beyond solve_options::max_degree: not_converged with its residual.
+//   needs a degree beyond solve_options::max_degree: not_converged with its residual. Rough
+//   (self-affine) profiles with tens to hundreds of contacts mostly end not_converged here (a
+//   contact's residual, a negative pressure, or the load continuation stopping short); periodic
+//   profiles are not solved here at all. Both are what rhabel/punch/profile_bem.hpp's
+//   boundary-element solver is for (first order, with error estimates).
 #pragma once
 
 #include "rhabel/punch/contact.hpp"

@@ -31,7 +31,7 @@
 //   solve_options::acceptance x max |z'| (C_f is a mean of z' weighted by the pressure: max |z'|
 //   bounds it) and every patch's load error estimate at most acceptance x P. The grids are refined
 //   until that holds, the next grid would exceed max_panels, or solve_options::time_limit runs out
-//   (checked at every active-set step): then not_converged, with the estimates of the last grids
+//   (checked at every product of the active set's linear solves): then not_converged, with the estimates of the last grids
 //   and the reason in the status. The edges are those of the finest grid, within one panel
 //   (edge_error); patches narrower than a panel of the finest grid are not seen.
 //
