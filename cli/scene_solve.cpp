@@ -256,7 +256,8 @@ run_outcome run_profile_bem(const scene_spec& spec, const run_request& request, 
                        {"edge_error", p.edge_error},
                        {"load", estimate_json(p.load)},
                        {"hysteretic_friction", estimate_json(p.hysteretic_friction)},
-                       {"peak_pressure", p.peak_pressure}});
+                       {"peak_pressure", p.peak_pressure},
+                       {"pressure_width", p.pressure_width}});
   doc["patches"] = std::move(patches);
   doc["hysteretic_friction"] = estimate_json(r.hysteretic_friction);
   doc["total_friction"] = r.total_friction;

@@ -36,6 +36,12 @@ std::string num(double v, int digits = 3) {
 /// One patch of one grid: edges, int g and int z' g (units of int g; z' g physical / length).
 struct raw_patch {
   double a = 0, b = 0, load = 0, moment = 0, peak = 0;
+  double first = 0, second = 0;  // int g (x - a) and int g (x - a)^2 [m, m^2 times units of int g]
+  /// 4 standard deviations of the patch's density (bem_patch::pressure_width).
+  double pressure_width() const {
+    const double mean = first / load;
+    return 4 * std::sqrt(std::max(0.0, second / load - mean * mean));
+  }
 };
 
 /// What one grid gives: its patches and the body's C_f and contact fraction.
@@ -56,17 +62,26 @@ level measure(const panel_grid& gr, const std::vector<std::size_t>& idx, const E
     raw_patch p;
     p.a = gr.edge(idx[static_cast<std::size_t>(s)]);
     p.b = gr.edge(idx[static_cast<std::size_t>(e - 1)] + 1);
+    const double panel = gr.h * gr.length;
     for (Eigen::Index c = s; c < e; ++c) {
       const double gc = g[c];
       p.load += gr.h * gc;
       p.moment += gc * gr.rise[idx[static_cast<std::size_t>(c)]] / gr.length;
       p.peak = std::max(p.peak, gc / gr.length);
+      // The panel's moments exactly for a constant density: centre u, int (x - a)^2 = h (u^2 + h^2/12).
+      const double u = (static_cast<double>(c - s) + 0.5) * panel;
+      p.first += gr.h * gc * u;
+      p.second += gr.h * gc * (u * u + panel * panel / 12);
     }
     lv.patches.push_back(p);
   }
   if (gr.periodic && lv.patches.size() > 1 && idx.front() == 0 && idx.back() == gr.n - 1) {
     raw_patch& first = lv.patches.front();
     raw_patch& last = lv.patches.back();
+    // The wrapped part's moments about the last run's start: its offset is last.b - last.a.
+    const double shift = last.b - last.a;
+    last.first += first.first + shift * first.load;
+    last.second += first.second + 2 * shift * first.first + shift * shift * first.load;
     last.b = first.b + gr.length;
     last.load += first.load;
     last.moment += first.moment;
@@ -190,6 +205,7 @@ void report(const grid_search& gs, double pressure_scale, double length, profile
     bp.load.value *= pressure_scale;
     bp.load.error *= pressure_scale;
     bp.peak_pressure = pressure_scale * p.peak;
+    bp.pressure_width = p.pressure_width();
     out.patches.push_back(bp);
   }
   out.hysteretic_friction = estimate([](const level& l) { return l.friction; });

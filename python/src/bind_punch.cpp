@@ -267,6 +267,7 @@ py::dict solve_profile_bem(const py::dict& spec, double acceptance, double time_
     item["load"] = estimate_record(p.load);
     item["hysteretic_friction"] = estimate_record(p.hysteretic_friction);
     item["peak_pressure"] = p.peak_pressure;
+    item["pressure_width"] = p.pressure_width;
     patches.append(std::move(item));
   }
   out["patches"] = std::move(patches);

@@ -148,11 +148,11 @@ s["profile"]["file"] = "rough_periodic.csv"
 json.dump(s, open(sys.argv[2], "w"))
 PY
 cp "$src/examples/rough_periodic.csv" "$tmp/" && mkdir -p "$tmp/materials" && cp "$src/examples/materials/filled_rubber.csv" "$tmp/materials/"
-printf '%s' '{"scene": "rough_scene.json", "axes": [{"path": "speed", "values": [1e-4, 1.0]}]}' > "$tmp/rough.json"
-"$rhabel" sweep "$tmp/rough.json" --out "$tmp/rough.csv" --acceptance 1e-4 2> "$tmp/err"; rc=$?
+printf '%s' '{"scene": "rough_scene.json", "axes": [{"path": "speed", "values": [0.01, 1.0]}]}' > "$tmp/rough.json"
+"$rhabel" sweep "$tmp/rough.json" --out "$tmp/rough.csv" --acceptance 1e-3 2> "$tmp/err"; rc=$?
 [ "$rc" -eq 0 ] || fail "rough-profile sweep: exit $rc ($(cat "$tmp/err"))"
 "$rhabel" sweep "$tmp/rough.json" --print-scenes | sed -n 2p > "$tmp/rough_row1.json"
-(cd "$tmp" && "$rhabel" solve rough_row1.json --acceptance 1e-4 --compact > rough_row1.out) || fail "rough-profile row 1: solve"
+(cd "$tmp" && "$rhabel" solve rough_row1.json --acceptance 1e-3 --compact > rough_row1.out) || fail "rough-profile row 1: solve"
 "$py" - "$tmp/rough.csv" "$tmp/rough_row1.out" <<'PY' || fail "rough-profile row 1 against its single solve"
 import csv, json, sys
 r = list(csv.DictReader(open(sys.argv[1], newline="")))
@@ -160,7 +160,7 @@ assert len(r) == 2 and all(x["status"] == "ok" for x in r), r
 s = json.load(open(sys.argv[2]))
 assert float(r[1]["C_f"]) == s["hysteretic_friction"]["value"] and float(r[1]["C_f_error"]) == s["hysteretic_friction"]["error"]
 assert int(r[1]["contacts"]) == len(s["patches"]) and float(r[1]["omega0"]) == s["material_fit"]["omega0"]
-assert float(r[0]["C_f"]) != float(r[1]["C_f"])  # the rubber's response differs over four decades
+assert float(r[0]["C_f"]) != float(r[1]["C_f"])  # the rubber's response differs over two decades
 PY
 
 # --- killed part-way (SIGKILL) and rerun: every row exactly once ----------------------------------

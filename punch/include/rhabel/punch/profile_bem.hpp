@@ -72,6 +72,10 @@ struct bem_patch {
   bem_estimate load;      ///< [N/m]
   bem_estimate hysteretic_friction;  ///< C_f of the patch: int z' p / int p over it
   double peak_pressure = 0;  ///< largest panel pressure of the finest grid [Pa] (a panel mean)
+  /// 4 standard deviations of the patch's pressure distribution on the finest grid [m]: the width
+  /// b - a for the Hertzian ellipse, and, unlike the panel edges a, b, continuous in the scene
+  /// (the characteristic length of a master-curve fit, omega0 = U/L).
+  double pressure_width = 0;
 };
 
 struct bem_options {
