@@ -124,13 +124,20 @@ py::dict to_python(punch::indentor_result&& r, const py::dict& spec) {
   return out;
 }
 
-/// The whole result, keys as in the JSON result (without "scene", added in Python).
-py::dict to_python(punch::scene_result&& r, const py::dict& spec, double effective_modulus) {
+/// The head of a result document: the material's friction parameter, kappa, regime and E_U.
+template <class Result>
+py::dict result_head(const Result& r, double effective_modulus) {
   py::dict out = record();
   out["beta"] = r.beta;
   out["kappa"] = r.kappa;
   out["regime"] = r.regime;
   out["effective_modulus"] = effective_modulus;
+  return out;
+}
+
+/// The whole result, keys as in the JSON result (without "scene", added in Python).
+py::dict to_python(punch::scene_result&& r, const py::dict& spec, double effective_modulus) {
+  py::dict out = result_head(r, effective_modulus);
   if (r.body_approach) out["body_approach"] = *r.body_approach;
   py::list indentors;
   const auto specs = spec["indentors"].cast<py::list>();
@@ -175,9 +182,8 @@ py::dict solve(const py::dict& spec, std::size_t grid, bool displacement, double
   return to_python(std::move(result), spec, s.material.effective_modulus(s.speed));
 }
 
-/// punch::solve_profile for a validated scene with a "profile"; keys as in the JSON result.
-py::dict solve_profile(const py::dict& spec, std::size_t grid, bool displacement, double tolerance, bool residual,
-                       double acceptance, std::size_t threads, double time_limit, double layered_below) {
+/// The punch scene of a validated scene dict with a "profile".
+punch::profile_scene profile_scene_of(const py::dict& spec) {
   punch::profile_scene ps;
   ps.material = to_material(spec["material"]);
   ps.speed = number(spec, "speed");
@@ -186,6 +192,14 @@ py::dict solve_profile(const py::dict& spec, std::size_t grid, bool displacement
   ps.profile.x = profile["x"].cast<std::vector<double>>();
   ps.profile.z = profile["z"].cast<std::vector<double>>();
   ps.profile.corners = profile["corners"].cast<std::vector<double>>();
+  if (profile.contains("period")) ps.profile.period = profile["period"].cast<double>();
+  return ps;
+}
+
+/// punch::solve_profile for a validated scene with a "profile"; keys as in the JSON result.
+py::dict solve_profile(const py::dict& spec, std::size_t grid, bool displacement, double tolerance, bool residual,
+                       double acceptance, std::size_t threads, double time_limit, double layered_below) {
+  const punch::profile_scene ps = profile_scene_of(spec);
   const punch::solve_options options =
       make_options(grid, displacement, tolerance, residual, acceptance, threads, time_limit, layered_below);
   punch::profile_result r;
@@ -193,11 +207,7 @@ py::dict solve_profile(const py::dict& spec, std::size_t grid, bool displacement
     py::gil_scoped_release nogil;
     r = punch::solve_profile(ps, options);
   }
-  py::dict out = record();
-  out["beta"] = r.beta;
-  out["kappa"] = r.kappa;
-  out["regime"] = r.regime;
-  out["effective_modulus"] = ps.material.effective_modulus(ps.speed);
+  py::dict out = result_head(r, ps.material.effective_modulus(ps.speed));
   if (!std::isnan(r.body_approach)) out["body_approach"] = r.body_approach;
   py::list contacts;
   for (std::size_t i = 0; i < r.contacts.size(); ++i) {
@@ -237,15 +247,7 @@ py::dict estimate_record(const punch::bem_estimate& e) {
 /// punch::solve_profile_bem for a validated scene with a "profile" and profile.solver
 /// "boundary_element"; keys as in the JSON result.
 py::dict solve_profile_bem(const py::dict& spec, double acceptance, double time_limit) {
-  punch::profile_scene ps;
-  ps.material = to_material(spec["material"]);
-  ps.speed = number(spec, "speed");
-  ps.load = number(spec["body"], "load");
-  const py::dict profile = spec["profile"];
-  ps.profile.x = profile["x"].cast<std::vector<double>>();
-  ps.profile.z = profile["z"].cast<std::vector<double>>();
-  ps.profile.corners = profile["corners"].cast<std::vector<double>>();
-  if (profile.contains("period")) ps.profile.period = profile["period"].cast<double>();
+  const punch::profile_scene ps = profile_scene_of(spec);
   punch::solve_options options;
   options.acceptance = acceptance;
   options.time_limit = time_limit;
@@ -254,11 +256,7 @@ py::dict solve_profile_bem(const py::dict& spec, double acceptance, double time_
     py::gil_scoped_release nogil;
     r = punch::solve_profile_bem(ps, options);
   }
-  py::dict out = record();
-  out["beta"] = r.beta;
-  out["kappa"] = r.kappa;
-  out["regime"] = r.regime;
-  out["effective_modulus"] = ps.material.effective_modulus(ps.speed);
+  py::dict out = result_head(r, ps.material.effective_modulus(ps.speed));
   py::list patches;
   for (const auto& p : r.patches) {
     py::dict item = record();
