@@ -166,9 +166,16 @@ void begin_document(run_outcome& out, const run_request& request, const Result& 
   out.result["effective_modulus"] = effective_modulus;
 }
 
+// What every result document ends with: the status that decides the exit code, the echo of the
+// scene; every number checked finite.
+void finish_document(run_outcome& out, const scene_spec& spec, punch::status_code code) {
+  out.ok = code == punch::status_code::ok;
+  out.result["scene"] = echo_scene(spec);
+  require_finite(out.result, "result");
+}
+
 // The tail of a result document: the diagnostics (with `rounds` and `load_fraction` for a
-// profile's search: the fields its diagnostics have), the status that decides the exit code, the
-// echo of the scene; every number checked finite.
+// profile's search: the fields its diagnostics have), then finish_document.
 template <class Diagnostics>
 void end_document(run_outcome& out, const scene_spec& spec, const Diagnostics& d) {
   ordered_json diagnostics = {{"residual", d.residual}, {"seconds", d.seconds}};
@@ -178,9 +185,7 @@ void end_document(run_outcome& out, const scene_spec& spec, const Diagnostics& d
   diagnostics["status_message"] = d.status;
   if constexpr (requires { d.load_fraction; }) diagnostics["load_fraction"] = d.load_fraction;
   out.result["diagnostics"] = std::move(diagnostics);
-  out.ok = d.code == punch::status_code::ok;
-  out.result["scene"] = echo_scene(spec);
-  require_finite(out.result, "result");
+  finish_document(out, spec, d.code);
 }
 
 // The fields of one contact's result (an indentor's, or a contact of a profile); its sampled
@@ -272,9 +277,7 @@ run_outcome run_profile_bem(const scene_spec& spec, const run_request& request, 
                         {"level_friction", d.level_friction},
                         {"status", punch::to_string(d.code)},
                         {"status_message", d.status}};
-  out.ok = d.code == punch::status_code::ok;
-  doc["scene"] = echo_scene(spec);
-  require_finite(doc, "result");
+  finish_document(out, spec, d.code);
   return out;
 }
 

@@ -435,7 +435,8 @@ std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format forma
       if (load > 0) set("C_f", number_text(moment / load)), set("total_friction", number_text(total / load));
       set("contact_fraction", number_text(width / (range.at(1).get<double>() - range.at(0).get<double>())));
     }
-    const nlohmann::ordered_json inds = r.contains("indentors") ? r.at("indentors") : nlohmann::ordered_json::array();
+    static const nlohmann::ordered_json no_indentors = nlohmann::ordered_json::array();  // a profile's rows
+    const auto& inds = r.contains("indentors") ? r.at("indentors") : no_indentors;
     for (std::size_t i = 0; i < inds.size(); ++i) {
       const std::string p = "ind" + std::to_string(i) + "_";
       const auto& ind = inds[i];

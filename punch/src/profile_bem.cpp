@@ -62,7 +62,7 @@ level measure(const panel_grid& gr, const std::vector<std::size_t>& idx, const E
     raw_patch p;
     p.a = gr.edge(idx[static_cast<std::size_t>(s)]);
     p.b = gr.edge(idx[static_cast<std::size_t>(e - 1)] + 1);
-    const double panel = gr.h * gr.length;
+    const double panel = lv.h_length;
     for (Eigen::Index c = s; c < e; ++c) {
       const double gc = g[c];
       p.load += gr.h * gc;
@@ -128,11 +128,18 @@ struct grid_search {
   std::string stopped;  // why the refinement stopped before the acceptance was met ("" if it was)
 };
 
+/// Whether the last three levels have as many patches (matched in order: the extrapolation's
+/// premise).
+bool three_matched(const std::vector<level>& lv) {
+  const std::size_t m = lv.size();
+  return m >= 3 && lv[m - 3].patches.size() == lv[m - 1].patches.size() &&
+         lv[m - 2].patches.size() == lv[m - 1].patches.size();
+}
+
 /// Whether the last three levels meet the acceptance (profile_bem.hpp, STATUS).
 bool accepted(const std::vector<level>& lv, double tol, double slope, double load) {
-  if (lv.size() < 3) return false;
+  if (!three_matched(lv)) return false;
   const level &l0 = lv[lv.size() - 3], &l1 = lv[lv.size() - 2], &l2 = lv.back();
-  if (l0.patches.size() != l2.patches.size() || l1.patches.size() != l2.patches.size()) return false;
   if (extrapolate(l0.friction, l1.friction, l2.friction).error > tol * slope) return false;
   for (std::size_t k = 0; k < l2.patches.size(); ++k)
     if (extrapolate(l0.patches[k].load, l1.patches[k].load, l2.patches[k].load).error > tol * load) return false;
@@ -180,8 +187,7 @@ grid_search refine(const profile_curve& curve, double load, double load_phys, co
 void report(const grid_search& gs, double pressure_scale, double length, profile_bem_result& out) {
   const level& last = gs.levels.back();
   const std::size_t m = gs.levels.size();
-  const bool three = m >= 3 && gs.levels[m - 3].patches.size() == last.patches.size() &&
-                     gs.levels[m - 2].patches.size() == last.patches.size();
+  const bool three = three_matched(gs.levels);
   auto estimate = [&](auto value_of) -> bem_estimate {
     if (three) return extrapolate(value_of(gs.levels[m - 3]), value_of(gs.levels[m - 2]), value_of(last));
     if (m >= 2) return {value_of(last), 2 * std::abs(value_of(last) - value_of(gs.levels[m - 2]))};
@@ -194,10 +200,9 @@ void report(const grid_search& gs, double pressure_scale, double length, profile
     bp.b = p.b;
     bp.edge_error = last.h_length;
     if (three) {
-      auto at = [k](const level& l) { return l.patches[k]; };
-      bp.load = extrapolate(at(gs.levels[m - 3]).load, at(gs.levels[m - 2]).load, p.load);
-      bp.hysteretic_friction = extrapolate(at(gs.levels[m - 3]).moment / at(gs.levels[m - 3]).load,
-                                           at(gs.levels[m - 2]).moment / at(gs.levels[m - 2]).load, p.moment / p.load);
+      const raw_patch &p0 = gs.levels[m - 3].patches[k], &p1 = gs.levels[m - 2].patches[k];
+      bp.load = extrapolate(p0.load, p1.load, p.load);
+      bp.hysteretic_friction = extrapolate(p0.moment / p0.load, p1.moment / p1.load, p.moment / p.load);
     } else {  // a patch not matched on three grids: its own size as its error
       bp.load = {p.load, p.load};
       bp.hysteretic_friction = {p.moment / p.load, std::abs(p.moment / p.load)};
@@ -232,7 +237,7 @@ profile_bem_result solve_profile_bem(const profile_scene& s, const solve_options
   const context cx = make_context(s.material, s.speed, options);
   const profile_curve curve(s.profile);
   const double length = s.profile.period > 0 ? s.profile.period : s.profile.x.back() - s.profile.x.front();
-  // max |z'| of the spline at the samples and the panel ends of the first grid: the scale of C_f.
+  // max |z'| of the spline at the samples: the scale of C_f.
   double slope = 0;
   for (double x : s.profile.x) slope = std::max(slope, std::abs(curve.slope(x)));
   const grid_search gs = refine(curve, s.load / cx.pressure_scale, s.load, cx, bem, slope);
@@ -250,7 +255,6 @@ profile_bem_result solve_profile_bem(const profile_scene& s, const solve_options
                              gs.stopped;
   } else {
     report(gs, cx.pressure_scale, length, out);
-    out.total_friction = out.hysteretic_friction.value + s.material.coulomb;
     if (!gs.stopped.empty()) {
       out.diagnostics.code = status_code::not_converged;
       std::ostringstream os;
