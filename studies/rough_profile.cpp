@@ -34,7 +34,6 @@
 #include <cstdio>
 #include <iostream>
 #include <limits>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -44,33 +43,18 @@ namespace {
 namespace pu = rhabel::punch;
 namespace bp = punch_test::bem_profile;
 
-/// rough_profiles.hpp's profile by FFT (the same phases; rounding aside the same samples).
+/// rough_profiles.hpp's profile by FFT (its modes; rounding aside the same samples).
 punch_test::sampled self_affine_fft(std::size_t n, std::uint64_t seed, double hurst = 0.8, double rms = 1e-3) {
-  constexpr double two_pi = 6.283185307179586476925286766559005768;
-  std::mt19937_64 rng(seed);
+  const punch_test::modes m = punch_test::self_affine_modes(n, seed, hurst);
+  // z_i = sum_k a_k cos(2 pi k i/n + phi_k) = Re sum_k a_k e^{i phi_k} e^{2 pi i k i/n}
   std::vector<std::complex<double>> spectrum(n, 0.0);
-  for (std::size_t k = 1; k <= n / 2; ++k) {
-    const double amplitude = std::pow(static_cast<double>(k), -(0.5 + hurst));
-    const double phase = two_pi * static_cast<double>(rng() >> 11) * 0x1p-53;
-    // z_i = sum_k a_k cos(2 pi k i/n + phi_k) = Re sum_k a_k e^{i phi_k} e^{2 pi i k i/n}
-    spectrum[k] += amplitude * std::polar(1.0, phase);
-  }
+  for (std::size_t k = 1; k <= n / 2; ++k) spectrum[k] += m.amplitude[k] * std::polar(1.0, m.phase[k]);
   Eigen::FFT<double> fft;
   std::vector<std::complex<double>> z;
   fft.inv(z, spectrum);  // (1/n) sum_k spectrum_k e^{2 pi i k i/n}
-  punch_test::sampled out;
-  out.x.resize(n);
-  out.z.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    out.x[i] = static_cast<double>(i) / static_cast<double>(n);
-    out.z[i] = z[i].real() * static_cast<double>(n);
-  }
-  double sum = 0;
-  for (const double v : out.z) sum += v * v;
-  const double scale = rms / std::sqrt(sum / static_cast<double>(n));
-  const double top = *std::max_element(out.z.begin(), out.z.end());
-  for (double& v : out.z) v = (v - top) * scale;
-  return out;
+  std::vector<double> real(n);
+  for (std::size_t i = 0; i < n; ++i) real[i] = z[i].real() * static_cast<double>(n);
+  return punch_test::on_unit_length(std::move(real), rms);
 }
 
 struct row {

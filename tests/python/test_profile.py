@@ -13,17 +13,27 @@ import rhabel
 from conftest import SOURCE_DIR
 
 EXAMPLE = SOURCE_DIR / "examples" / "rough_profile.json"
+PERIODIC = SOURCE_DIR / "examples" / "rough_periodic.json"
 
 
-def test_example_equals_the_command_line(cli):
-    run = subprocess.run([str(cli), "solve", str(EXAMPLE), "--acceptance", "1e-6", "--compact"],
+def solve_like_the_command_line(cli, scene, acceptance):
+    """rhabel.solve of the scene file and the document of `rhabel solve` with the same acceptance,
+    both without the wall time and the profile's file name (load_scene resolves it against the
+    scene's directory)."""
+    run = subprocess.run([str(cli), "solve", str(scene), "--acceptance", acceptance, "--compact"],
                          capture_output=True, text=True)
     assert run.returncode == 0, run.stderr
     expected = json.loads(run.stdout)
-    ours = rhabel.solve(rhabel.load_scene(EXAMPLE), acceptance=1e-6).to_plain()
+    result = rhabel.solve(rhabel.load_scene(scene), acceptance=float(acceptance))
+    ours = result.to_plain()
     for doc in (expected, ours):
         del doc["diagnostics"]["seconds"]
-        doc["scene"]["profile"].pop("file")  # load_scene resolves it against the scene's directory
+        doc["scene"]["profile"].pop("file")
+    return result, ours, expected
+
+
+def test_example_equals_the_command_line(cli):
+    _, ours, expected = solve_like_the_command_line(cli, EXAMPLE, "1e-6")
     assert ours == expected
 
 
@@ -66,20 +76,9 @@ def test_python_profile_inputs():
         rhabel.solve({**base, "profile": {"file": "no-such.csv"}})
 
 
-PERIODIC = SOURCE_DIR / "examples" / "rough_periodic.json"
-
-
 def test_periodic_example_equals_the_command_line(cli):
     # profile.period: the boundary-element solver; the same document as `rhabel solve`, bit for bit.
-    run = subprocess.run([str(cli), "solve", str(PERIODIC), "--acceptance", "1e-4", "--compact"],
-                         capture_output=True, text=True)
-    assert run.returncode == 0, run.stderr
-    expected = json.loads(run.stdout)
-    result = rhabel.solve(rhabel.load_scene(PERIODIC), acceptance=1e-4)
-    ours = result.to_plain()
-    for doc in (expected, ours):
-        del doc["diagnostics"]["seconds"]
-        doc["scene"]["profile"].pop("file")
+    result, ours, expected = solve_like_the_command_line(cli, PERIODIC, "1e-4")
     assert ours == expected
     assert repr(result).startswith(f"rhabel.Result: {len(result.patches)} patches, status ok, C_f ")
     assert len(repr(result).splitlines()) <= 1 + rhabel._record._REPR_MAX_CONTACTS
