@@ -19,7 +19,7 @@
 //   among the ok rows of the scene (empty when there is none). A refused finite window (contacts
 //   at the end of the samples) is a row with status "refused".
 // OPTIONS: --quick (1000 samples, seed 1), --samples N[,N...] (default 1000,4000,16000,100000),
-// --no-oracle.
+// --seeds S[,S...] (default 1,2,3), --no-oracle.
 #include "rhabel/punch.hpp"
 
 #include "bem_profile_oracle.hpp"
@@ -91,8 +91,12 @@ int main(int argc, char** argv) {
       sizes.clear();
       std::stringstream ss(argv[++i]);
       for (std::string t; std::getline(ss, t, ',');) sizes.push_back(std::stoul(t));
+    } else if (a == "--seeds" && i + 1 < argc) {
+      seeds.clear();
+      std::stringstream ss(argv[++i]);
+      for (std::string t; std::getline(ss, t, ',');) seeds.push_back(std::stoull(t));
     } else {
-      std::cerr << "usage: study_rough_profile [--quick] [--samples N,N...] [--no-oracle]\n";
+      std::cerr << "usage: study_rough_profile [--quick] [--samples N,N...] [--seeds S,S...] [--no-oracle]\n";
       return 2;
     }
   }

@@ -2,6 +2,7 @@
 // (coarse_contact.hpp), on panel_grid.hpp's discretisation and active set.
 #include "coarse_contact.hpp"
 
+#include "active_solve.hpp"
 #include "panel_grid.hpp"
 
 #include <algorithm>
@@ -29,10 +30,11 @@ std::vector<coarse_patch> coarse_contacts(const profile_curve& curve, double loa
   std::vector<std::size_t> idx;
   panel_grid gr;
   std::size_t steps = 0;
+  warm_start ws;  // each solve starts from the last one
   for (;;) {
     gr = make_panel_grid(curve, n, cx, top);
     double D = 0;
-    if (!settle(gr, load, span, active, g, idx, D, cx, steps, n == first_panels ? first_grid_steps : refined_grid_steps)) return {};
+    if (!settle(gr, load, span, active, g, idx, D, cx, steps, n == first_panels ? first_grid_steps : refined_grid_steps, ws)) return {};
     if (n == panels) break;
     const std::size_t next = std::min(4 * n, panels);
     active = refine_active(active, next);

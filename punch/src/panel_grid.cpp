@@ -2,7 +2,7 @@
 // solve (panel_grid.hpp).
 #include "panel_grid.hpp"
 
-#include "rhabel/abel/detail/block_gmres.hpp"
+#include "active_solve.hpp"
 
 #include <gsl/gsl_sf_zeta.h>
 
@@ -12,12 +12,8 @@
 namespace rhabel::punch::detail {
 namespace {
 
-// Active panels up to which the linear solve is one LU (above: block GMRES; at 600 an LU costs
-// 1.4e8 flops against ~1e6 per GMRES product).
-constexpr Eigen::Index dense_limit = 600;
-// GMRES: a relative residual far below the discretisation's error, within max_products products.
-constexpr double gmres_tolerance = 1e-11;
-constexpr std::size_t max_products = 600;
+// Steps of `settle` a grid whose solves may be loose (active_solve.hpp, moving_tolerance).
+constexpr std::size_t loose_steps = 8;
 // A panel penetrates when w - z < D by more than this fraction of the profile's span (round-off).
 constexpr double penetration_floor = 1e-9;
 // Periodic kernel: images |j| <= near_images in closed form; the Taylor series of the rest to
@@ -116,7 +112,7 @@ panel_grid make_panel_grid(const profile_curve& curve, std::size_t n, const cont
       gr.kernel[static_cast<std::size_t>(m + last)] = scale * panel_integral((k - theta) * h, (k + 1 - theta) * h, alpha, kappa, c1);
     }
   }
-  gr.product = std::make_unique<toeplitz_product>(gr.kernel, n);
+  gr.product = std::make_unique<toeplitz_product>(gr.kernel, n, gr.periodic);
   gr.z.resize(n);
   gr.rise.resize(n);
   double at_edge = curve.value(gr.edge(0));  // z at the panel's lower edge, carried to the next
@@ -139,106 +135,34 @@ std::vector<std::pair<Eigen::Index, Eigen::Index>> runs_of(const std::vector<std
   return out;
 }
 
-namespace {
-
-/// The cost of one FFT product on a grid of n panels in units of a multiply-add of the direct sum
-/// (two transforms of M = 2^ceil(log2 2n) points, ~5 M log2 M flops each; the direct sum gathers
-/// from the table, ~2x a streamed multiply-add): the direct sum over m active panels is cheaper
-/// when m^2 is below it (measured: 672 active panels of 1.6e6: 0.36 s a product by FFT, 0.3 ms
-/// by the sum).
-double fft_cost(std::size_t n) {
-  double M = 1;
-  while (M < 2.0 * static_cast<double>(n)) M *= 2;
-  return 5 * M * std::log2(M);
-}
-
-/// g on the active panels idx and the level D: A g - D = z there, h sum g = load. As g1 + D g0
-/// with A g1 = z and A g0 = 1. False when the solve fails. Checks the time limit at each product.
-bool solve_active(panel_grid& gr, const std::vector<std::size_t>& idx, double load, Eigen::VectorXd& g, double& D,
-                  const context& cx) {
-  const auto m = static_cast<Eigen::Index>(idx.size());
-  auto at = [&](Eigen::Index r, Eigen::Index c) {
-    return gr.A(idx[static_cast<std::size_t>(r)], idx[static_cast<std::size_t>(c)]);
-  };
-  Eigen::MatrixXd rhs(m, 2), X(m, 2);
-  for (Eigen::Index r = 0; r < m; ++r) rhs(r, 0) = gr.z[idx[static_cast<std::size_t>(r)]];
-  rhs.col(1).setOnes();
-  if (m <= dense_limit) {
-    Eigen::MatrixXd A(m, m);
-    for (Eigen::Index c = 0; c < m; ++c)
-      for (Eigen::Index r = 0; r < m; ++r) A(r, c) = at(r, c);
-    X = A.partialPivLu().solve(rhs);
-  } else {
-    // No m x m matrix is stored. The preconditioner's blocks: neighbouring runs of active panels
-    // share a block up to dense_limit panels (longer runs cut; memory <= dense_limit m). The
-    // coupling of nearby contacts is the strongest, and GMRES needs about one iteration per block
-    // for the far coupling (the loads' split between blocks), so fewer, larger blocks converge
-    // faster (measured: 159 patches on 4500 active panels, ~270 products a solve with one block
-    // per run, 73 with the runs grouped).
-    std::vector<std::pair<Eigen::Index, Eigen::Index>> pieces;
-    for (auto [s, e] : runs_of(idx))
-      for (; s < e; s += dense_limit) {
-        const Eigen::Index end = std::min(s + dense_limit, e);
-        if (!pieces.empty() && end - pieces.back().first <= dense_limit) pieces.back().second = end;
-        else pieces.emplace_back(s, end);
-      }
-    std::vector<Eigen::MatrixXd> blocks;
-    for (const auto& [s, e] : pieces) {
-      const Eigen::Index size = e - s;
-      Eigen::MatrixXd B(size, size);
-      for (Eigen::Index c = 0; c < size; ++c)
-        for (Eigen::Index r = 0; r < size; ++r) B(r, c) = at(s + r, s + c);
-      blocks.push_back(std::move(B));
-    }
-    // The product: by FFT over the whole grid, or, when the active panels are few against the
-    // grid (small contacts on a fine grid), as the sum over the active pairs from the table.
-    const bool direct = static_cast<double>(m) * static_cast<double>(m) < fft_cost(gr.n);
-    auto product = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
-      cx.check_time();  // a step on a fine grid may take many products: the limit is checked at each
-      if (!direct) return gr.product->apply(idx, idx, v);
-      Eigen::VectorXd out(m);
-      for (Eigen::Index r = 0; r < m; ++r) {
-        const double* row = gr.kernel.data() + gr.n - 1 - idx[static_cast<std::size_t>(r)];
-        double sum = 0;
-        for (Eigen::Index c = 0; c < m; ++c) sum += row[idx[static_cast<std::size_t>(c)]] * v[c];
-        out[r] = sum;
-      }
-      return out;
-    };
-    const abel::detail::block_gmres<double> solver(product, blocks);
-    for (Eigen::Index k = 0; k < 2; ++k) {
-      Eigen::VectorXd x;
-      if (!solver.solve(rhs.col(k), x, gmres_tolerance, max_products)) return false;
-      X.col(k) = x;
-    }
-  }
-  D = (load / gr.h - X.col(0).sum()) / X.col(1).sum();
-  g = X.col(0) + D * X.col(1);
-  return std::isfinite(D) && g.allFinite();
-}
-
-}  // namespace
-
 bool settle(panel_grid& gr, double load, double span, std::vector<char>& active, Eigen::VectorXd& g,
-            std::vector<std::size_t>& idx, double& D, const context& cx, std::size_t& steps, std::size_t max_steps) {
+            std::vector<std::size_t>& idx, double& D, const context& cx, std::size_t& steps, std::size_t max_steps,
+            warm_start& ws) {
+  // Until the set stops changing each step's solve only moves towards it (moving_tolerance; at
+  // most loose_steps such steps a grid); the set is accepted only after a deciding solve
+  // (deciding_tolerance) that changes nothing.
+  bool decide = false;
   for (std::size_t step = 0; step < max_steps; ++step) {
     cx.check_time();
     ++steps;
     idx.clear();
     for (std::size_t i = 0; i < gr.n; ++i)
       if (active[i]) idx.push_back(i);
-    if (idx.empty() || !solve_active(gr, idx, load, g, D, cx)) return false;
-    bool dropped = false;
+    decide = decide || step >= loose_steps;
+    if (idx.empty() || !solve_active(gr, idx, load, g, D, cx, ws, decide ? deciding_tolerance : moving_tolerance))
+      return false;
+    bool changed = false;
     for (std::size_t c = 0; c < idx.size(); ++c)
-      if (g[static_cast<Eigen::Index>(c)] < 0) active[idx[c]] = 0, dropped = true;
-    if (dropped) continue;
-    bool added = false;
-    const Eigen::VectorXd w = gr.product->apply(idx, g);  // at every panel
-    for (std::size_t i = 0; i < gr.n; ++i) {
-      if (active[i]) continue;
-      if (w[static_cast<Eigen::Index>(i)] - D - gr.z[i] < -penetration_floor * span) active[i] = 1, added = true;
+      if (g[static_cast<Eigen::Index>(c)] < 0) active[idx[c]] = 0, changed = true;
+    if (!changed) {
+      const Eigen::VectorXd w = gr.product->apply(idx, g);  // at every panel
+      for (std::size_t i = 0; i < gr.n; ++i) {
+        if (active[i]) continue;
+        if (w[static_cast<Eigen::Index>(i)] - D - gr.z[i] < -penetration_floor * span) active[i] = 1, changed = true;
+      }
     }
-    if (!added) return true;
+    if (!changed && decide) return true;
+    decide = !changed;
   }
   return false;
 }

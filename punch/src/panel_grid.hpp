@@ -19,18 +19,13 @@
 //
 // THE ACTIVE SET (`settle`). Unknowns g on the active panels and the level D:
 //     A g - D = z on the active panels,   >= D at the others,   g >= 0,   h sum g = P,
-// solved as g = g1 + D g0 (A g1 = z, A g0 = 1) by one LU up to 600 active panels, else GMRES
-// (abel/detail/block_gmres.hpp) preconditioned by the exact inverse of blocks of neighbouring runs
-// of active panels (up to 600 panels a block; longer runs cut); each product by FFT
-// (toeplitz_product.hpp) or, when the active panels m are few against the grid's n
-// (m^2 < 5 M log2 M, M ~ 2n), as the direct sum from the table. GMRES needs about one iteration
-// per block for the far coupling (the split of the load between blocks): with ~1000 contacts
-// on a fine grid that is hundreds of products a step (LIMITS of rhabel/punch/profile_bem.hpp). Each step
-// drops every panel with g < 0, and when none is negative adds every panel that penetrates
-// (w - z < D by more than 1e-9 of the profile's span), until neither happens (at most max_steps:
-// a grid started from the last grid's set settles in a few; the first grid, started with every
-// panel active, sheds the panels outside the contacts a few per step: measured ~130 steps for one
-// contact of 1/30 of the window at alpha 0.7).
+// each step's linear solve by active_solve.hpp (one LU, or GMRES with a two-level preconditioner,
+// started from the last solve). Each step drops every panel with g < 0, and when none is negative
+// adds every panel that penetrates (w - z < D by more than 1e-9 of the profile's span), until
+// neither happens after a deciding solve (at most max_steps: a grid started from the last grid's
+// set settles in a few; the first grid, started with every panel active, sheds the panels
+// outside the contacts a few per step: measured ~130 steps for one contact of 1/30 of the window
+// at alpha 0.7).
 // Each step and each GMRES product checks solve_options::time_limit (time_limit_reached).
 #pragma once
 
@@ -81,6 +76,8 @@ class periodic_panel_kernel {
   std::vector<double> coef_;  ///< coef_[k]: the far images' coefficient of int (t - sigma)^k dt
 };
 
+struct warm_start;
+
 /// Runs of consecutive indices in idx (sorted): [start, end) positions into idx.
 std::vector<std::pair<Eigen::Index, Eigen::Index>> runs_of(const std::vector<std::size_t>& idx);
 
@@ -88,7 +85,8 @@ std::vector<std::pair<Eigen::Index, Eigen::Index>> runs_of(const std::vector<std
 /// active panels idx, in units of int g per unit x') and the level D; false when max_steps steps
 /// do not settle it or a linear solve fails. `steps` accumulates the steps taken.
 bool settle(panel_grid& gr, double load, double span, std::vector<char>& active, Eigen::VectorXd& g,
-            std::vector<std::size_t>& idx, double& D, const context& cx, std::size_t& steps, std::size_t max_steps);
+            std::vector<std::size_t>& idx, double& D, const context& cx, std::size_t& steps, std::size_t max_steps,
+            warm_start& ws);
 
 /// Steps of `settle` on the first grid (every panel active) and on a grid started from a coarser
 /// one's set.

@@ -4,10 +4,12 @@
 #include "rhabel/punch/profile_bem.hpp"
 
 #include "internal.hpp"
+#include "active_solve.hpp"
 #include "panel_grid.hpp"
 #include "profile_curve.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <optional>
@@ -128,21 +130,80 @@ struct grid_search {
   std::string stopped;  // why the refinement stopped before the acceptance was met ("" if it was)
 };
 
-/// Whether the last three levels have as many patches (matched in order: the extrapolation's
-/// premise).
-bool three_matched(const std::vector<level>& lv) {
+/// The patches of the last three levels matched (the extrapolation's premise). A patch of the last
+/// level that carries more than `floor` (acceptance x P) is matched to the one patch of each
+/// coarser level that overlaps it (within that level's panel; periodic: modulo the period) when
+/// there is exactly one and no other patch of the last level claims it (else the patches split
+/// or merged between the grids). Patches at or below the floor may come and go between grids (a
+/// patch that may or may not exist within the acceptance): they are not matched.
+struct patch_match {
+  std::vector<std::optional<std::array<std::size_t, 3>>> of;  ///< per patch of the last level
+  bool complete = false;  ///< every patch above the floor (on any of the three levels) matched
+};
+
+patch_match match_patches(const std::vector<level>& lv, double floor, double length, bool periodic) {
+  patch_match out;
   const std::size_t m = lv.size();
-  return m >= 3 && lv[m - 3].patches.size() == lv[m - 1].patches.size() &&
-         lv[m - 2].patches.size() == lv[m - 1].patches.size();
+  if (m == 0) return out;
+  const level& last = lv.back();
+  out.of.resize(last.patches.size());
+  if (m < 3) return out;
+  // The length common to p and q (shifted by a period where that is more), plus the slack: > 0
+  // when they overlap within the slack.
+  auto common = [&](const raw_patch& p, const raw_patch& q, double slack) {
+    double best = -1;
+    for (int shift = periodic ? -1 : 0; shift <= (periodic ? 1 : 0); ++shift) {
+      const double d = shift * length;
+      best = std::max(best, std::min(p.b + d, q.b) - std::max(p.a + d, q.a) + slack);
+    }
+    return best;
+  };
+  out.complete = true;
+  std::array<std::vector<std::size_t>, 2> claims{std::vector<std::size_t>(lv[m - 3].patches.size(), 0),
+                                                 std::vector<std::size_t>(lv[m - 2].patches.size(), 0)};
+  for (std::size_t k = 0; k < last.patches.size(); ++k) {
+    const raw_patch& p = last.patches[k];
+    if (p.load <= floor) continue;
+    std::array<std::size_t, 3> at{0, 0, k};
+    bool found = true;
+    for (std::size_t j = 0; j < 2 && found; ++j) {
+      const level& coarse = lv[m - 3 + j];
+      double best = 0;
+      found = false;
+      for (std::size_t c = 0; c < coarse.patches.size(); ++c)
+        if (const double o = common(coarse.patches[c], p, coarse.h_length); o > best) best = o, at[j] = c, found = true;
+    }
+    if (!found) {
+      out.complete = false;
+      continue;
+    }
+    ++claims[0][at[0]], ++claims[1][at[1]];
+    out.of[k] = at;
+  }
+  std::array<std::vector<char>, 2> chosen{std::vector<char>(claims[0].size(), 0), std::vector<char>(claims[1].size(), 0)};
+  for (auto& at : out.of) {
+    if (!at) continue;
+    chosen[0][(*at)[0]] = chosen[1][(*at)[1]] = 1;
+    if (claims[0][(*at)[0]] > 1 || claims[1][(*at)[1]] > 1) at.reset(), out.complete = false;
+  }
+  // A patch of a coarser level with more than twice the floor that no patch of the last level above
+  // the floor took as its partner vanished or merged (twice: a patch near the floor may fall below
+  // it on the finer grid without having changed by more than the floor).
+  for (std::size_t j = 0; j < 2; ++j)
+    for (std::size_t c = 0; c < chosen[j].size(); ++c)
+      if (!chosen[j][c] && lv[m - 3 + j].patches[c].load > 2 * floor) out.complete = false;
+  return out;
 }
 
 /// Whether the last three levels meet the acceptance (profile_bem.hpp, STATUS).
-bool accepted(const std::vector<level>& lv, double tol, double slope, double load) {
-  if (!three_matched(lv)) return false;
+bool accepted(const std::vector<level>& lv, double tol, double slope, double load, double length, bool periodic) {
+  const patch_match match = match_patches(lv, tol * load, length, periodic);
+  if (!match.complete) return false;
   const level &l0 = lv[lv.size() - 3], &l1 = lv[lv.size() - 2], &l2 = lv.back();
   if (extrapolate(l0.friction, l1.friction, l2.friction).error > tol * slope) return false;
-  for (std::size_t k = 0; k < l2.patches.size(); ++k)
-    if (extrapolate(l0.patches[k].load, l1.patches[k].load, l2.patches[k].load).error > tol * load) return false;
+  for (const auto& at : match.of)
+    if (at && extrapolate(l0.patches[(*at)[0]].load, l1.patches[(*at)[1]].load, l2.patches[(*at)[2]].load).error > tol * load)
+      return false;
   return true;
 }
 
@@ -156,18 +217,19 @@ grid_search refine(const profile_curve& curve, double load, double load_phys, co
   std::vector<char> active(n, 1);
   Eigen::VectorXd g;
   std::vector<std::size_t> idx;
+  warm_start ws;  // each solve starts from the last one
   try {
     for (;;) {
       panel_grid gr = make_panel_grid(curve, n, cx, top);
       double D = 0;
-      if (!settle(gr, load, span, active, g, idx, D, cx, gs.steps, gs.steps == 0 ? first_grid_steps : refined_grid_steps)) {
+      if (!settle(gr, load, span, active, g, idx, D, cx, gs.steps, gs.steps == 0 ? first_grid_steps : refined_grid_steps, ws)) {
         gs.stopped = "the active set did not settle on " + std::to_string(n) + " panels";
         return gs;
       }
       if (n >= n0) {
         if (n == n0) refuse_end_contact(gr, idx, load_phys);
         gs.levels.push_back(measure(gr, idx, g, load));
-        if (accepted(gs.levels, cx.options.acceptance, slope, load)) return gs;
+        if (accepted(gs.levels, cx.options.acceptance, slope, load, gr.length, gr.periodic)) return gs;
       }
       const std::size_t next = n < n0 ? std::min(4 * n, n0) : 2 * n;
       if (next > bo.max_panels) {
@@ -183,11 +245,13 @@ grid_search refine(const profile_curve& curve, double load, double load_phys, co
   return gs;
 }
 
-/// The reported values from the last (up to three) levels.
-void report(const grid_search& gs, double pressure_scale, double length, profile_bem_result& out) {
+/// The reported values from the last (up to three) levels; floor: acceptance x P (match_patches).
+void report(const grid_search& gs, double pressure_scale, double length, bool periodic, double floor,
+            profile_bem_result& out) {
   const level& last = gs.levels.back();
   const std::size_t m = gs.levels.size();
-  const bool three = three_matched(gs.levels);
+  const patch_match match = match_patches(gs.levels, floor, length, periodic);
+  const bool three = match.complete;
   auto estimate = [&](auto value_of) -> bem_estimate {
     if (three) return extrapolate(value_of(gs.levels[m - 3]), value_of(gs.levels[m - 2]), value_of(last));
     if (m >= 2) return {value_of(last), 2 * std::abs(value_of(last) - value_of(gs.levels[m - 2]))};
@@ -199,11 +263,11 @@ void report(const grid_search& gs, double pressure_scale, double length, profile
     bp.a = p.a;
     bp.b = p.b;
     bp.edge_error = last.h_length;
-    if (three) {
-      const raw_patch &p0 = gs.levels[m - 3].patches[k], &p1 = gs.levels[m - 2].patches[k];
+    if (const auto& at = match.of[k]) {
+      const raw_patch &p0 = gs.levels[m - 3].patches[(*at)[0]], &p1 = gs.levels[m - 2].patches[(*at)[1]];
       bp.load = extrapolate(p0.load, p1.load, p.load);
       bp.hysteretic_friction = extrapolate(p0.moment / p0.load, p1.moment / p1.load, p.moment / p.load);
-    } else {  // a patch not matched on three grids: its own size as its error
+    } else {  // a patch not matched on three grids (or at most the floor): its own size as its error
       bp.load = {p.load, p.load};
       bp.hysteretic_friction = {p.moment / p.load, std::abs(p.moment / p.load)};
     }
@@ -254,7 +318,7 @@ profile_bem_result solve_profile_bem(const profile_scene& s, const solve_options
     out.diagnostics.status = "no grid of " + std::to_string(base_panels(curve)) + " panels or more was solved: " +
                              gs.stopped;
   } else {
-    report(gs, cx.pressure_scale, length, out);
+    report(gs, cx.pressure_scale, length, s.profile.period > 0, options.acceptance * s.load / cx.pressure_scale, out);
     if (!gs.stopped.empty()) {
       out.diagnostics.code = status_code::not_converged;
       std::ostringstream os;

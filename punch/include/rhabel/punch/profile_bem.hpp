@@ -20,14 +20,18 @@
 //   pressure dropped, every penetrating panel added, until neither happens) with one rigid level,
 //   every product with the influence matrix by FFT. Grids: from 256 panels by factors of 4 up to
 //   n0 = the samples' intervals doubled to >= 256 (panel ends on the knots of uniform samples),
-//   then n0, 2 n0, 4 n0, ...; each grid starts from the last one's contact set. After three grids
-//   at n0 2^k with the same number of patches, each load and C_f is extrapolated from its three
-//   values (observed geometric convergence: the Richardson limit; error estimate = that
+//   then n0, 2 n0, 4 n0, ...; each grid starts from the last one's contact set and pressure. Each
+//   patch of the finest grid carrying more than acceptance x P is matched to the patch of each of
+//   the two coarser grids that overlaps it most; each matched load and C_f is extrapolated from
+//   its three values (observed geometric convergence: the Richardson limit; error estimate = that
 //   correction plus the last difference; without an observed order: the last value, error twice
-//   the larger difference).
+//   the larger difference). A patch at or below acceptance x P (one that may or may not exist
+//   within the acceptance: such patches come and go as the grid is refined) is reported with its
+//   own load as its error.
 //
 // STATUS
-//   ok when the last three grids have the same patches, the body's C_f error estimate is at most
+//   ok when every patch above acceptance x P on the last three grids is matched one to one (none
+//   split, merged or vanished between them), the body's C_f error estimate is at most
 //   solve_options::acceptance x max |z'| (C_f is a mean of z' weighted by the pressure: max |z'|
 //   bounds it) and every patch's load error estimate at most acceptance x P. The grids are refined
 //   until that holds, the next grid would exceed max_panels, or solve_options::time_limit runs out
@@ -37,8 +41,12 @@
 //
 // ACCURACY AND COST (measured: tests/punch/test_profile_bem.cpp, studies; docs/accuracy.md)
 //   C_f converges like h^2 once a panel is a fraction of the smallest patch; the error estimate
-//   is a few times the error. Each grid costs O(n log n) per product; the active set's linear
-//   solves are one LU up to 600 active panels, else GMRES preconditioned by each patch's own block.
+//   is a few times the error. Each grid costs O(n log n) per product (a periodic grid's circulant
+//   by FFTs of length n); the active set's linear solves are one LU up to 600 active panels, else
+//   GMRES with a two-level preconditioner (exact blocks of up to 100 active panels and one coarse
+//   unknown per block: ~10-40 products a solve whatever the number of patches), each started from
+//   the last solve. Measured on one core: 96 patches (1000 samples) to C_f +- 9e-7 in 1.3 s;
+//   1364 patches (1e5 samples) to C_f +- 1.3e-4 on 1.6e6 panels in 22 s.
 //   Use acceptance 1e-4 .. 1e-6 (the default 1e-9 of solve_options is far below what a
 //   first-order method reaches in reasonable time and the solve runs to max_panels).
 //
