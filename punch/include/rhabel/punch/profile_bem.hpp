@@ -45,8 +45,8 @@
 //   by FFTs of length n); the active set's linear solves are one LU up to 600 active panels, else
 //   GMRES with a two-level preconditioner (exact blocks of up to 100 active panels and one coarse
 //   unknown per block: ~10-40 products a solve whatever the number of patches), each started from
-//   the last solve. Measured on one core: 96 patches (1000 samples) to C_f +- 9e-7 in 1.3 s;
-//   1364 patches (1e5 samples) to C_f +- 1.3e-4 on 1.6e6 panels in 22 s.
+//   the last solve. Measured on one core (study_rough_profile): 96 patches (1000 samples) to C_f
+//   +- 6e-7 in 0.96 s; 1303 patches (1e5 samples) to C_f +- 1.3e-4 on 1.6e6 panels in 27 s.
 //   Use acceptance 1e-4 .. 1e-6 (the default 1e-9 of solve_options is far below what a
 //   first-order method reaches in reasonable time and the solve runs to max_panels).
 //
