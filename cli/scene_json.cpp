@@ -163,6 +163,7 @@ constexpr range non_negative{0, inf, false, true, "[0, inf)"};
 constexpr range any_finite{-inf, inf, true, true, "(-inf, inf)"};
 constexpr range alpha_range{0, 1, false, true, "[0, 1)"};
 constexpr range poisson_range{0, 0.5, false, false, "[0, 0.5]"};
+constexpr range max_panels_range{256, 8388608, false, false, "[256, 8388608]"};
 
 // Checks that `object` (at `path`) has only the listed keys.
 void only_keys(const json& object, const std::string& path, std::initializer_list<const char*> allowed,
@@ -358,13 +359,13 @@ profile_spec parse_profile(const json& value, const std::string& base_dir) {
   require_object(value, "profile");
   profile_spec p;
   if (value.contains("file")) {
-    only_keys(value, "profile", {"file", "corners", "period", "solver"}, " with a file");
+    only_keys(value, "profile", {"file", "corners", "period", "solver", "max_panels"}, " with a file");
     p.file = optional_string(value, "profile", "file");
     const std::filesystem::path path(p.file);
     read_profile_csv(path.is_absolute() || base_dir.empty() ? p.file : (std::filesystem::path(base_dir) / path).string(),
                      p.file, p);
   } else {
-    only_keys(value, "profile", {"x", "z", "corners", "period", "solver"});
+    only_keys(value, "profile", {"x", "z", "corners", "period", "solver", "max_panels"});
     p.x = number_array(require(value, "profile", "x", "the sample abscissae (or \"file\")"), "profile.x", "sample abscissa");
     p.z = number_array(require(value, "profile", "z", "the sample heights"), "profile.z", "sample height");
   }
@@ -385,6 +386,14 @@ profile_spec parse_profile(const json& value, const std::string& base_dir) {
                  "(or no profile.solver)");
   } else {
     fail_scene("profile.solver = \"" + solver.substr(0, 40) + "\" is not a solver (known: spectral, boundary_element)");
+  }
+  if (const auto it = value.find("max_panels"); it != value.end()) {
+    if (!p.boundary_element)
+      fail_scene("profile.max_panels bounds the grids of profile.solver \"boundary_element\"; the spectral solver has none");
+    const double m = number(*it, "profile.max_panels", max_panels_range,
+                            "the finest grid's panels, ~130 bytes each; a whole number");
+    if (m != std::floor(m)) fail_scene("profile.max_panels = " + show(*it) + " must be a whole number of panels");
+    p.max_panels = static_cast<std::size_t>(m);
   }
   return p;
 }

@@ -37,7 +37,8 @@
 // profile          object, optional   instead of indentors (with a body): a sampled rigid profile
 //                                     whose contacts are found, {"x": [..], "z": [..]} or
 //                                     {"file": "FILE.csv"}, optional "corners": [..], "period" (0, inf)
-//                                     and "solver" ("spectral" | "boundary_element") (profile_spec)
+//                                     and "solver" ("spectral" | "boundary_element"), "max_panels"
+//                                     (boundary_element: the finest grid, 256 .. 2^23) (profile_spec)
 //
 // Policy (decided deliberately, each one is tested in tests/cli/test_solve_errors.sh):
 // - Every field listed is required except `apex`, `name`, `description` (and `material.name`),
@@ -123,6 +124,8 @@ struct profile_spec {
   /// "solver": "boundary_element" (punch::solve_profile_bem; the default with a period) or
   /// "spectral" (punch::solve_profile; the default without).
   bool boundary_element = false;
+  /// "max_panels" (boundary_element only; 0: punch::bem_options' default, 2^21).
+  std::size_t max_panels = 0;
 };
 
 /// A validated scene: every number finite and inside its documented range.

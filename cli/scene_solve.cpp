@@ -100,6 +100,7 @@ ordered_json echo_scene(const scene_spec& spec) {
     profile["corners"] = spec.profile->corners;
     if (spec.profile->period > 0) profile["period"] = spec.profile->period;
     profile["solver"] = spec.profile->boundary_element ? "boundary_element" : "spectral";
+    if (spec.profile->max_panels > 0) profile["max_panels"] = spec.profile->max_panels;
     out["profile"] = std::move(profile);
   } else {
     out["indentors"] = std::move(indentors);
@@ -251,7 +252,9 @@ run_outcome run_profile_bem(const scene_spec& spec, const run_request& request, 
     throw input_error("solve: --grid and --csv sample the fields of profile.solver \"spectral\"; the boundary-element "
                       "solver reports its patches only");
   const punch::profile_scene ps = profile_scene_of(spec);
-  const punch::profile_bem_result r = solve_or_refuse([&] { return punch::solve_profile_bem(ps, options); });
+  punch::bem_options bem;
+  if (spec.profile->max_panels > 0) bem.max_panels = spec.profile->max_panels;
+  const punch::profile_bem_result r = solve_or_refuse([&] { return punch::solve_profile_bem(ps, options, bem); });
   run_outcome out;
   auto& doc = out.result;
   begin_document(out, request, r, ps.material.effective_modulus(spec.speed));

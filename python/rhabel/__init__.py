@@ -83,7 +83,9 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
         profile whose contacts are found (examples/README.md, "A sampled (measured) profile").
         Optional ``"period"`` (> 0: the profile repeats, samples in [x_0, x_0 + period), the load
         is per period) and ``"solver"``: ``"spectral"`` (finite windows; the default without a
-        period) or ``"boundary_element"`` (finite or periodic; the default with a period).
+        period) or ``"boundary_element"`` (finite or periodic; the default with a period), and for
+        the latter ``"max_panels"`` (the finest grid, 256 .. 8388608, ~130 bytes a panel; default
+        2^21).
 
         Every field is required except ``apex``, ``name``, ``description``, ``body`` and
         ``height`` (with a body an indentor has no ``load``; flat punches on a body are not
@@ -218,7 +220,8 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
                                   "samples": len(profile["x"]), "x_range": [profile["x"][0], profile["x"][-1]],
                                   "corners": profile["corners"],
                                   **({"period": profile["period"]} if "period" in profile else {}),
-                                  "solver": profile["solver"]})
+                                  "solver": profile["solver"],
+                                  **({"max_panels": profile["max_panels"]} if "max_panels" in profile else {})})
         result["scene"] = echo
         return Result(result)
     result = _rhabel._solve(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance, threads, time_limit,

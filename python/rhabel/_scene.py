@@ -38,6 +38,7 @@ _NON_NEGATIVE = _Range(0, _INF, False, True, "[0, inf)")
 _ANY_FINITE = _Range(-_INF, _INF, True, True, "(-inf, inf)")
 _ALPHA = _Range(0, 1, False, True, "[0, 1)")
 _POISSON = _Range(0, 0.5, False, False, "[0, 0.5]")
+_MAX_PANELS = _Range(256, 8388608, False, False, "[256, 8388608]")
 
 SHAPES = {
     "parabolic": ("radius",),
@@ -261,11 +262,11 @@ def _profile(value):
     _require_object(value, "profile")
     out = Record()
     if "file" in value:
-        _only_keys(value, "profile", ("file", "corners", "period", "solver"), " with a file")
+        _only_keys(value, "profile", ("file", "corners", "period", "solver", "max_panels"), " with a file")
         out["file"] = _optional_string(value, "profile", "file")
         out["x"], out["z"] = _read_profile_csv(out["file"], out["file"])
     else:
-        _only_keys(value, "profile", ("x", "z", "corners", "period", "solver"))
+        _only_keys(value, "profile", ("x", "z", "corners", "period", "solver", "max_panels"))
         out["x"] = _number_array(_require(value, "profile", "x", 'the sample abscissae (or "file")'), "profile.x",
                                  "sample abscissa")
         out["z"] = _number_array(_require(value, "profile", "z", "the sample heights"), "profile.z", "sample height")
@@ -286,6 +287,14 @@ def _profile(value):
     elif solver != "boundary_element":
         _fail(f'profile.solver = "{solver[:40]}" is not a solver (known: spectral, boundary_element)')
     out["solver"] = solver
+    if "max_panels" in value:
+        if solver != "boundary_element":
+            _fail('profile.max_panels bounds the grids of profile.solver "boundary_element"; the spectral solver has none')
+        m = _number(value["max_panels"], "profile.max_panels", _MAX_PANELS,
+                    "the finest grid's panels, ~130 bytes each; a whole number")
+        if m != math.floor(m):
+            _fail(f"profile.max_panels = {_show(value['max_panels'])} must be a whole number of panels")
+        out["max_panels"] = int(m)
     return out
 
 

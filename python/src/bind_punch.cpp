@@ -251,10 +251,13 @@ py::dict solve_profile_bem(const py::dict& spec, double acceptance, double time_
   punch::solve_options options;
   options.acceptance = acceptance;
   options.time_limit = time_limit;
+  punch::bem_options bem;
+  if (const py::dict profile = spec["profile"]; profile.contains("max_panels"))
+    bem.max_panels = profile["max_panels"].cast<std::size_t>();
   punch::profile_bem_result r;
   {
     py::gil_scoped_release nogil;
-    r = punch::solve_profile_bem(ps, options);
+    r = punch::solve_profile_bem(ps, options, bem);
   }
   py::dict out = result_head(r, ps.material.effective_modulus(ps.speed));
   py::list patches;

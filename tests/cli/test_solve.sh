@@ -185,12 +185,26 @@ PY
 # --grid has no fields to sample there; profile.solver "spectral" with a period; an unknown solver
 "$rhabel" solve "$src/examples/rough_periodic.json" --grid 11 > "$tmp/stdout" 2> "$tmp/err"; rc=$?
 [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && grep -q "boundary-element solver reports its patches only" "$tmp/err" || fail "periodic --grid: rc $rc, $(cat "$tmp/err")"
-for bad in '"period": 4, "solver": "spectral"|a profile.period needs' '"solver": "bem"|is not a solver' '"period": -1|profile.period = -1 is outside' '"period": 3|the samples must lie in'; do
+for bad in '"period": 4, "max_panels": 100|profile.max_panels = 100 is outside the valid range' '"period": 4, "max_panels": 300.5|profile.max_panels = 300.5 must be a whole number' '"max_panels": 1000|the spectral solver has none' '"period": 4, "max_panels": "many"|profile.max_panels must be a number' '"period": 4, "solver": "spectral"|a profile.period needs' '"solver": "bem"|is not a solver' '"period": -1|profile.period = -1 is outside' '"period": 3|the samples must lie in'; do
   field="${bad%%|*}"; message="${bad#*|}"
   printf '%s' '{"material": {"alpha": 0.3, "E1": 1e6, "nu": 0.5, "coulomb": 0}, "speed": 1, "body": {"load": 1}, "profile": {"x": [0, 1, 2, 3], "z": [0, 1, 0, -1], '"$field"'}}' > "$tmp/p.json"
   "$rhabel" solve "$tmp/p.json" > "$tmp/stdout" 2> "$tmp/err"; rc=$?
   [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && grep -q -- "$message" "$tmp/err" || fail "profile $field: rc $rc, $(cat "$tmp/err")"
 done
+
+# profile.max_panels: the refinement stops there, says so (not_converged, exit 3) and is echoed.
+sed 's/"solver": "boundary_element"/"solver": "boundary_element", "max_panels": 4096/' "$src/examples/rough_periodic.json" > "$tmp/capped.json"
+sed -i "s|\"rough_periodic.csv\"|\"$src/examples/rough_periodic.csv\"|" "$tmp/capped.json"
+"$rhabel" solve "$tmp/capped.json" --compact > "$tmp/capped.out" 2> "$tmp/err"; rc=$?
+[ "$rc" -eq 3 ] || fail "max_panels 4096: exit code $rc, expected 3 ($(cat "$tmp/err"))"
+"$py" - "$tmp/capped.out" <<'PY' || fail "max_panels 4096: result document (see above)"
+import json, sys
+r = json.load(open(sys.argv[1]))
+assert r["scene"]["profile"]["max_panels"] == 4096
+assert r["diagnostics"]["status"] == "not_converged"
+assert "exceed max_panels = 4096" in r["diagnostics"]["status_message"], r["diagnostics"]["status_message"]
+assert max(r["diagnostics"]["level_panels"]) <= 4096
+PY
 
 [ "$failures" -eq 0 ] && echo "test_solve: all passed"
 exit "$failures"

@@ -84,6 +84,26 @@ def test_periodic_example_equals_the_command_line(cli):
     assert len(repr(result).splitlines()) <= 1 + rhabel._record._REPR_MAX_CONTACTS
 
 
+def test_max_panels_equals_the_command_line(cli, tmp_path):
+    # profile.max_panels bounds the grids (here below what acceptance 1e-4 needs): the same
+    # not_converged document as `rhabel solve`, bit for bit, naming the bound.
+    scene = json.loads(PERIODIC.read_text())
+    scene["profile"]["file"] = str(PERIODIC.parent / scene["profile"]["file"])
+    scene["profile"]["max_panels"] = 4096
+    path = tmp_path / "capped.json"
+    path.write_text(json.dumps(scene))
+    run = subprocess.run([str(cli), "solve", str(path), "--acceptance", "1e-4", "--compact"], capture_output=True,
+                         text=True)
+    assert run.returncode == 3, run.stderr
+    expected = json.loads(run.stdout)
+    ours = rhabel.solve(rhabel.load_scene(path), acceptance=1e-4).to_plain()
+    for doc in (expected, ours):
+        del doc["diagnostics"]["seconds"]
+    assert ours == expected
+    assert ours["scene"]["profile"]["max_panels"] == 4096
+    assert "exceed max_panels = 4096" in ours["diagnostics"]["status_message"]
+
+
 def test_periodic_profile_validation():
     base = {"material": {"alpha": 0.3, "E1": 1.0, "nu": 0.0, "coulomb": 0.0}, "speed": 1.0, "body": {"load": 1e-3}}
     x = [0.0, 0.25, 0.5, 0.75]
@@ -98,6 +118,12 @@ def test_periodic_profile_validation():
         rhabel.solve({**base, "profile": {"x": x, "z": z, "period": 0.75}})
     with pytest.raises(ValueError, match="reports its patches only"):
         rhabel.solve({**base, "profile": {"x": x, "z": z, "period": 1.0}}, grid=5)
+    with pytest.raises(ValueError, match=r"profile.max_panels = 100 is outside the valid range \[256, 8388608\]"):
+        rhabel.solve({**base, "profile": {"x": x, "z": z, "period": 1.0, "max_panels": 100}})
+    with pytest.raises(ValueError, match="profile.max_panels = 300.5 must be a whole number"):
+        rhabel.solve({**base, "profile": {"x": x, "z": z, "period": 1.0, "max_panels": 300.5}})
+    with pytest.raises(ValueError, match="the spectral solver has none"):
+        rhabel.solve({**base, "profile": {"x": x, "z": z, "max_panels": 1000}})
     # A finite window by the boundary-element method on request.
     xs = np.linspace(-1, 1, 201)
     r = rhabel.solve({**base, "profile": {"x": xs, "z": -xs ** 2 / 2, "solver": "boundary_element"}}, acceptance=1e-4)

@@ -87,7 +87,8 @@ struct bem_patch {
 };
 
 struct bem_options {
-  /// Panels at most on the finest grid (memory ~ 100 bytes a panel at the FFT products).
+  /// Panels at most on the finest grid (memory ~130 bytes a panel: measured 214 MB at 1.6e6, 420 MB
+  /// at 3.2e6; the scene field profile.max_panels).
   std::size_t max_panels = std::size_t{1} << 21;
 };
 
