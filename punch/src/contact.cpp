@@ -370,6 +370,7 @@ scene_result solve(const scene& s, const solve_options& options) {
   const context cx = make_context(s.material, s.speed, options);
   scene_states states = prepare_states(s, cx);
   const coupled_outcome coupled = solve_states(s, states, cx);
+  cx.throw_if_interrupted("rhabel::punch::solve");
   scene_result out = report_scene(s, states, cx, coupled);
   out.diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

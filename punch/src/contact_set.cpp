@@ -647,6 +647,7 @@ profile_result solve_profile(const profile_scene& s, const solve_options& option
     again.iterations += sr.iterations;
     sr = std::move(again);
   }
+  cx.throw_if_interrupted(who);
   // Not even the highest tip alone at 16^-12 of the load: no contact interval (as solve for one
   // indentor without one).
   if (!sr.last) throw std::domain_error(std::string(who) + ": no contact found: " + sr.failure);

@@ -1538,9 +1538,12 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
     if (pb.load_factor < 1) os << " (at " << pb.load_factor << " of the loads)";
     out.message = os.str();
   }
-  // Whatever was reached is reported (with a non-ok code when it did not converge).
+  // Whatever was reached is reported (with a non-ok code when it did not converge), unless the
+  // solve was interrupted: then nothing is (each contact's projection below takes seconds for
+  // contacts nearly touching, and checks nothing inside; the caller wants none of it).
   if (!result.sol.g.empty()) {
     for (std::size_t i = 0; i < st.size(); ++i) {
+      cx.throw_if_interrupted("rhabel::punch::solve");
       st[i].g = std::move(result.sol.g[i]);
       // The report, fields and surface take a Jacobi series (and apex): the layer joins the series;
       // the residual of (8) is evaluated on the density as solved. The projection's measured error

@@ -32,6 +32,7 @@
 #include <boost/math/constants/constants.hpp>
 #include <boost/math/quadrature/tanh_sinh.hpp>
 
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <memory>
@@ -114,11 +115,27 @@ struct context {
     par = abel::abel_parameters<double>(alpha, beta);
     if (kappa == 0 && par.kappa() != 0) par = abel::abel_parameters<double>::from_kappa(alpha, 0.0);
   }
-  /// Whether options.time_limit has run out.
-  bool out_of_time() const { return deadline != std::chrono::steady_clock::time_point::max() && std::chrono::steady_clock::now() >= deadline; }
+  /// Set once options.interrupt has returned true (shared by the copies of the context).
+  std::shared_ptr<std::atomic<bool>> interrupted = std::make_shared<std::atomic<bool>>(false);
+  /// Whether options.time_limit has run out or the solve was interrupted.
+  bool out_of_time() const {
+    return *interrupted ||
+           (deadline != std::chrono::steady_clock::time_point::max() && std::chrono::steady_clock::now() >= deadline);
+  }
+  /// Polls options.interrupt (unless it has fired already); whether the solve is interrupted.
+  bool poll_interrupt() const {
+    if (!*interrupted && options.interrupt && options.interrupt()) *interrupted = true;
+    return *interrupted;
+  }
+  /// Throws punch::interrupted when options.interrupt has stopped the solve (polled here; before
+  /// a report, and between long steps that do not check the time).
+  void throw_if_interrupted(const char* function) const {
+    if (poll_interrupt()) throw punch::interrupted(std::string(function) + ": interrupted (solve_options::interrupt)");
+  }
   /// The failure text of a solve stopped by options.time_limit.
   std::string time_limit_message() const;
-  /// Throws time_limit_reached when options.time_limit has run out. Called at every evaluation of
+  /// Throws time_limit_reached when options.time_limit has run out or options.interrupt returns
+  /// true (polled here). Called at every evaluation of
   /// a coupled solve and every step of the coarse contact search, so that a solve ends within one
   /// evaluation of the limit (solve_options::time_limit).
   void check_time() const;

@@ -45,12 +45,14 @@ double material_kappa(const material& m) {
 // The context of one solve: the material's derived constants and the options.
 
 std::string context::time_limit_message() const {
+  if (*interrupted) return "interrupted (solve_options::interrupt)";
   std::ostringstream os;
   os << "stopped at the time limit of " << options.time_limit << " s (solve_options::time_limit)";
   return os.str();
 }
 
 void context::check_time() const {
+  poll_interrupt();
   if (out_of_time()) throw time_limit_reached(time_limit_message());
 }
 

@@ -305,6 +305,7 @@ profile_bem_result solve_profile_bem(const profile_scene& s, const solve_options
   double slope = 0;
   for (double x : s.profile.x) slope = std::max(slope, std::abs(curve.slope(x)));
   const grid_search gs = refine(curve, s.load / cx.pressure_scale, s.load, cx, bem, slope);
+  cx.throw_if_interrupted(who);
 
   profile_bem_result out;
   out.beta = cx.beta;

@@ -113,6 +113,9 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
         Seconds after which a solve of several contacts (or a sampled profile's contact search)
         stops and returns what it reached with status "not_converged" and a message naming the
         limit (default 0: no limit). A result stopped by it depends on the machine's speed.
+        Ctrl-C stops such a solve (KeyboardInterrupt, no result) within about a tenth of a
+        second, or, for contacts nearly touching, after the one contact's projection under way
+        (up to ~1 s); a one-contact solve takes milliseconds and is not interrupted.
     layered_below : float >= 0
         Several contacts, fewer than six: neighbours closer than this fraction of the shorter
         contact (default 3e-3) have their coupling solved with poles clustered beyond the facing

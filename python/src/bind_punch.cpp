@@ -13,13 +13,63 @@
 #include <rhabel/punch/profile.hpp>
 #include <rhabel/punch/profile_bem.hpp>
 
+#include <chrono>
 #include <cmath>
+#include <functional>
+#include <memory>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
 namespace rhabel::python {
 namespace {
+
+/// Ctrl-C during a solve (punch::solve_options::interrupt). The solve runs without the GIL, so
+/// Python's SIGINT handler cannot run until it returns; this polls the handlers
+/// (PyErr_CheckSignals, the GIL taken back for the call) from the calling thread, at most every
+/// 50 ms. Once the handler has raised (KeyboardInterrupt, or whatever a user's handler raises),
+/// the solve stops at its next time-limit check (punch::interrupted) and `run` raises that
+/// exception instead. Other threads of the solve never poll (Python runs signal
+/// handlers in the main thread only), so only the calling thread touches the state.
+class ctrl_c {
+ public:
+  ctrl_c() : state_(std::make_shared<state>()) { state_->thread = std::this_thread::get_id(); }
+
+  std::function<bool()> poll() const {
+    return [s = state_] {
+      if (std::this_thread::get_id() != s->thread) return false;
+      const auto now = std::chrono::steady_clock::now();
+      if (now - s->last < std::chrono::milliseconds(50)) return false;
+      s->last = now;
+      py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() == 0) return false;
+      s->fired = true;  // the handler's exception is now Python's error indicator
+      return true;
+    };
+  }
+
+  /// solve() without the GIL (threads may solve other scenes meanwhile); the handler's exception
+  /// in place of punch::interrupted.
+  template <class Solve>
+  auto run(Solve&& solve) const {
+    try {
+      py::gil_scoped_release nogil;
+      return solve();
+    } catch (const punch::interrupted&) {
+      if (state_->fired) throw py::error_already_set();  // the GIL is held again here
+      throw;
+    }
+  }
+
+ private:
+  struct state {
+    std::thread::id thread;
+    std::chrono::steady_clock::time_point last{};
+    bool fired = false;
+  };
+  std::shared_ptr<state> state_;
+};
 
 double number(const py::handle& object, const char* key) { return object[key].cast<double>(); }
 
@@ -172,13 +222,11 @@ punch::solve_options make_options(std::size_t grid, bool displacement, double to
 py::dict solve(const py::dict& spec, std::size_t grid, bool displacement, double tolerance, bool residual,
                double acceptance, std::size_t threads, double time_limit, double layered_below) {
   const punch::scene s = to_scene(spec);
-  const punch::solve_options options =
+  punch::solve_options options =
       make_options(grid, displacement, tolerance, residual, acceptance, threads, time_limit, layered_below);
-  punch::scene_result result;
-  {
-    py::gil_scoped_release nogil;  // threads may solve other scenes meanwhile
-    result = punch::solve(s, options);
-  }
+  const ctrl_c interrupt;
+  options.interrupt = interrupt.poll();
+  punch::scene_result result = interrupt.run([&] { return punch::solve(s, options); });
   return to_python(std::move(result), spec, s.material.effective_modulus(s.speed));
 }
 
@@ -200,13 +248,11 @@ punch::profile_scene profile_scene_of(const py::dict& spec) {
 py::dict solve_profile(const py::dict& spec, std::size_t grid, bool displacement, double tolerance, bool residual,
                        double acceptance, std::size_t threads, double time_limit, double layered_below) {
   const punch::profile_scene ps = profile_scene_of(spec);
-  const punch::solve_options options =
+  punch::solve_options options =
       make_options(grid, displacement, tolerance, residual, acceptance, threads, time_limit, layered_below);
-  punch::profile_result r;
-  {
-    py::gil_scoped_release nogil;
-    r = punch::solve_profile(ps, options);
-  }
+  const ctrl_c interrupt;
+  options.interrupt = interrupt.poll();
+  punch::profile_result r = interrupt.run([&] { return punch::solve_profile(ps, options); });
   py::dict out = result_head(r, ps.material.effective_modulus(ps.speed));
   if (!std::isnan(r.body_approach)) out["body_approach"] = r.body_approach;
   py::list contacts;
@@ -251,14 +297,12 @@ py::dict solve_profile_bem(const py::dict& spec, double acceptance, double time_
   punch::solve_options options;
   options.acceptance = acceptance;
   options.time_limit = time_limit;
+  const ctrl_c interrupt;
+  options.interrupt = interrupt.poll();
   punch::bem_options bem;
   if (const py::dict profile = spec["profile"]; profile.contains("max_panels"))
     bem.max_panels = profile["max_panels"].cast<std::size_t>();
-  punch::profile_bem_result r;
-  {
-    py::gil_scoped_release nogil;
-    r = punch::solve_profile_bem(ps, options, bem);
-  }
+  const punch::profile_bem_result r = interrupt.run([&] { return punch::solve_profile_bem(ps, options, bem); });
   py::dict out = result_head(r, ps.material.effective_modulus(ps.speed));
   py::list patches;
   for (const auto& p : r.patches) {

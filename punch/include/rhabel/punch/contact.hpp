@@ -193,6 +193,7 @@
 #include <functional>
 #include <limits>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <variant>
 #include <vector>
@@ -300,6 +301,12 @@ struct solve_options {
   /// milliseconds, does not check it. The work done by a given time depends on
   /// the machine: a result stopped by the limit is not reproducible, one that finished is.
   double time_limit = 0;
+  /// Polled where time_limit is checked (so never by a one-contact solve, which takes
+  /// milliseconds); when it returns true the solve stops at that check, skips its report and
+  /// throws punch::interrupted (no result). For front ends that turn a user's Ctrl-C into a stop
+  /// (the Python package raises KeyboardInterrupt then). It may be called from the threads of
+  /// `threads`; it must be cheap or throttle itself. Empty: never polled.
+  std::function<bool()> interrupt;
   /// Several contacts, fewer than six: when two neighbouring contacts are closer than this
   /// fraction of the shorter one, the coupling correction of each Newton evaluation is solved in
   /// abel's boundary-layer basis (abel::solve_union_layered: a Jacobi series of degree 24 to 48
@@ -312,6 +319,11 @@ struct solve_options {
   /// The reported density is one Jacobi series either way (the layers are projected onto it). From
   /// six contacts on (the far-field route) the series alone is used.
   double layered_below = 3e-3;
+};
+
+/// Thrown by solve, solve_profile and solve_profile_bem when solve_options::interrupt returned true.
+struct interrupted : std::runtime_error {
+  using std::runtime_error::runtime_error;
 };
 
 /// What a result's evidence says (indentor_result::code, scene_result::diagnostics_t::code). A
