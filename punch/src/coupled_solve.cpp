@@ -1543,7 +1543,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   // contacts nearly touching, and checks nothing inside; the caller wants none of it).
   if (!result.sol.g.empty()) {
     for (std::size_t i = 0; i < st.size(); ++i) {
-      cx.throw_if_interrupted("rhabel::punch::solve");
+      cx.throw_if_interrupted("rhabel::punch::solve", true);
       st[i].g = std::move(result.sol.g[i]);
       // The report, fields and surface take a Jacobi series (and apex): the layer joins the series;
       // the residual of (8) is evaluated on the density as solved. The projection's measured error
@@ -1562,6 +1562,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
       if (st[i].k == kind::wedge && !st[i].g.line_load)
         st[i].epsilon = (st[i].apex - st[i].g.a()) / st[i].g.length();
     }
+    cx.throw_if_interrupted("rhabel::punch::solve", true);  // the report's own cost is next
     if (!result.sol.correction_converged && out.code == status_code::ok) {
       std::ostringstream os;
       os.precision(3);

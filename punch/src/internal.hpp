@@ -127,10 +127,10 @@ struct context {
     if (!*interrupted && options.interrupt && options.interrupt()) *interrupted = true;
     return *interrupted;
   }
-  /// Throws punch::interrupted when options.interrupt has stopped the solve (polled here; before
-  /// a report, and between long steps that do not check the time).
-  void throw_if_interrupted(const char* function) const {
-    if (poll_interrupt()) throw punch::interrupted(std::string(function) + ": interrupted (solve_options::interrupt)");
+  /// Throws punch::interrupted when options.interrupt has stopped the solve (before a report; with
+  /// poll, options.interrupt is polled first: between long steps that check nothing inside).
+  void throw_if_interrupted(const char* function, bool poll = false) const {
+    if (poll ? poll_interrupt() : static_cast<bool>(*interrupted)) throw punch::interrupted(std::string(function) + ": interrupted (solve_options::interrupt)");
   }
   /// The failure text of a solve stopped by options.time_limit.
   std::string time_limit_message() const;

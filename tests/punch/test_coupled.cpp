@@ -366,6 +366,25 @@ TEST_CASE("solve_options::time_limit stops a coupled solve with not_converged an
   CHECK_THROWS_AS(solve(sc, o), std::invalid_argument);
 }
 
+TEST_CASE("solve_options::interrupt stops a coupled solve with punch::interrupted, polled no more once it fired") {
+  const material m{0.3, 1.0, 0.3, 0.0};
+  const indentor lone{parabolic{1.0}, 0.1, 0.0};
+  const double L = solve_single(m, 1.0, lone).contact_length;
+  const scene sc = two(m, lone, indentor{parabolic{1.0}, 0.1, 0.9 * L});
+  solve_options o;
+  std::size_t calls = 0;
+  o.interrupt = [&calls] { return ++calls >= 3; };  // fires at the third poll
+  CHECK_THROWS_AS(solve(sc, o), interrupted);
+  CHECK(calls == 3);
+  calls = 0;
+  o.interrupt = [&calls] { return ++calls == 0; };  // never fires: polled, the result unchanged
+  const auto r = solve(sc, o);
+  CHECK(calls > 0);
+  CHECK(r.diagnostics.code == status_code::ok);
+  o.interrupt = [] { return true; };  // one contact never polls (milliseconds)
+  CHECK(solve(scene{m, 1.0, {lone}}, o).diagnostics.code == status_code::ok);
+}
+
 TEST_CASE("a solution of the slope equations whose surface penetrates an indentor is never ok") {
   // Elastic, R = 10 at 0 and R = 1 at -1.5, loads 1: the isolated contacts overlap; the coupled
   // slope equations, edge conditions and loads are solved (residual ~4e-13), but the surface rises

@@ -206,4 +206,11 @@ TEST_CASE("the time limit and max_panels end the refinement with not_converged a
   CAPTURE(t.diagnostics.status);
   CHECK(t.diagnostics.code == pu::status_code::not_converged);
   CHECK(t.diagnostics.status.find("time") != std::string::npos);
+  // solve_options::interrupt: polled at the same checks; once it fires, punch::interrupted and no
+  // result.
+  o.time_limit = 0;
+  std::size_t calls = 0;
+  o.interrupt = [&calls] { return ++calls >= 5; };
+  CHECK_THROWS_AS(pu::solve_profile_bem(s, o, bo), pu::interrupted);
+  CHECK(calls == 5);
 }
