@@ -306,7 +306,7 @@ struct solve_options {
   /// throws punch::interrupted (no result). For front ends that turn a user's Ctrl-C into a stop
   /// (the Python package raises KeyboardInterrupt then). It may be called from the threads of
   /// `threads`; it must be cheap or throttle itself. Empty: never polled.
-  std::function<bool()> interrupt;
+  std::function<bool()> interrupt{};
   /// Several contacts, fewer than six: when two neighbouring contacts are closer than this
   /// fraction of the shorter one, the coupling correction of each Newton evaluation is solved in
   /// abel's boundary-layer basis (abel::solve_union_layered: a Jacobi series of degree 24 to 48
