@@ -168,7 +168,7 @@ class two_level {
 Eigen::VectorXd first_guess(const warm_start& ws, const std::vector<std::size_t>& idx, std::size_t n) {
   const auto m = static_cast<Index>(idx.size());
   Eigen::VectorXd y = Eigen::VectorXd::Zero(m + 1);
-  if (ws.n == 0 || ws.g.size() != static_cast<Index>(ws.idx.size())) return y;
+  if (ws.n == 0) return y;
   const double ratio = static_cast<double>(ws.n) / static_cast<double>(n);
   for (std::size_t r = 0; r < idx.size(); ++r) {
     const auto old = static_cast<std::size_t>((static_cast<double>(idx[r]) + 0.5) * ratio);
@@ -181,15 +181,13 @@ Eigen::VectorXd first_guess(const warm_start& ws, const std::vector<std::size_t>
 
 }  // namespace
 
-bool solve_active(panel_grid& gr, const std::vector<std::size_t>& idx, double load, Eigen::VectorXd& g, double& D,
-                  const context& cx, warm_start& ws, double rtol) {
+bool solve_active(panel_grid& gr, const std::vector<std::size_t>& idx, double load, double span, Eigen::VectorXd& g,
+                  double& D, const context& cx, warm_start& ws, double rtol) {
   const auto m = static_cast<Index>(idx.size());
   // The bordered system [A, -1; sigma h 1^T, 0] (g, D) = (z, sigma load); sigma puts the load row
   // on the scale of the displacements' norm (GMRES's residual weighs both), floored by 1e-3 of
   // the profile's span a panel where the active z vanish.
   Eigen::VectorXd rhs(m + 1);
-  double span = 0;
-  for (double zi : gr.z) span = std::max(span, -zi);
   for (Index r = 0; r < m; ++r) rhs[r] = gr.z[idx[static_cast<std::size_t>(r)]];
   const double sigma = std::max(rhs.head(m).norm(), 1e-3 * span * std::sqrt(static_cast<double>(m))) / load;
   rhs[m] = sigma * load;

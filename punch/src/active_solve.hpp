@@ -24,9 +24,9 @@
 // Block-Jacobi alone leaves the split of the load between blocks to GMRES, about one iteration a
 // block (measured on a 96-patch profile: 43 blocks on 128000 panels, ~108 products for each of
 // two right-hand sides; with the coarse space ~20 for the bordered system).
-// WARM START. `warm_start` keeps the last solve's columns; the next solve (the same grid after a
-// change of the set, or a refined grid: the density per unit x' is grid-independent) starts from
-// them, where a panel's value is that of the panel under its centre on the last grid.
+// WARM START. `warm_start` keeps the last solve's density and level; the next solve (the same grid
+// after a change of the set, or a refined grid: the density per unit x' is grid-independent)
+// starts from them, a panel's density being that of the panel under its centre on the last grid.
 // Each product checks solve_options::time_limit (time_limit_reached).
 #pragma once
 
@@ -55,8 +55,9 @@ struct warm_start {
 constexpr double deciding_tolerance = 1e-11, moving_tolerance = 1e-8;
 
 /// g on the active panels idx and the level D (see the top of the file), GMRES to the relative
-/// residual rtol; false when the solve fails. ws: the first guess on entry, this solve on return.
-bool solve_active(panel_grid& gr, const std::vector<std::size_t>& idx, double load, Eigen::VectorXd& g, double& D,
-                  const context& cx, warm_start& ws, double rtol = deciding_tolerance);
+/// residual rtol; false when the solve fails. span: the profile's (max z - min z). ws: the first
+/// guess on entry, this solve on return.
+bool solve_active(panel_grid& gr, const std::vector<std::size_t>& idx, double load, double span, Eigen::VectorXd& g,
+                  double& D, const context& cx, warm_start& ws, double rtol = deciding_tolerance);
 
 }  // namespace rhabel::punch::detail

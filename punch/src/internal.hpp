@@ -130,9 +130,10 @@ struct context {
   /// Throws punch::interrupted when options.interrupt has stopped the solve (before a report; with
   /// poll, options.interrupt is polled first: between long steps that check nothing inside).
   void throw_if_interrupted(const char* function, bool poll = false) const {
-    if (poll ? poll_interrupt() : static_cast<bool>(*interrupted)) throw punch::interrupted(std::string(function) + ": interrupted (solve_options::interrupt)");
+    if (poll ? poll_interrupt() : static_cast<bool>(*interrupted))
+      throw punch::interrupted(std::string(function) + ": " + time_limit_message());
   }
-  /// The failure text of a solve stopped by options.time_limit.
+  /// The failure text of a solve stopped by options.time_limit (or by options.interrupt).
   std::string time_limit_message() const;
   /// Throws time_limit_reached when options.time_limit has run out or options.interrupt returns
   /// true (polled here). Called at every evaluation of

@@ -149,7 +149,7 @@ bool settle(panel_grid& gr, double load, double span, std::vector<char>& active,
     for (std::size_t i = 0; i < gr.n; ++i)
       if (active[i]) idx.push_back(i);
     decide = decide || step >= loose_steps;
-    if (idx.empty() || !solve_active(gr, idx, load, g, D, cx, ws, decide ? deciding_tolerance : moving_tolerance))
+    if (idx.empty() || !solve_active(gr, idx, load, span, g, D, cx, ws, decide ? deciding_tolerance : moving_tolerance))
       return false;
     bool changed = false;
     for (std::size_t c = 0; c < idx.size(); ++c)

@@ -123,13 +123,6 @@ std::size_t base_panels(const profile_curve& curve) {
   return n;
 }
 
-/// The search over the grids: levels holds the grids n0 2^k solved (the evidence).
-struct grid_search {
-  std::vector<level> levels;
-  std::size_t steps = 0;
-  std::string stopped;  // why the refinement stopped before the acceptance was met ("" if it was)
-};
-
 /// The patches of the last three levels matched (the extrapolation's premise). A patch of the last
 /// level that carries more than `floor` (acceptance x P) is matched to the one patch of each
 /// coarser level that overlaps it (within that level's panel; periodic: modulo the period) when
@@ -195,9 +188,18 @@ patch_match match_patches(const std::vector<level>& lv, double floor, double len
   return out;
 }
 
-/// Whether the last three levels meet the acceptance (profile_bem.hpp, STATUS).
-bool accepted(const std::vector<level>& lv, double tol, double slope, double load, double length, bool periodic) {
-  const patch_match match = match_patches(lv, tol * load, length, periodic);
+/// The search over the grids: levels holds the grids n0 2^k solved (the evidence), match their
+/// last three's patches (match_patches, updated with each level).
+struct grid_search {
+  std::vector<level> levels;
+  patch_match match;
+  std::size_t steps = 0;
+  std::string stopped;  // why the refinement stopped before the acceptance was met ("" if it was)
+};
+
+/// Whether the last three levels, their patches matched, meet the acceptance (profile_bem.hpp,
+/// STATUS).
+bool accepted(const std::vector<level>& lv, const patch_match& match, double tol, double slope, double load) {
   if (!match.complete) return false;
   const level &l0 = lv[lv.size() - 3], &l1 = lv[lv.size() - 2], &l2 = lv.back();
   if (extrapolate(l0.friction, l1.friction, l2.friction).error > tol * slope) return false;
@@ -229,7 +231,8 @@ grid_search refine(const profile_curve& curve, double load, double load_phys, co
       if (n >= n0) {
         if (n == n0) refuse_end_contact(gr, idx, load_phys);
         gs.levels.push_back(measure(gr, idx, g, load));
-        if (accepted(gs.levels, cx.options.acceptance, slope, load, gr.length, gr.periodic)) return gs;
+        gs.match = match_patches(gs.levels, cx.options.acceptance * load, gr.length, gr.periodic);
+        if (accepted(gs.levels, gs.match, cx.options.acceptance, slope, load)) return gs;
       }
       const std::size_t next = n < n0 ? std::min(4 * n, n0) : 2 * n;
       if (next > bo.max_panels) {
@@ -245,12 +248,11 @@ grid_search refine(const profile_curve& curve, double load, double load_phys, co
   return gs;
 }
 
-/// The reported values from the last (up to three) levels; floor: acceptance x P (match_patches).
-void report(const grid_search& gs, double pressure_scale, double length, bool periodic, double floor,
-            profile_bem_result& out) {
+/// The reported values from the last (up to three) levels.
+void report(const grid_search& gs, double pressure_scale, double length, profile_bem_result& out) {
   const level& last = gs.levels.back();
   const std::size_t m = gs.levels.size();
-  const patch_match match = match_patches(gs.levels, floor, length, periodic);
+  const patch_match& match = gs.match;
   const bool three = match.complete;
   auto estimate = [&](auto value_of) -> bem_estimate {
     if (three) return extrapolate(value_of(gs.levels[m - 3]), value_of(gs.levels[m - 2]), value_of(last));
@@ -319,7 +321,7 @@ profile_bem_result solve_profile_bem(const profile_scene& s, const solve_options
     out.diagnostics.status = "no grid of " + std::to_string(base_panels(curve)) + " panels or more was solved: " +
                              gs.stopped;
   } else {
-    report(gs, cx.pressure_scale, length, s.profile.period > 0, options.acceptance * s.load / cx.pressure_scale, out);
+    report(gs, cx.pressure_scale, length, out);
     if (!gs.stopped.empty()) {
       out.diagnostics.code = status_code::not_converged;
       std::ostringstream os;

@@ -71,6 +71,14 @@ class ctrl_c {
   std::shared_ptr<state> state_;
 };
 
+/// solve() (which reads `options`) with options.interrupt polling Ctrl-C (ctrl_c::run).
+template <class Solve>
+auto run_interruptible(punch::solve_options& options, Solve&& solve) {
+  const ctrl_c interrupt;
+  options.interrupt = interrupt.poll();
+  return interrupt.run(std::forward<Solve>(solve));
+}
+
 double number(const py::handle& object, const char* key) { return object[key].cast<double>(); }
 
 punch::material to_material(const py::dict& material) {
@@ -224,9 +232,7 @@ py::dict solve(const py::dict& spec, std::size_t grid, bool displacement, double
   const punch::scene s = to_scene(spec);
   punch::solve_options options =
       make_options(grid, displacement, tolerance, residual, acceptance, threads, time_limit, layered_below);
-  const ctrl_c interrupt;
-  options.interrupt = interrupt.poll();
-  punch::scene_result result = interrupt.run([&] { return punch::solve(s, options); });
+  punch::scene_result result = run_interruptible(options, [&] { return punch::solve(s, options); });
   return to_python(std::move(result), spec, s.material.effective_modulus(s.speed));
 }
 
@@ -250,9 +256,7 @@ py::dict solve_profile(const py::dict& spec, std::size_t grid, bool displacement
   const punch::profile_scene ps = profile_scene_of(spec);
   punch::solve_options options =
       make_options(grid, displacement, tolerance, residual, acceptance, threads, time_limit, layered_below);
-  const ctrl_c interrupt;
-  options.interrupt = interrupt.poll();
-  punch::profile_result r = interrupt.run([&] { return punch::solve_profile(ps, options); });
+  punch::profile_result r = run_interruptible(options, [&] { return punch::solve_profile(ps, options); });
   py::dict out = result_head(r, ps.material.effective_modulus(ps.speed));
   if (!std::isnan(r.body_approach)) out["body_approach"] = r.body_approach;
   py::list contacts;
@@ -297,12 +301,11 @@ py::dict solve_profile_bem(const py::dict& spec, double acceptance, double time_
   punch::solve_options options;
   options.acceptance = acceptance;
   options.time_limit = time_limit;
-  const ctrl_c interrupt;
-  options.interrupt = interrupt.poll();
   punch::bem_options bem;
   if (const py::dict profile = spec["profile"]; profile.contains("max_panels"))
     bem.max_panels = profile["max_panels"].cast<std::size_t>();
-  const punch::profile_bem_result r = interrupt.run([&] { return punch::solve_profile_bem(ps, options, bem); });
+  const punch::profile_bem_result r =
+      run_interruptible(options, [&] { return punch::solve_profile_bem(ps, options, bem); });
   py::dict out = result_head(r, ps.material.effective_modulus(ps.speed));
   py::list patches;
   for (const auto& p : r.patches) {
