@@ -118,7 +118,7 @@ double contact_density::intensity(bool trailing) const {
   return K;
 }
 
-std::size_t contact_density::absorb_layer(double relative_accuracy) {
+std::size_t contact_density::absorb_layer(double relative_accuracy, std::size_t max_degree) {
   if (layer.empty()) return 0;
   const double del = jacobi.del, gam = jacobi.gam;
   // The density's scale: the series' largest coefficient and the layer's factor at the ends and
@@ -143,7 +143,7 @@ std::size_t contact_density::absorb_layer(double relative_accuracy) {
   };
   need(layer.lo_distances, layer.lo_coefficients);
   need(layer.hi_distances, layer.hi_coefficients);
-  const auto n = static_cast<std::size_t>(std::min(double(max_absorbed_degree), std::ceil(needed) + 16));
+  const auto n = static_cast<std::size_t>(std::min(double(std::min(max_degree, max_absorbed_degree)), std::ceil(needed) + 16));
   // At the cap the projection misses the poles' coefficients beyond n: their size, relative to
   // the density's scale, joins the error estimate (never an ok status with a truncated layer).
   double missed = 0;

@@ -414,6 +414,12 @@ struct problem {
   bool full_jacobian = false;        // scene::body: every column differenced (no body_far_model)
   std::vector<double> start_length;  // the isolated contacts' lengths (a body's vanishing contact)
   double load_factor = 1;  // continuation: every load times this
+  // ratio_continuation: contact i's load times load_weights[i] as well (empty: 1).
+  std::vector<double> load_weights;
+  /// The load contact i is solved for at this stage of the continuations.
+  double load(std::size_t i) const {
+    return load_factor * (*st)[i].target_load * (load_weights.empty() ? 1.0 : load_weights[i]);
+  }
   // > 0: the correction at exactly this many points per contact, without its residual (the
   // finite differences of the Jacobian: the base point's degree, so that both sides of a
   // difference share one discretisation)
@@ -514,7 +520,7 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
   out.defect.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
     auto p = pb.split[i] != 0 ? split_particular(st[i], cx, a[i], b[i], pb.split[i])
-                              : solve_particular(st[i], cx, pb.roles[i], a[i], b[i], pb.load_factor * st[i].target_load,
+                              : solve_particular(st[i], cx, pb.roles[i], a[i], b[i], pb.load(i),
                                                  is_loaded(pb, i));
     out.g[i] = std::move(p.g);
     out.defect[i] = p.defect;
@@ -701,13 +707,13 @@ evaluation evaluate(const problem& pb, const unknowns& u, const std::vector<doub
   const std::vector<double> body_rows = pb.body_load ? body_conditions(pb, ev.sol, a, b) : std::vector<double>{};
   for (std::size_t k = 0; k < u.state.size(); ++k) {
     const std::size_t i = u.state[k];
-    const double load = ev.sol.g[i].integral() / (pb.load_factor * st[i].target_load) - 1;
+    const double load = ev.sol.g[i].integral() / (pb.load(i)) - 1;
     if (pb.body_load && (u.trailing[k] || pb.roles[i] == role::apex_ended)) {
       ev.r[static_cast<Eigen::Index>(k)] = body_rows[i];
     } else if (is_loaded(pb, i)) {  // load imposed: both intensities vanish
-      ev.r[static_cast<Eigen::Index>(k)] = relative_intensity(ev.sol.g[i], u.trailing[k], pb.load_factor * st[i].target_load);
+      ev.r[static_cast<Eigen::Index>(k)] = relative_intensity(ev.sol.g[i], u.trailing[k], pb.load(i));
     } else if (pb.roles[i] == role::smooth_both && !u.trailing[k] && pb.split[i] != 0) {  // split: the near edge's
-      ev.r[static_cast<Eigen::Index>(k)] = relative_intensity(ev.sol.g[i], pb.split[i] > 0, pb.load_factor * st[i].target_load);
+      ev.r[static_cast<Eigen::Index>(k)] = relative_intensity(ev.sol.g[i], pb.split[i] > 0, pb.load(i));
     } else if (pb.roles[i] == role::smooth_both && !u.trailing[k]) {
       const double scale = std::max(data_scale(st[i], cx, a[i], b[i]), std::numeric_limits<double>::min());
       ev.r[static_cast<Eigen::Index>(k)] = std::pow((b[i] - a[i]) / 2, cx.alpha) * ev.sol.defect[i] / scale;
@@ -1385,9 +1391,97 @@ newton_result height_continuation(problem& pb, const edges& isolated) {
   return r;
 }
 
-/// The accuracy of the projection of the boundary-layer poles (contact_density::absorb_layer) of a
-/// solve stopped by solve_options::time_limit: its measured error joins the error estimate.
-constexpr double out_of_time_projection = 1e-4;
+/// Contacts scaled about their apexes as isolated ones would be when contact i's load is
+/// multiplied by factor[i] (lengths like load^(1/p)); a contact of a line load, a flat punch or a
+/// wedge keeps its edges.
+edges rescaled(const problem& pb, const edges& x, const std::vector<double>& factor) {
+  edges out = x;
+  const auto& st = *pb.st;
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    if (pb.roles[i] != role::smooth_both && pb.roles[i] != role::apex_ended) continue;
+    const double f = std::pow(factor[i], 1 / load_exponent(st[i], *pb.cx));
+    out.a[i] = st[i].apex + (x.a[i] - st[i].apex) * f;
+    if (pb.roles[i] == role::smooth_both) out.b[i] = st[i].apex + (x.b[i] - st[i].apex) * f;
+  }
+  return out;
+}
+
+/// Independent indentors of unequal loads, when the other starts failed: continuation in the
+/// loads' ratios, from every load equal to the largest (weights w_i = (P_max/P_i)^(1 - s) at s = 0)
+/// to the scene's (s = 1), each stage's Newton starting from the last solution, its contacts
+/// rescaled to the new loads. WHY: a light contact next to a heavy one sits on the surface the
+/// heavy one shaped, far from where its isolated contact would be; the continuation in the load
+/// (attempt) scales both together and keeps that mismatch at every stage (measured: parabolas
+/// R = 1 at alpha 0.4, loads 1 and 0.01, apexes 0.4 apart: not_converged; with loads 1 and 0.03,
+/// ok from the isolated contacts in 0.9 s; 0.01 from 0.03's solution converges).
+newton_result ratio_continuation(problem& pb, const edges& isolated) {
+  const auto& st = *pb.st;
+  double top = 0;
+  for (const auto& s : st) top = std::max(top, s.target_load);
+  std::vector<double> ratio(st.size());
+  for (std::size_t i = 0; i < st.size(); ++i) ratio[i] = top / st[i].target_load;
+  const auto weights = [&](double s) {
+    std::vector<double> w(st.size());
+    for (std::size_t i = 0; i < st.size(); ++i) w[i] = std::pow(ratio[i], 1 - s);
+    return w;
+  };
+  problem p = pb;
+  p.load_weights = weights(0);
+  newton_result r = attempt(p, rescaled(p, isolated, p.load_weights));
+  std::size_t total = r.iterations;
+  double s = 0, step = 0.25;
+  const double requested = pb.accuracy;
+  while (r.converged && s < 1) {
+    problem q = p;
+    const double s_next = std::min(1.0, s + step);
+    q.load_weights = weights(s_next);
+    q.accuracy = s_next < 1 ? std::max(requested, continuation_accuracy) : requested;  // a stage only starts the next
+    std::vector<double> change(st.size());
+    for (std::size_t i = 0; i < st.size(); ++i) change[i] = q.load_weights[i] / p.load_weights[i];
+    edges guess = rescaled(q, r.x, change);
+    if (gap_ratio(q, guess) <= 0) guess = r.x;  // the predictor would overlap: corrector only
+    auto t = newton(q, guess);
+    total += t.iterations;
+    if (t.converged) {
+      r = std::move(t);
+      p = std::move(q);
+      s = s_next;
+      step = std::min(0.5, 1.5 * step);
+    } else if (t.merged || step < 1.0 / 64) {
+      r = std::move(t);
+      p = std::move(q);
+      break;
+    } else {
+      step /= 2;
+    }
+  }
+  r.iterations = total;
+  if (s < 1) r.converged = false;
+  p.load_weights.clear();
+  p.accuracy = requested;
+  pb = std::move(p);
+  return r;
+}
+
+/// The projection of the boundary-layer poles (contact_density::absorb_layer) into the reported
+/// series: its degree grows like sqrt(L/gap), up to 2^15 for contacts 1e-7 L apart, and its cost
+/// and the report's (surface moments, mean slope and gap checks at that degree) like the square:
+/// measured ~5 s a contact at degree 32767 (three parabolas closing to 4e-7 L at alpha 0.6).
+/// A result that is not ok anyway (not converged, or out of time) is projected coarsely, at most
+/// to coarse_degree; with a time limit the degree is capped so that the estimated cost,
+/// seconds_per_degree_squared n^2 a contact, fits in the time left. What a cap leaves out and the
+/// projection's measured error join the error estimate, so a capped result is never ok unless
+/// its estimate still meets the acceptance.
+constexpr double coarse_projection = 1e-4;
+constexpr std::size_t coarse_degree = 1024;
+constexpr double seconds_per_degree_squared = 5e-9;
+
+std::size_t projection_degree(const context& cx, std::size_t contacts) {
+  const double left = cx.seconds_left();
+  if (!std::isfinite(left)) return contact_density::max_absorbed_degree;
+  const double n = std::sqrt(std::max(left, 0.0) / (seconds_per_degree_squared * static_cast<double>(contacts)));
+  return static_cast<std::size_t>(std::clamp(n, double(coarse_degree), double(contact_density::max_absorbed_degree)));
+}
 
 /// `pb` with every contact in the bounded class (no load imposed).
 problem bounded_form(problem pb) {
@@ -1505,6 +1599,12 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
       return second.converged || second.residual < first.residual;
     });
   }
+  // Independent indentors of unequal loads: continuation in the loads' ratios (also after a merge,
+  // which the continuation in the load can meet on its way with the ratios kept).
+  const auto unequal = std::any_of(st.begin(), st.end(), [&](const indentor_state& s) { return s.target_load != st[0].target_load; });
+  if (!pb.body_load && !result.converged && !result.lost && unequal)
+    retry(pb, result, pb, [&](problem& p) { return ratio_continuation(p, isolated); },
+          [](const newton_result& second, const newton_result&) { return second.converged; });
   if (any(pb.loaded) && !result.sol.g.empty()) {
     // The reported densities in the bounded class (the iteration's are bounded only to the
     // tolerance of its intensity conditions, and their edge exponents would be the singular ones).
@@ -1551,10 +1651,12 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
       // tenth of it at least (at tolerance 1e-8, to the acceptance's default 1e-9, every scene of
       // gap 1e-3 L in study_multi_contact came back not_converged).
       if (!st[i].g.layer.empty()) st[i].solved = st[i].g;
-      // Out of time, the result is not ok anyway: the projection at a coarse accuracy (its degree
-      // grows like sqrt(L/gap) and its cost like the square: seconds for contacts nearly touching).
-      st[i].g.absorb_layer(cx.out_of_time() ? out_of_time_projection
-                                            : std::min(cx.options.tolerance, 0.1 * cx.options.acceptance));
+      // Not ok anyway (not converged, out of time): coarsely (see coarse_projection).
+      if (!result.converged || cx.out_of_time())
+        st[i].g.absorb_layer(coarse_projection, coarse_degree);
+      else
+        st[i].g.absorb_layer(std::min(cx.options.tolerance, 0.1 * cx.options.acceptance),
+                             projection_degree(cx, st.size() - i));
       if (pb.body_load) st[i].target_load = st[i].g.integral();  // the solved share (checked by the caller)
       st[i].friction.reset();
       st[i].rh_unit.reset();

@@ -35,6 +35,7 @@
 #include <atomic>
 #include <chrono>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -121,6 +122,11 @@ struct context {
   bool out_of_time() const {
     return *interrupted ||
            (deadline != std::chrono::steady_clock::time_point::max() && std::chrono::steady_clock::now() >= deadline);
+  }
+  /// Seconds until the deadline (negative past it; infinity without a time limit).
+  double seconds_left() const {
+    if (deadline == std::chrono::steady_clock::time_point::max()) return std::numeric_limits<double>::infinity();
+    return std::chrono::duration<double>(deadline - std::chrono::steady_clock::now()).count();
   }
   /// Polls options.interrupt (unless it has fired already); whether the solve is interrupted.
   bool poll_interrupt() const {

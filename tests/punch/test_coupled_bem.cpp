@@ -2,7 +2,7 @@
 // oracle of bem_oracle.hpp (piecewise-constant collocation with an active set and moving meshes,
 // Richardson-extrapolated; it shares no code with rhabel): contact edges, loads and C_f of two and
 // three indentors of each shape, gaps from about one down to 1e-2 of a contact length, alpha in
-// {0, 0.25, 0.7}, with and without friction.
+// {0, 0.25, 0.4, 0.7}, with and without friction, loads equal and 100 : 1.
 //
 // Tolerance: twice the oracle's own error bar plus rhabel's edge tolerance (1e-11 L). The bar is an
 // estimate (bem_oracle.hpp: 10-100x its error against closed forms for most quantities), but on
@@ -147,6 +147,17 @@ TEST_CASE("two parabolas against the boundary-element oracle, gaps ~1 and ~0.1 o
     compare(c.alpha, c.beta, {parabola(1.0, 0.0, 0.3, ps), parabola(1.0, c.D, 0.3, ps)});
     if (!all_cases) break;
   }
+}
+
+TEST_CASE("a light contact beside a heavy one (loads 100 : 1) against the boundary-element oracle") {
+  // Parabolas at alpha = 0.4 (R = 1, load_g 0.75/ps: contact ~1.3 long; the light one 1 % of the
+  // load): the light contact sits on the surface the heavy one shaped, a quarter of the heavy
+  // contact behind its trailing edge, far from its isolated position. From the isolated contacts,
+  // and by the continuation in the load, the edge iteration stalled; it is solved by the
+  // continuation in the loads' ratio (coupled_solve.cpp, ratio_continuation).
+  if (!all_cases) return;  // ~11 s in Release (the oracle resolving the light contact)
+  const double alpha = 0.4, ps = pressure_scale(alpha), heavy = 0.75 / ps;
+  compare(alpha, 0.0, {parabola(1.0, 0.0, heavy, ps), parabola(1.0, 0.4, heavy / 100, ps)});
 }
 
 TEST_CASE("indentors on one rigid body against the boundary-element oracle: the loads' split and the approach") {

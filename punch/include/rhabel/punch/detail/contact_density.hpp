@@ -95,13 +95,13 @@ struct contact_density {
   /// < n), n chosen so that every pole's coefficients, which decay like rho^-n with
   /// rho = 1 + d + sqrt(d (d + 2)) for a pole d beyond an end (Bernstein ellipse), fall below
   /// `relative_accuracy` of the density's scale (the largest series coefficient, or the layer's
-  /// factor at 11 points), at most max_absorbed_degree; at that cap the size of the coefficients
+  /// factor at 11 points), at most max_degree (<= max_absorbed_degree); at that cap the size of the coefficients
   /// left out joins `tail`, and so does the projection's error measured afterwards (the new
   /// series against the old one plus the poles, at 64 Chebyshev points and at geometric distances
   /// from the ends with poles, relative to that scale). Cost O(n^2): n <~ 30/sqrt(2 d_min), ~500
   /// at a gap of 1e-3 of the length, ~800 at 4e-4 (measured: ~15 sqrt(L/gap)), ~1.5e4 at 1e-6.
   /// Returns the degree used (0: no layer).
-  std::size_t absorb_layer(double relative_accuracy);
+  std::size_t absorb_layer(double relative_accuracy, std::size_t max_degree = max_absorbed_degree);
   static constexpr std::size_t max_absorbed_degree = 1 << 15;
 };
 
