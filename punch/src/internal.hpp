@@ -5,9 +5,11 @@
 //                      the image basis (steps in closed form);
 //   single_contact.cpp one contact alone: the density builders (Jacobi series, the wedge's apex
 //                      enrichment, the near-edge split form), edge conditions and root finding;
-//   coupled_solve.cpp  several contacts at once (paper system 41): one linear solve on the union
-//                      of the contact intervals for given edges, Newton on all edge conditions,
-//                      load continuation for close contacts;
+//   coupled_*.cpp      several contacts at once (paper system 41), by stage around the shared
+//                      state of coupled_problem.hpp: coupled_fixed.cpp the linear solve on the
+//                      union of the contact intervals for given edges, coupled_newton.cpp Newton-
+//                      Broyden on all edge conditions, coupled_solve.cpp the starts
+//                      (continuations in the load, the heights and the loads' ratio) and the result;
 //   fields.cpp         edge intensities, peak, Riemann-Hilbert samples, the displacement kernel;
 //   surface.hpp        the surface displacement (displacement grid, penetration check);
 //   report.cpp         the report of a solved contact: residual of (8), status, sampled fields;
@@ -21,8 +23,8 @@
 //   profile_bem.cpp    a sampled profile by the boundary-element method (solve_profile_bem):
 //                      grids refined until the extrapolated loads and C_f meet the acceptance.
 // A new shape: its forcing in shapes.cpp (own_slope, own_forcing), its isolated contact in
-// single_contact.cpp (solve_isolated), its role in the coupled system in coupled_solve.cpp
-// (role_of), its profile in surface.hpp. A new edge condition: coupled_solve.cpp (evaluate).
+// single_contact.cpp (solve_isolated), its role in the coupled system in coupled_problem.hpp
+// (role_of), its profile in surface.hpp. A new edge condition: coupled_newton.cpp (evaluate).
 #pragma once
 
 #include "rhabel/punch/contact.hpp"
@@ -231,7 +233,7 @@ void shift(indentor_result& r, double origin);
 indentor_result report_contact(const std::vector<indentor_state>& st, std::size_t i, const context& cx,
                                const surface& heights, double coulomb, bool several);
 
-// ---- coupled_solve.cpp
+// ---- coupled_solve.cpp (with coupled_fixed.cpp, coupled_newton.cpp)
 /// Outcome of the coupled solve (coupled_solve.cpp).
 struct coupled_outcome {
   status_code code = status_code::ok;

@@ -176,7 +176,7 @@ double mean_slope(const indentor_state& st, const contact_density& g) {
 }
 
 // F = f'/Gamma(1 - alpha) of the indentor's own profile as smooth part + steps (the coupled solve
-// adds the others' action as data of its own: coupled_solve.cpp).
+// adds the others' action as data of its own: coupled_fixed.cpp).
 forcing own_forcing(const indentor_state& st, const context& cx) {
   forcing F;
   const double gf = cx.gamma_factor;

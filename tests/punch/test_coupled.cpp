@@ -506,7 +506,7 @@ TEST_CASE("indentors on one rigid body: the loads' split, the common approach, c
   }
   SUBCASE("seven indentors (the coloured Jacobian with the loads' far monopoles) agree with the per-indentor solve") {
     // More than five smooth contacts on a body: the Jacobian is coloured and its far entries come
-    // from body_far_model (coupled_solve.cpp). The per-indentor solve with the body's loads runs
+    // from body_far_model (coupled_newton.cpp). The per-indentor solve with the body's loads runs
     // another iteration (loads imposed, the relative intensities as conditions): its edges and
     // relative offsets must be the body's, and the loads must add up.
     const material m{0.3, 1.0, 0.3, 0.0};

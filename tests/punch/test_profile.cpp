@@ -233,7 +233,7 @@ TEST_CASE("a profile whose two contacts close in on each other ends in few Newto
   // dip after the highest. The coupled solve of the two bumps' contacts crept toward a merge at
   // 0.009 of a contact length, its condition stuck at 6e-4 with accepted steps of 1e-5, for 60
   // iterations of 0.36 s each, and the search repeated that set round after round (minutes; the
-  // search then reached its limit of 44 rounds). The flat-run rule (coupled_solve.cpp) ends such
+  // search then reached its limit of 44 rounds). The flat-run rule (coupled_newton.cpp) ends such
   // an iteration and names the closing pair (contacts_merge). The result need not be ok; it must
   // be bounded and honest.
   pu::profile_scene ps;

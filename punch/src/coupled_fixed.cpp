@@ -1,0 +1,363 @@
+// punch/src/coupled_fixed.cpp: the coupled solve's linear problem for given edges (solve_fixed):
+// each contact's particular solution and the coupling correction on the union of the contacts
+// (coupled_problem.hpp; the mathematics: "THE LINEAR PROBLEM FOR GIVEN EDGES" at the top of
+// coupled_solve.cpp).
+#include "coupled_problem.hpp"
+
+#include "rhabel/abel.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <numeric>
+#include <sstream>
+#include <vector>
+
+namespace rhabel::punch::detail::coupled {
+
+namespace {
+
+struct particular {
+  contact_density g;
+  double defect = 0;  // nu = -1: A g = F - h^alpha defect on the contact (abel's normalisation)
+};
+
+/// F of the class e on [a, b] without the apex enrichment: spectral (abel::solve) when no step lies
+/// inside, else the projection with the steps' coefficients in closed form, adaptive in the smooth
+/// part's tail.
+particular series_particular(double a, double b, const edge_exponents& e, const forcing& F, const context& cx,
+                              double load = 0) {
+  const std::size_t max_degree = std::max<std::size_t>(cx.options.max_degree, 8);
+  bool step_inside = false;
+  for (const auto& [position, jump] : F.steps) step_inside = step_inside || (position > a && position < b);
+  particular out;
+  const abel::abel_operator<double> op(cx.par, a, b);
+  if (!step_inside) {
+    abel::solve_options<double> o;
+    o.residual_points = 0;
+    o.tolerance = cx.options.tolerance;
+    o.max_degree = max_degree + 1;
+    const auto smooth = F.smooth;
+    const auto steps = F.steps;
+    auto sol = abel::solve(op, leading_edge(e.nu), trailing_edge(e.nu), [&](double s) {
+      double v = smooth ? smooth(s) : 0.0;
+      for (const auto& [position, jump] : steps)
+        if (s > position) v += jump;
+      return v;
+    }, o);
+    out.g.jacobi = e.nu == 1 ? sol.with_load(load) : std::move(sol.density);
+    out.g.nu = e.nu;
+    out.g.tail = sol.coefficient_tail;
+    out.defect = e.nu == -1 ? sol.solvability_defect : 0.0;
+    return out;
+  }
+  for (std::size_t M = 8;; M = std::min(2 * M, max_degree)) {
+    const auto img = image_coefficients(a, b, e, F, M);
+    if (img.tail <= cx.options.tolerance || M >= max_degree) {
+      out.g = density_from_image(a, b, cx.par, e, img);
+      out.defect = e.nu == -1 ? img.d[0] * std::pow(op.half_length(), -cx.alpha) : 0.0;
+      return out;
+    }
+  }
+}
+
+/// The split form of a wedge on [a, b] (see problem::split), its series in the class nu = 0 singular
+/// at the near edge; the correction then lives in that class too.
+particular split_particular(const indentor_state& st, const context& cx, double a, double b, int near) {
+  const auto& w = std::get<wedge>(st.source->shape);
+  const double L = b - a;
+  if (!(st.apex > a && st.apex < b))
+    throw std::domain_error("the apex of " + indentor_name(st.scene_index, *st.source) +
+                            " left its contact during the coupled iteration");
+  particular out;
+  out.g = build_wedge_near_edge((st.apex - a) / L, (b - st.apex) / L, cx, w.slope_leading / cx.gamma_factor,
+                                -w.slope_trailing / cx.gamma_factor, near);
+  out.g.scale(std::pow(L, -cx.alpha));  // g_L(t) = L^-alpha g_1((t - apex)/L)
+  out.g.set_interval(a, b);
+  return out;
+}
+
+particular solve_particular(const indentor_state& st, const context& cx, role r, double a, double b, double load,
+                            bool loaded) {
+  particular out;
+  if (loaded) return series_particular(a, b, cx.exponents(1), own_forcing(st, cx), cx, load);
+  if (r == role::line_load) {
+    out.g.jacobi.lo = out.g.jacobi.hi = a;
+    out.g.line_load = true;
+    out.g.line_weight = load;
+    return out;
+  }
+  const edge_exponents e = cx.exponents(nu_of(r));
+  if (r == role::fixed_faces) {
+    // A flat face: F = 0, so the particular is the homogeneous solution w (A w = 0) carrying the
+    // whole load, c_0 = load / (h int w); the correction then carries no net load, and its data
+    // (the others' action, the neighbours' including this load's) is never identically zero.
+    const double h0 = quadrature::jacobi_norm_squared<double>(0, e.del, e.gam);
+    out.g.jacobi = {a, b, e.gam, e.del, {load / ((b - a) / 2 * h0)}};
+    out.g.nu = 1;
+    return out;
+  }
+  const forcing F = own_forcing(st, cx);
+  const double L = b - a;
+  if (st.k == kind::wedge && r == role::smooth_both && cx.options.wedge_apex_split && st.apex - a > enrich_limit * L &&
+      b - st.apex > enrich_limit * L) {
+    out.g = build_wedge_step(a, b, st.apex, -1, cx, F, &out.defect);
+    return out;
+  }
+  return series_particular(a, b, e, F, cx);
+}
+
+// The action of one contact's density at points of another (disjoint) interval [lo, hi].
+class cross_field {
+ public:
+  cross_field(const contact_density& g, const abel::abel_parameters<double>& par, double lo, double hi)
+      : g_(&g), par_(par), right_of_(g.a() > hi) {
+    if (g.line_load) return;
+    const double gap = right_of_ ? g.a() - hi : lo - g.b();
+    // abel's cross-term nodes, graded toward the end facing [lo, hi] at the TRUE gap (no floor);
+    // [lo, hi] at least a half-length of g away (gap >= h): one panel, whose node count
+    // abel::detail::separated_cross_nodes takes from the separation (the kernel's analyticity
+    // ellipse; eps/100 relative), n/2 + 20 for neighbours one half-length apart, n/2 + 7 far away.
+    const std::size_t n = g.jacobi.coefficients.size();
+    std::size_t count = std::max<std::size_t>(n / 2 + 24, 32);
+    if (const std::size_t separated = abel::detail::separated_cross_nodes(gap / g.jacobi.half_length(), n); separated > 0)
+      count = std::min(count, separated);
+    nodes_ = abel::detail::make_cross_nodes(g.jacobi, gap, right_of_, count);
+    const auto series = g.jacobi.series_evaluator();
+    weighted_.resize(nodes_.x.size());
+    for (std::size_t q = 0; q < nodes_.x.size(); ++q) weighted_[q] = nodes_.weight[q] * series(nodes_.x[q]);
+    if (g.has_apex) op_ = std::make_unique<abel::abel_operator<double>>(par, g.a(), g.b());
+  }
+  double operator()(double s) const {
+    if (g_->line_load) return g_->line_weight * abel::detail::cross_kernel(par_, g_->a() - s);
+    double sum = 0;
+    for (std::size_t q = 0; q < weighted_.size(); ++q) {
+      // t - s from the distances to the facing end (no cancellation).
+      const double t_minus_s = right_of_ ? nodes_.t_minus_lo[q] + (g_->a() - s) : -(nodes_.hi_minus_t[q] + (s - g_->b()));
+      sum += weighted_[q] * abel::detail::cross_kernel(par_, t_minus_s);
+    }
+    if (op_) sum += abel::apply(*op_, g_->apex, s);
+    return sum;
+  }
+
+ private:
+  const contact_density* g_;
+  abel::abel_parameters<double> par_;
+  bool right_of_;
+  abel::detail::cross_nodes<double> nodes_;
+  std::vector<double> weighted_;
+  std::unique_ptr<abel::abel_operator<double>> op_;
+};
+
+/// The action of the contacts' particular solutions on the other contacts through the far field:
+/// each contact's moments from its Jacobi series (exact Gauss-Jacobi quadrature), the local values
+/// of every contact once. A contact with an apex enrichment, and line loads (not among the
+/// targets), act directly on every contact (direct()), and so do near pairs.
+class particular_field {
+ public:
+  /// Null when the field would have nothing far (or there is no tree: too few contacts).
+  static std::shared_ptr<const particular_field> build(const std::vector<contact_density>& g,
+                                                       const std::vector<std::size_t>& targets,
+                                                       const std::vector<abel::interval_spec<double>>& intervals,
+                                                       const context& cx, far_tree* tree) {
+    if (!tree || targets.size() < 2) return nullptr;
+    std::vector<abel::detail::far_field<double>::box> boxes;
+    for (const auto& iv : intervals) boxes.push_back({iv.lo, iv.hi});
+    auto out = std::make_shared<particular_field>();
+    out->field_ = tree->covering(boxes, cx);
+    if (out->field_->pairs() == 0) return nullptr;
+    out->target_of_.assign(g.size(), -1);
+    for (std::size_t k = 0; k < targets.size(); ++k) out->target_of_[targets[k]] = static_cast<long>(k);
+    std::vector<Eigen::VectorXd> W;
+    for (std::size_t k = 0; k < targets.size(); ++k) {
+      const auto& gi = g[targets[k]];
+      out->plain_.push_back(!gi.has_apex);
+      W.push_back(gi.has_apex ? Eigen::VectorXd::Zero(static_cast<Eigen::Index>(out->field_->order()))
+                              : out->field_->density_moments(k, gi.jacobi));
+    }
+    out->local_ = out->field_->far_values(W);
+    return out;
+  }
+  /// Whether source contact i acts on target k (index among the targets) directly.
+  bool direct(std::size_t k, std::size_t i) const {
+    const long t = target_of_[i];
+    if (t < 0 || !plain_[static_cast<std::size_t>(t)]) return true;
+    const auto& near = field_->near_leaves(k);
+    return std::binary_search(near.begin(), near.end(), static_cast<std::size_t>(t));
+  }
+  /// The far action on target k at reference coordinate x of its interval.
+  double at(std::size_t k, double x) const { return field_->interpolate(local_[k], x); }
+  /// The field itself (the union solve's far part reuses it).
+  const std::shared_ptr<const abel::detail::far_field<double>>& field() const { return field_; }
+
+ private:
+  std::shared_ptr<const abel::detail::far_field<double>> field_;
+  std::vector<long> target_of_;
+  std::vector<bool> plain_;
+  std::vector<Eigen::VectorXd> local_;
+};
+
+/// Edge classes of a contact's series (and of its correction).
+std::pair<abel::edge, abel::edge> series_edges(const problem& pb, std::size_t i) {
+  if (is_loaded(pb, i)) return {abel::edge::unbounded, abel::edge::unbounded};
+  if (pb.split[i] > 0) return {abel::edge::bounded, abel::edge::unbounded};
+  if (pb.split[i] < 0) return {abel::edge::unbounded, abel::edge::bounded};
+  const int nu = nu_of(pb.roles[i]);
+  return {leading_edge(nu), trailing_edge(nu)};
+}
+
+/// The boundary-layer route's polynomial degree (abel's measurements: residual ~1e-12 at 24 with
+/// 8 poles a decade, gaps down to 1e-6 of a length); it adapts up to twice this.
+constexpr std::size_t layered_degree = 24;
+
+constexpr std::size_t layered_poles_per_decade = 8;
+
+/// An inexact evaluation (see newton_iteration) at this accuracy or looser takes the boundary-layer
+/// route with a coarse basis: degree layered_degree / 2 (adapting up to layered_degree) and 4 poles
+/// a decade, whose residual stalls at ~1e-10 of the data, about a third of the fine basis's cost.
+/// Two parabolas 1e-3 L apart, alpha 0 / 0.1 / 0.5 / 0.7 / 0.9 (tolerance 1e-12): 0.39 / 0.61 /
+/// 0.28 / 0.37 / 0.49 s with the fine basis throughout, 0.39 / 0.30 / 0.24 / 0.32 / 0.47 s so, the
+/// same Newton iterations and edges within 1e-13 L (throwaway driver, one run each). Coarse at
+/// every accuracy, tolerance 1e-12 is missed (not_converged at 5e-10).
+constexpr double coarse_layered_accuracy = 1e-7;
+
+/// Whether two neighbours of the sorted intervals are closer than `below` of the shorter: then
+/// the correction is solved by abel's boundary-layer route (solve_options::layered_below).
+bool nearly_touching(const std::vector<abel::interval_spec<double>>& intervals, double below) {
+  for (std::size_t k = 0; k + 1 < intervals.size(); ++k) {
+    const double shorter = std::min(intervals[k].hi - intervals[k].lo, intervals[k + 1].hi - intervals[k + 1].lo);
+    if (intervals[k + 1].lo - intervals[k].hi < below * shorter) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, const std::vector<double>& b) {
+  const auto& st = *pb.st;
+  const auto& cx = *pb.cx;
+  const std::size_t n = st.size();
+  // Order along x (by leading edge); contacts must be disjoint.
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return a[i] < a[j]; });
+  for (const auto& [i, j, gap, length] : neighbour_pairs(a, b)) {
+    if (!(gap > 1e-12 * length)) {
+      std::ostringstream os;
+      os.precision(10);
+      os << "the contacts of " << indentor_name(st[i].scene_index, *st[i].source) << " [" << a[i] << ", " << b[i]
+         << "] and " << indentor_name(st[j].scene_index, *st[j].source) << " [" << a[j] << ", " << b[j] << "] meet";
+      throw merge_error(i, j, os.str());
+    }
+  }
+  fixed_solution out;
+  out.g.resize(n);
+  out.defect.assign(n, 0.0);
+  for (std::size_t i = 0; i < n; ++i) {
+    auto p = pb.split[i] != 0 ? split_particular(st[i], cx, a[i], b[i], pb.split[i])
+                              : solve_particular(st[i], cx, pb.roles[i], a[i], b[i], pb.load(i),
+                                                 is_loaded(pb, i));
+    out.g[i] = std::move(p.g);
+    out.defect[i] = p.defect;
+  }
+  // The correction on the intervals (line loads only act).
+  std::vector<std::size_t> targets;
+  for (std::size_t k : order)
+    if (pb.roles[k] != role::line_load) targets.push_back(k);
+  if (targets.empty()) return out;
+  std::vector<abel::interval_spec<double>> intervals;
+  std::vector<std::function<double(double)>> data;
+  abel::multi_solve_options<double> o;
+  double worst_ratio = 0;  // max over targets of (scale of D) / (scale of the data)
+  const bool any_coupling = n > 1;
+  for (std::size_t j : targets) {
+    const auto [leading, trailing] = series_edges(pb, j);
+    intervals.push_back({a[j], b[j], leading, trailing});
+  }
+  // From iterative_from contacts on, the particulars' action on the other contacts through the
+  // far field (abel/detail/far_field.hpp), whose relative accuracy 1e-3 of the tolerance keeps
+  // its error below the correction's residual tolerance; near pairs (and apex enrichments, which
+  // the moments of a Jacobi series do not cover) by cross_field.
+  const std::shared_ptr<const particular_field> far =
+      particular_field::build(out.g, targets, intervals, cx, n >= iterative_from ? pb.tree.get() : nullptr);
+  for (std::size_t k = 0; k < targets.size(); ++k) {
+    const std::size_t j = targets[k];
+    auto f = std::make_shared<std::vector<cross_field>>();
+    for (std::size_t i = 0; i < n; ++i)
+      if (i != j && (!far || far->direct(k, i))) f->emplace_back(out.g[i], cx.par, a[j], b[j]);
+    data.push_back([f, far, k, lo = a[j], h = (b[j] - a[j]) / 2](double s) {
+      double v = far ? -far->at(k, (s - lo) / h - 1) : 0.0;
+      for (const auto& field : *f) v -= field(s);
+      return v;
+    });
+    // A flat face's correction carries no net load (its particular carries all of it).
+    o.loads.push_back(pb.roles[j] == role::fixed_faces || is_loaded(pb, j) ? std::optional<double>(0.0) : std::nullopt);
+    // Scales for the correction's residual tolerance.
+    double d_scale = 0;
+    for (int k = 0; k <= 8; ++k) d_scale = std::max(d_scale, std::abs(data.back()(a[j] + (b[j] - a[j]) * (0.5 + k) / 9.0)));
+    const double f_scale = data_scale(st[j], cx, a[j], b[j]);
+    // A flat face has no data of its own: D (and the load) is all of it.
+    worst_ratio = std::max(worst_ratio, f_scale > 0 ? d_scale / f_scale : 1.0);
+  }
+  const bool any_face = std::any_of(targets.begin(), targets.end(),
+                                    [&](std::size_t j) { return pb.roles[j] == role::fixed_faces || is_loaded(pb, j); });
+  if (!any_coupling && !any_face) return out;
+  // Residual tolerance of the correction relative to ITS data, so that the error relative to the
+  // original data is ~ the tolerance: a weak coupling (D small) needs less relative accuracy.
+  const double tol = std::max(cx.options.tolerance, pb.accuracy);
+  o.residual_tolerance = std::clamp(10 * tol / std::max(worst_ratio, 1e-300), 10 * tol, 1e-4);
+  constexpr std::size_t first_degree = 16;
+  o.degree = pb.fixed_degree > 0 ? pb.fixed_degree : std::max(first_degree, 2 * pb.degree_hint->load() / 3);
+  o.residual_points = pb.fixed_degree > 0 ? 0 : 8;
+  const std::size_t K = intervals.size();
+  // Memory: at most 1 GiB for the union's system (the far route's estimate when it is used).
+  o.max_memory_bytes = std::size_t(1) << 30;
+  const std::size_t memory_degree = far ? abel::detail::union_far_degree_limit(*far->field(), o.max_memory_bytes)
+                                        : abel::detail::union_degree_limit<double>(K, o.max_memory_bytes);
+  const std::size_t top_degree = std::max(first_degree, std::min<std::size_t>(600, memory_degree));
+  if (pb.fixed_degree == 0) o.degree = std::min(o.degree, top_degree);
+  o.max_degree = pb.fixed_degree > 0 ? 0 : std::max(o.degree, top_degree);
+  o.homogeneous = false;  // the loads are imposed through o.loads; the homogeneous solutions are not used
+  // From iterative_from contacts: GMRES, with the far part through the particulars' far field
+  // (the same intervals): 11-19 products for rows of 10-300 parabolas 1.5 L apart.
+  o.iterative_from = iterative_from;
+  if (far) o.far_field = far->field();
+  // (A Jacobian's differences take the base point's route: a difference must not cross routes.)
+  const bool layered = !far && (pb.fixed_degree > 0 ? pb.fixed_poles_per_decade > 0
+                                                    : nearly_touching(intervals, cx.options.layered_below));
+  std::size_t per_decade = 0;
+  if (layered) {
+    // The boundary-layer route: the polynomial part at layered_degree (it adapts up to twice
+    // that), poles for the layers, or the coarse basis for an inexact evaluation; a Jacobian's
+    // differences at the base point's basis. Its degree is not a hint for the polynomial route.
+    const bool coarse = tol >= coarse_layered_accuracy;
+    const std::size_t first = coarse ? layered_degree / 2 : layered_degree;
+    per_decade = pb.fixed_degree > 0 ? pb.fixed_poles_per_decade : (coarse ? layered_poles_per_decade / 2 : layered_poles_per_decade);
+    o.degree = pb.fixed_degree > 0 ? pb.fixed_degree : first;
+    o.max_degree = pb.fixed_degree > 0 ? 0 : 2 * first;
+  }
+  const auto sol = layered ? abel::solve_union_layered(cx.par, intervals, data, o, per_decade)
+                           : abel::solve_union(cx.par, intervals, data, o);
+  out.degree = sol.degree;
+  out.poles_per_decade = per_decade;
+  if (pb.fixed_degree == 0 && !layered) pb.degree_hint->store(sol.degree);
+  out.correction_residual = sol.residual * std::max(worst_ratio, 0.0);
+  out.correction_converged = sol.status == abel::solve_status::converged;
+  for (std::size_t k = 0; k < K; ++k) {
+    const std::size_t j = targets[k];
+    auto& coefficients = out.g[j].jacobi.coefficients;
+    const auto& c = sol.densities[k].coefficients;
+    if (coefficients.size() < c.size()) coefficients.resize(c.size(), 0.0);
+    for (std::size_t m = 0; m < c.size(); ++m) coefficients[m] += c[m];
+    if (k < sol.layers.size()) out.g[j].layer = sol.layers[k];
+    out.g[j].tail = std::max(out.g[j].tail, sol.status == abel::solve_status::converged ? 0.0 : sol.residual);
+    if (sol.exponents[k].nu == -1) out.defect[j] += sol.solvability_defects[k];
+  }
+  return out;
+}
+
+}  // namespace rhabel::punch::detail::coupled

@@ -1,0 +1,652 @@
+// punch/src/coupled_newton.cpp: the coupled solve's Newton-Broyden iteration on the edge
+// conditions (newton; coupled_problem.hpp; the mathematics: "THE EDGES" and "A RIGID BODY" at the
+// top of coupled_solve.cpp).
+#include "coupled_problem.hpp"
+#include "parallel.hpp"
+#include "surface.hpp"
+
+#include "rhabel/abel/detail/broyden_matrix.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <limits>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace rhabel::punch::detail::coupled {
+
+namespace {
+
+struct unknowns {
+  std::vector<std::size_t> state;  // which contact
+  std::vector<bool> trailing;      // which edge
+};
+
+unknowns list_unknowns(const problem& pb) {
+  unknowns u;
+  for (std::size_t i = 0; i < pb.roles.size(); ++i) {
+    if (pb.roles[i] == role::smooth_both) {
+      u.state.push_back(i), u.trailing.push_back(false);
+      u.state.push_back(i), u.trailing.push_back(true);
+    } else if (pb.roles[i] == role::apex_ended) {
+      u.state.push_back(i), u.trailing.push_back(false);
+    }
+  }
+  return u;
+}
+
+struct evaluation {
+  fixed_solution sol;
+  Eigen::VectorXd r;
+};
+
+}  // namespace
+
+/// scene::body: the level of every contact, approach_i + height_i (surface::approach: w - f_i on
+/// the contact, w from the kernel Psi), which must be the same for all indentors.
+std::vector<double> body_levels(const std::vector<indentor_state>& states, const std::vector<contact_density>& g,
+                                const context& cx, double height_factor) {
+  std::vector<indentor_state> tmp = states;
+  for (std::size_t i = 0; i < tmp.size(); ++i) {
+    tmp[i].g = g[i];
+    tmp[i].g.absorb_layer(cx.options.tolerance);  // surface.hpp sees series and apex only
+  }
+  const surface w(tmp, cx);
+  std::vector<double> level(tmp.size());
+  for (std::size_t i = 0; i < tmp.size(); ++i) level[i] = w.approach(i) + height_factor * tmp[i].height;
+  return level;
+}
+
+namespace {
+
+/// The unit of a body's level row i > 0: Gamma times the larger max|f'| L of contacts i and i - 1
+/// (the size of a contact's own displacement).
+double level_row_scale(const problem& pb, std::size_t i, const std::vector<double>& a, const std::vector<double>& b) {
+  const auto& st = *pb.st;
+  const auto& cx = *pb.cx;
+  const double scale = cx.gamma_factor * std::max(data_scale(st[i], cx, a[i], b[i]) * (b[i] - a[i]),
+                                                  data_scale(st[i - 1], cx, a[i - 1], b[i - 1]) * (b[i - 1] - a[i - 1]));
+  return std::max(scale, std::numeric_limits<double>::min());
+}
+
+/// scene::body: the second condition of every contact (the one a per-indentor load would fill):
+/// contact 0 the total load, sum int g_j / body_load - 1; contact i > 0 its level against contact
+/// i - 1's, in units of level_row_scale.
+std::vector<double> body_conditions(const problem& pb, const fixed_solution& sol, const std::vector<double>& a,
+                                    const std::vector<double>& b) {
+  const auto& st = *pb.st;
+  const std::vector<double> level = body_levels(st, sol.g, *pb.cx, pb.height_factor);
+  std::vector<double> r(st.size());
+  double total = 0;
+  for (const auto& g : sol.g) total += g.integral();
+  r[0] = total / (pb.load_factor * *pb.body_load) - 1;
+  for (std::size_t i = 1; i < st.size(); ++i) r[i] = (level[i] - level[i - 1]) / level_row_scale(pb, i, a, b);
+  return r;
+}
+
+/// Intensity factor of g at one edge (series and apex part) as K L^exponent relative to the mean
+/// density load/L: the condition of an edge that must be smooth in a class singular there.
+double relative_intensity(const contact_density& g, bool trailing, double load) {
+  const double L = g.length();
+  const double K = g.intensity(trailing);
+  return K * std::pow(L, trailing ? g.jacobi.del : g.jacobi.gam) / (load / L);
+}
+
+/// The conditions, in the order of the unknowns. A smooth contact: h^alpha d_j / data scale (or,
+/// in the split form, the relative intensity at the near edge) and load/P - 1; with the load
+/// imposed, the relative intensities at both edges; on a rigid body, its second condition is
+/// body_conditions'. A wedge ending at its apex: load/P - 1 (on a body: body_conditions').
+evaluation evaluate(const problem& pb, const unknowns& u, const std::vector<double>& a, const std::vector<double>& b) {
+  pb.cx->check_time();  // every evaluation: the Jacobian's columns, the line search, the sharpening
+  evaluation ev{solve_fixed(pb, a, b), Eigen::VectorXd(static_cast<Eigen::Index>(u.state.size()))};
+  const auto& st = *pb.st;
+  const auto& cx = *pb.cx;
+  const std::vector<double> body_rows = pb.body_load ? body_conditions(pb, ev.sol, a, b) : std::vector<double>{};
+  for (std::size_t k = 0; k < u.state.size(); ++k) {
+    const std::size_t i = u.state[k];
+    const double load = ev.sol.g[i].integral() / (pb.load(i)) - 1;
+    if (pb.body_load && (u.trailing[k] || pb.roles[i] == role::apex_ended)) {
+      ev.r[static_cast<Eigen::Index>(k)] = body_rows[i];
+    } else if (is_loaded(pb, i)) {  // load imposed: both intensities vanish
+      ev.r[static_cast<Eigen::Index>(k)] = relative_intensity(ev.sol.g[i], u.trailing[k], pb.load(i));
+    } else if (pb.roles[i] == role::smooth_both && !u.trailing[k] && pb.split[i] != 0) {  // split: the near edge's
+      ev.r[static_cast<Eigen::Index>(k)] = relative_intensity(ev.sol.g[i], pb.split[i] > 0, pb.load(i));
+    } else if (pb.roles[i] == role::smooth_both && !u.trailing[k]) {
+      const double scale = std::max(data_scale(st[i], cx, a[i], b[i]), std::numeric_limits<double>::min());
+      ev.r[static_cast<Eigen::Index>(k)] = std::pow((b[i] - a[i]) / 2, cx.alpha) * ev.sol.defect[i] / scale;
+    } else {
+      ev.r[static_cast<Eigen::Index>(k)] = load;
+    }
+  }
+  return ev;
+}
+
+edges moved(const problem& pb, const unknowns& u, const edges& x, const Eigen::VectorXd& dx) {
+  edges y = x;
+  for (std::size_t k = 0; k < u.state.size(); ++k) {
+    const std::size_t i = u.state[k];
+    (u.trailing[k] ? y.b[i] : y.a[i]) += dx[static_cast<Eigen::Index>(k)];
+  }
+  for (std::size_t i = 0; i < pb.roles.size(); ++i)
+    if (pb.roles[i] == role::apex_ended) y.b[i] = (*pb.st)[i].apex;
+  return y;
+}
+
+/// Smallest gap the coupled solve resolves, relative to the smaller of the two contacts. The
+/// boundary-layer route (solve_options::layered_below) solves the coupling at any gap in
+/// log(L/gap) unknowns, and the report's residual is evaluated on the densities as solved; what
+/// grows is the reported density, one Jacobi series (contact_density::absorb_layer) of degree
+/// ~ 15 sqrt(L/gap), projected and used by the fields in O(degree^2): ~1e4 at 1e-6 L, where its
+/// measured projection error is ~3e-12 of the density. Two elastic parabolas (alpha 0, R 1,
+/// load_g 0.3 each, throwaway driver): gaps 8.2e-6 / 3.0e-6 / 1.7e-6 L ok in 0.9 / 1.7 / 2.2 s;
+/// apexes 0.23 apart, a gap closing below this limit, contacts_merge in 2.6 s. A Newton step that
+/// would close a gap narrower than this ends the iteration (contacts_merge when the full step
+/// closes it, else not_converged): contacts are not merged into one.
+constexpr double resolved_gap = 1e-6;
+
+/// Two neighbours whose gap the step (x + dx) would close while it is already below resolved_gap.
+struct closing_gap {
+  std::size_t first, second;
+  double gap_ratio;
+  bool closes;  // the full step makes the gap negative
+};
+
+/// Largest t in (0, 1] such that x + t dx keeps every contact at least half as long and every gap
+/// at least a fifth as wide as now (the contacts' order is kept); `closing` reports a gap below
+/// resolved_gap that the step narrows.
+double step_limit(const problem& pb, const unknowns& u, const edges& x, const Eigen::VectorXd& dx,
+                  std::optional<closing_gap>& closing) {
+  const std::size_t n = pb.roles.size();
+  std::vector<double> da(n, 0.0), db(n, 0.0);
+  for (std::size_t k = 0; k < u.state.size(); ++k)
+    (u.trailing[k] ? db : da)[u.state[k]] = dx[static_cast<Eigen::Index>(k)];
+  double t = 1;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double L = x.b[i] - x.a[i], dL = db[i] - da[i];
+    if (dL < 0 && L > 0) t = std::min(t, 0.5 * L / -dL);
+  }
+  for (const auto& [i, j, gap, L] : neighbour_pairs(x.a, x.b)) {
+    const double dgap = da[j] - db[i];
+    if (dgap < 0 && gap > 0) t = std::min(t, 0.8 * gap / -dgap);
+    if (dgap < 0 && gap < resolved_gap * L) closing = closing_gap{i, j, gap / L, gap + dgap <= 0};
+  }
+  return t;
+}
+
+/// "the contacts of X and Y are r of a contact length apart and still closing" + what follows.
+std::string closing_message(const problem& pb, const closing_gap& c, const std::string& what_follows) {
+  const auto& st = *pb.st;
+  std::ostringstream os;
+  os.precision(3);
+  os << "the contacts of " << indentor_name(st[c.first].scene_index, *st[c.first].source) << " and "
+     << indentor_name(st[c.second].scene_index, *st[c.second].source) << " are " << c.gap_ratio
+     << " of a contact length apart and still closing" << what_follows;
+  return os.str();
+}
+
+/// scene::body: a contact shorter than this fraction of its isolated length (at an equal share of
+/// the load) is taken as vanishing: its indentor would carry no load.
+constexpr double vanishing_length = 1e-3;
+
+/// A FLAT RUN: accepted steps that each lower the largest edge condition by less than
+/// flat_gain (the line search shortened them to almost nothing). After flat_steps of them a new
+/// Jacobian is taken; flat_steps more end the iteration. WHY: the conditions have reached the
+/// floor of what the evaluation resolves, and the sufficient-decrease test (1 - 1e-4 t) accepts
+/// steps of t ~ 1e-5 for ever (measured: a 12-sample profile whose two contacts closed in on
+/// each other at 0.009 of a contact length; 30 steps at the same condition, 6e-4, at 0.36 s
+/// each, then the iteration limit).
+constexpr double flat_gain = 0.99;
+
+constexpr std::size_t flat_steps = 4;
+
+/// A flat run that ends with two neighbours closer than this fraction of the smaller contact,
+/// their gap narrowing, is reported as those contacts merging (contacts_merge; the profile search
+/// then solves them as one contact). WHY: a gap that the iteration keeps closing but cannot
+/// resolve is the approach of a merge; a few percent of a length needs degree ~ 10 sqrt(L/gap).
+constexpr double flat_merge_gap = 0.02;
+
+/// The closest pair of neighbours in x (by gap relative to neighbour_pair::length) whose gap the move
+/// from `before` to `after` narrowed, with that ratio at `after`; none when no gap narrowed.
+std::optional<closing_gap> narrowing_pair(const edges& before, const edges& after) {
+  std::optional<closing_gap> out;
+  for (const auto& [i, j, gap, L] : neighbour_pairs(after.a, after.b)) {
+    if (!(gap < before.a[j] - before.b[i])) continue;
+    if (!out || gap / L < out->gap_ratio) out = closing_gap{i, j, gap / L, gap <= 0};
+  }
+  return out;
+}
+
+}  // namespace
+
+/// scene::body in the bounded class with more than full_width contacts, all smooth both sides
+/// (no wedge, no split form): the coloured Jacobian with the loads' far monopoles (body_far_model).
+bool body_colouring(const problem& pb) {
+  if (!pb.body_load || pb.full_jacobian || pb.roles.size() <= full_width) return false;
+  for (std::size_t i = 0; i < pb.roles.size(); ++i)
+    if (pb.roles[i] != role::smooth_both || pb.split[i] != 0 || is_loaded(pb, i)) return false;
+  return true;
+}
+
+namespace {
+
+/// A rigid body in the bounded class: moving an edge of contact i changes its load P_i, whose
+/// action on every other contact is a monopole that hardly decays (the cross kernel ~ d^(alpha-1),
+/// Psi ~ d^alpha). The banded (coloured) differences miss it, and Newton then stalls. This model
+/// gives the conditions' response to one unit of load added to a far contact i, acting from its
+/// centre c_i:
+///   * the defect row of contact j: its data changes by -K(c_i - s) on I_j (K = cross_kernel), and
+///     its solvability defect by ell_j of that, ell_j the defect functional of a contact alone
+///     (abel::solve in the bounded class), applied to the Chebyshev interpolant on `points` points
+///     (ell_j(T_k) once per contact); times the row's scale (L_j/2)^alpha / data scale;
+///   * the level row of j > 0: Gamma (Psi(a_j - c_i) - Psi(a_(j-1) - c_i)) over the row's scale
+///     (surface::approach takes the datum at the leading edge).
+/// The coupled correction's redistribution is left out (higher order in L/d): Broyden's updates
+/// recover it.
+class body_far_model {
+ public:
+  static constexpr std::size_t points = 8;
+
+  body_far_model(const problem& pb, const edges& x) : pb_(&pb), x_(&x), grid_(points) {
+    const auto& st = *pb.st;
+    const auto& cx = *pb.cx;
+    const std::size_t n = st.size();
+    ell_.resize(n);
+    defect_scale_.resize(n);
+    level_scale_.assign(n, 0.0);
+    for (std::size_t j = 0; j < n; ++j) {
+      const double a = x.a[j], b = x.b[j];
+      const abel::abel_operator<double> op(cx.par, a, b);
+      abel::solve_options<double> o;
+      o.residual_points = 0;
+      o.tolerance = 1e-10;  // entries of a Jacobian: far more than Newton needs
+      o.max_degree = 2 * points;
+      for (std::size_t k = 0; k < points; ++k) {
+        const auto sol = abel::solve(op, abel::edge::bounded, abel::edge::bounded, [&](double s) {
+          return std::cos(static_cast<double>(k) * std::acos(std::clamp((2 * s - a - b) / (b - a), -1.0, 1.0)));
+        }, o);
+        ell_[j][k] = sol.solvability_defect;
+      }
+      defect_scale_[j] = std::pow((b - a) / 2, cx.alpha) / std::max(data_scale(st[j], cx, a, b), std::numeric_limits<double>::min());
+      if (j > 0) level_scale_[j] = level_row_scale(pb, j, x.a, x.b);
+    }
+  }
+  /// d(defect row of j)/d P_i.
+  double defect_row(std::size_t j, std::size_t i) const {
+    const auto& cx = *pb_->cx;
+    const double a = x_->a[j], b = x_->b[j], c = (x_->a[i] + x_->b[i]) / 2;
+    std::vector<double> values(points);
+    for (std::size_t m = 0; m < points; ++m) {
+      const double s = grid_.one_plus_x[m] <= grid_.one_minus_x[m] ? a + (b - a) / 2 * grid_.one_plus_x[m]
+                                                                  : b - (b - a) / 2 * grid_.one_minus_x[m];
+      values[m] = -abel::detail::cross_kernel(cx.par, c - s);
+    }
+    const auto coefficients = abel::detail::chebyshev_coefficients(values);
+    double sum = 0;
+    for (std::size_t k = 0; k < points; ++k) sum += coefficients[k] * ell_[j][k];
+    return defect_scale_[j] * sum;
+  }
+  /// d(level row of j > 0)/d P_i (the datum of surface::approach at the leading edges).
+  double level_row(std::size_t j, std::size_t i) const {
+    const auto& cx = *pb_->cx;
+    const double c = (x_->a[i] + x_->b[i]) / 2, omk = cx.par.one_minus_kappa_over_alpha();
+    const double difference =
+        psi_distance(x_->a[j] - c, cx.alpha, omk, cx.kappa) - psi_distance(x_->a[j - 1] - c, cx.alpha, omk, cx.kappa);
+    return cx.gamma_factor * difference / level_scale_[j];
+  }
+
+ private:
+  const problem* pb_;
+  const edges* x_;
+  abel::detail::chebyshev_grid<double> grid_;
+  std::vector<std::array<double, points>> ell_;
+  std::vector<double> defect_scale_, level_scale_;
+};
+
+/// Forward-difference Jacobian of the edge conditions (relative step 1e-7 of each contact's
+/// length; backward where the forward step would close a gap). Up to `full_width` contacts: one
+/// evaluation per unknown. More: the contacts are coloured by their rank along x modulo
+/// full_width, and the edges of one side of one colour are moved together (Curtis-Powell-Reid): a
+/// condition of contact j is attributed to the moved contact within full_width/2 ranks of j, the
+/// rest of its row is left 0. That neglects the dependence on farther contacts (the coupling decays
+/// like distance^(alpha - 1)): Broyden's updates recover it. 2 full_width evaluations for any N.
+Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x, const evaluation& ev) {
+  problem pb = base;
+  pb.fixed_degree = ev.sol.degree;
+  pb.fixed_poles_per_decade = ev.sol.poles_per_decade;
+  const Eigen::VectorXd& r = ev.r;
+  const auto m = static_cast<Eigen::Index>(u.state.size());
+  const std::size_t n = pb.roles.size();
+  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(m, m);
+  std::vector<std::size_t> order(n), rank(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return x.a[i] < x.a[j]; });
+  for (std::size_t k = 0; k < n; ++k) rank[order[k]] = k;
+  // A rigid body: coloured only in the bounded class of smooth contacts, with the far monopoles of
+  // body_far_model (its total load, one dense row, from each contact's own load change).
+  const bool body = body_colouring(pb);
+  const std::size_t colours = n <= full_width || (pb.body_load && !body) ? n : full_width;
+  auto near = [&](std::size_t ci, std::size_t cj) { return colours == n || 2 * (ci > cj ? ci - cj : cj - ci) < colours; };
+  std::optional<body_far_model> far;
+  if (body && colours < n) far.emplace(pb, x);
+  std::vector<double> base_load(far ? n : 0);
+  for (std::size_t i = 0; i < base_load.size(); ++i) base_load[i] = ev.sol.g[i].integral();
+  std::vector<double> h(static_cast<std::size_t>(m));
+  for (std::size_t k = 0; k < h.size(); ++k) h[k] = 1e-7 * (x.b[u.state[k]] - x.a[u.state[k]]);
+  // One column (group) per colour and side: the unknowns moved together, their difference of the
+  // conditions, or the failure of both differences. Independent of one another: on
+  // solve_options::threads threads.
+  struct column {
+    std::vector<std::size_t> moved_unknowns;
+    Eigen::VectorXd dr;
+    std::vector<double> dload;  // each contact's load difference (a rigid body's far model)
+    std::exception_ptr failure;
+  };
+  std::vector<column> columns;
+  for (std::size_t colour = 0; colour < colours; ++colour) {
+    for (int side = 0; side < 2; ++side) {
+      column c;
+      for (std::size_t k = 0; k < h.size(); ++k)
+        if (rank[u.state[k]] % colours == colour && u.trailing[k] == (side == 1)) c.moved_unknowns.push_back(k);
+      if (!c.moved_unknowns.empty()) columns.push_back(std::move(c));
+    }
+  }
+  run_tasks(columns.size(), pb.cx->options.threads, [&](std::size_t index) {
+    column& c = columns[index];
+    auto difference = [&](double sign) {
+      Eigen::VectorXd e = Eigen::VectorXd::Zero(m);
+      for (std::size_t k : c.moved_unknowns) e[static_cast<Eigen::Index>(k)] = sign * h[k];
+      const edges y = moved(pb, u, x, e);
+      const evaluation at = evaluate(pb, u, y.a, y.b);
+      if (far) {
+        c.dload.resize(n);
+        for (std::size_t i = 0; i < n; ++i) c.dload[i] = sign * (at.sol.g[i].integral() - base_load[i]);
+      }
+      return Eigen::VectorXd(sign * (at.r - r));
+    };
+    try {
+      try {
+        c.dr = difference(1);
+      } catch (const std::exception&) {  // the forward step closes a gap (or leaves a domain): backward
+        c.dr = difference(-1);
+      }
+    } catch (...) {
+      c.failure = std::current_exception();
+    }
+  });
+  for (column& c : columns) {
+    if (c.failure) std::rethrow_exception(c.failure);  // the first failed column, as a serial run would
+    for (Eigen::Index row = 0; row < m; ++row) {
+      const std::size_t j = u.state[static_cast<std::size_t>(row)];
+      if (far) {
+        const bool trailing = u.trailing[static_cast<std::size_t>(row)];
+        if (trailing && j == 0) {  // the total load: each moved contact's neighbourhood's loads
+          for (std::size_t k : c.moved_unknowns) {
+            double sum = 0;
+            for (std::size_t o = 0; o < n; ++o)
+              if (near(rank[o], rank[u.state[k]])) sum += c.dload[o];
+            J(row, static_cast<Eigen::Index>(k)) = sum / (pb.load_factor * *pb.body_load) / h[k];
+          }
+          continue;
+        }
+        // The far moved contacts' monopoles: out of the difference, into their own entries.
+        for (std::size_t k : c.moved_unknowns) {
+          const std::size_t i = u.state[k];
+          if (near(rank[j], rank[i])) continue;
+          const double response = trailing ? far->level_row(j, i) : far->defect_row(j, i);
+          c.dr[row] -= c.dload[i] * response;
+          J(row, static_cast<Eigen::Index>(k)) = c.dload[i] / h[k] * response;
+        }
+      }
+      for (std::size_t k : c.moved_unknowns)
+        if (near(rank[j], rank[u.state[k]])) J(row, static_cast<Eigen::Index>(k)) = c.dr[row] / h[k];
+    }
+  }
+  return J;
+}
+
+newton_result newton_iteration(const problem& pb, const edges& start);
+
+}  // namespace
+
+/// newton_iteration, with any failure of a contact's own solve (std::exception) as a failed result.
+newton_result newton(const problem& pb, const edges& start) {
+  try {
+    return newton_iteration(pb, start);
+  } catch (const std::exception& e) {
+    newton_result out;
+    out.x = start;
+    out.failure = e.what();
+    return out;
+  }
+}
+
+namespace {
+
+/// Inexact Newton: far from the solution the conditions need not be evaluated to the tolerance. An
+/// evaluation solves the correction to inexact_ratio times the largest condition at the last
+/// accepted point (at most first_accuracy, at least the tolerance): the error it makes in the
+/// conditions is then a small fraction of their size, and near the solution it is the tolerance.
+/// The correction's degree follows (gap 1e-3 L: ~400 points per contact at 1e-10, fewer at 1e-5).
+constexpr double inexact_ratio = 1e-3;
+
+constexpr double first_accuracy = 1e-5;
+
+constexpr double trust_factor = 10;
+
+newton_result newton_iteration(const problem& pb, const edges& start) {
+  const unknowns u = list_unknowns(pb);
+  const double tol = std::max(pb.cx->options.tolerance, pb.accuracy);
+  const auto accuracy_for = [&](double r) { return std::max(tol, std::min(first_accuracy, inexact_ratio * r)); };
+  problem q = pb;  // the evaluations' problem: pb at the accuracy of the current step
+  q.accuracy = u.state.empty() ? pb.accuracy : accuracy_for(std::numeric_limits<double>::infinity());
+  newton_result out;
+  out.x = start;
+  for (std::size_t i = 0; i < pb.roles.size(); ++i)
+    if (pb.roles[i] == role::apex_ended) out.x.b[i] = (*pb.st)[i].apex;
+  if (pb.cx->out_of_time()) {  // the callers' loops then end after one cheap call each
+    out.failure = pb.cx->time_limit_message();
+    out.residual = std::numeric_limits<double>::infinity();
+    return out;
+  }
+  evaluation ev;
+  // Conditions evaluated at an accuracy are trusted when they exceed trust_factor times it;
+  // below, the point is evaluated again, more accurately, until they do or the accuracy is the
+  // tolerance (a superlinear step can land far below the accuracy it was evaluated at; compared
+  // with that value, the next, accurate evaluation would never show a decrease).
+  double ev_accuracy = q.accuracy;
+  const auto sharpen = [&](const edges& x) {
+    while (ev_accuracy > tol && ev.r.lpNorm<Eigen::Infinity>() < trust_factor * ev_accuracy) {
+      q.accuracy = accuracy_for(ev.r.lpNorm<Eigen::Infinity>());  // at most inexact_ratio trust_factor ev_accuracy
+      ev = evaluate(q, u, x.a, x.b);
+      ev_accuracy = q.accuracy;
+    }
+  };
+  try {
+    ev = evaluate(q, u, out.x.a, out.x.b);
+    ev_accuracy = q.accuracy;
+    if (!u.state.empty()) sharpen(out.x);
+  } catch (const merge_error& m) {
+    out.failure = m.what();
+    out.merged = std::make_pair(m.first, m.second);
+    return out;
+  } catch (const std::domain_error& e) {  // a contact's own solve failed at the start
+    out.failure = e.what();
+    return out;
+  } catch (const time_limit_reached& e) {
+    out.failure = e.what();
+    out.residual = std::numeric_limits<double>::infinity();
+    return out;
+  }
+  if (u.state.empty()) {
+    out.converged = true;
+    out.sol = std::move(ev.sol);
+    return out;
+  }
+  // Up to 64 unknowns the updated matrix is factorised with full pivoting at every step (robust
+  // when it is nearly singular, e.g. contacts about to merge); above, J0's LU with Broyden's
+  // updates by the Woodbury identity (rows of 1000 parabolas: the factorisations were 32 % of the
+  // time).
+  // The time limit (time_limit_reached from any evaluation) ends the iteration at the last
+  // accepted point, whose evaluation ev is reported.
+  try {
+    abel::detail::broyden_matrix<double> J(jacobian(pb, u, out.x, ev));
+    bool fresh = true;
+    std::size_t since_fresh = 0;  // accepted steps since the last finite-difference Jacobian
+    std::size_t flat = 0;         // accepted steps of the current flat run
+    bool refreshed_in_flat = false;
+    const bool colouring = pb.roles.size() > full_width && (!pb.body_load || body_colouring(pb));
+    for (std::size_t it = 0; it < 60; ++it) {
+      if (pb.cx->out_of_time()) {
+        out.failure = pb.cx->time_limit_message();
+        break;
+      }
+      out.iterations = it + 1;
+      const auto solved = J.solve(ev.r);
+      if (!solved) {  // Broyden's updates made the matrix singular (a fresh one has none): a new Jacobian
+        J.reset(jacobian(pb, u, out.x, ev));
+        fresh = true;
+        since_fresh = 0;
+        continue;
+      }
+      const Eigen::VectorXd dx = -*solved;
+      if (!dx.allFinite()) {
+        out.failure = "singular Jacobian of the edge conditions";
+        break;
+      }
+      std::optional<closing_gap> closing;
+      double t = step_limit(pb, u, out.x, dx, closing);
+      if (closing) {
+        std::ostringstream os;
+        os << (closing->closes ? " (the next step closes the gap: they merge)" : "") << "; gaps below " << resolved_gap
+           << " of the contact length are not resolved";
+        out.failure = closing_message(pb, *closing, os.str());
+        if (closing->closes) out.merged = std::make_pair(closing->first, closing->second);
+        break;
+      }
+      bool accepted = false;
+      evaluation next;
+      edges y;
+      q.accuracy = accuracy_for(ev.r.lpNorm<Eigen::Infinity>());
+      for (int tries = 0; tries < 12; ++tries) {
+        y = moved(pb, u, out.x, t * dx);
+        try {
+          next = evaluate(q, u, y.a, y.b);
+          accepted = next.r.allFinite() &&
+                     next.r.lpNorm<Eigen::Infinity>() < (1 - 1e-4 * t) * ev.r.lpNorm<Eigen::Infinity>() + 1e-14;
+        } catch (const merge_error& m) {
+          out.merged = std::make_pair(m.first, m.second);
+          out.failure = m.what();
+        } catch (const std::domain_error& e) {  // e.g. a wedge's apex left its contact: a shorter step
+          out.failure = e.what();
+        }
+        if (accepted) break;
+        t /= 2;
+      }
+      if (!accepted) {
+        if (!fresh) {  // Broyden's matrix went stale: a new finite-difference Jacobian
+          J.reset(jacobian(pb, u, out.x, ev));
+          fresh = true;
+          since_fresh = 0;
+          continue;
+        }
+        if (out.failure.empty()) out.failure = "the edge iteration stalled";
+        break;
+      }
+      out.merged.reset();
+      out.failure.clear();
+      // Broyden's (good) update with the step taken.
+      const Eigen::VectorXd s = t * dx;
+      const Eigen::VectorXd dr = next.r - ev.r;
+      J.update(s, dr);
+      const bool step_was_fresh = fresh;
+      fresh = false;
+      double step = 0;
+      for (std::size_t k = 0; k < u.state.size(); ++k) {
+        const std::size_t i = u.state[k];
+        step = std::max(step, std::abs(s[static_cast<Eigen::Index>(k)]) / (y.b[i] - y.a[i]));
+      }
+      const edges before = out.x;
+      out.x = y;
+      const double reduction = next.r.lpNorm<Eigen::Infinity>() / ev.r.lpNorm<Eigen::Infinity>();
+      ev = std::move(next);
+      ev_accuracy = q.accuracy;
+      sharpen(out.x);
+      ++since_fresh;
+      if (reduction > flat_gain && step > 10 * tol) {
+        if (++flat == flat_steps && !refreshed_in_flat) {
+          J.reset(jacobian(pb, u, out.x, ev));
+          fresh = true;
+          since_fresh = 0;
+          flat = 0;
+          refreshed_in_flat = true;
+          continue;
+        }
+        if (flat == flat_steps) {
+          const auto pair = narrowing_pair(before, out.x);
+          if (pair && pair->gap_ratio < flat_merge_gap) {
+            std::ostringstream os;
+            os.precision(3);
+            os << " where the edge iteration stalls (largest edge condition " << ev.r.lpNorm<Eigen::Infinity>()
+               << "): they merge";
+            out.failure = closing_message(pb, *pair, os.str());
+            out.merged = std::make_pair(pair->first, pair->second);
+          } else {
+            out.failure = "the edge iteration stalled";
+          }
+          break;
+        }
+      } else {
+        flat = 0;
+        refreshed_in_flat = false;
+      }
+      // Many contacts (coloured Jacobian): when even a new Jacobian's step gains less than a
+      // quarter, this start is too far from the solution (rows of 300 parabolas from the isolated
+      // contacts: 27 steps from 3.8 to 0.95, each gaining 1 ... 11 %): the caller's continuation in
+      // the load takes over. A rigid body's steps are often shortened by step_limit far from the
+      // solution (a contact about to vanish): only a full step that gains little gives up there.
+      if (colouring && step_was_fresh && reduction > 0.75 && step > 10 * tol && (!pb.body_load || t == 1)) {
+        out.failure = "the edge iteration stalled";
+        break;
+      }
+      // Otherwise Broyden's updates from a start far from the solution crawl (rows of 100
+      // parabolas: the condition fell by less than half per step for 12 steps, then converged in 2
+      // after a new Jacobian; two parabolas 1e-3 L apart, the Jacobian taken at the continuation's
+      // last gap of 1e-2 L: 12 steps each gaining ~ a factor 1.5); a new one when a step gains less
+      // than a factor 2 two steps after the last. Its columns are differenced at a fixed degree
+      // without a residual: 2 full_width evaluations when coloured, else one per unknown.
+      if (reduction > 0.5 && (colouring || t == 1) && since_fresh >= 2 && step > 10 * tol) {
+        J.reset(jacobian(pb, u, out.x, ev));
+        fresh = true;
+        since_fresh = 0;
+      }
+      if (pb.body_load) {
+        for (std::size_t i = 0; i < pb.roles.size(); ++i)
+          if (pb.roles[i] == role::smooth_both && y.b[i] - y.a[i] < vanishing_length * pb.start_length[i]) out.lost = i;
+        if (out.lost) {
+          out.failure = "a contact vanishes";
+          break;
+        }
+      }
+      // Converged when the step is within the tolerance and the point was evaluated to it.
+      if (step <= 10 * tol && ev_accuracy <= tol) {
+        out.converged = true;
+        break;
+      }
+    }
+  } catch (const time_limit_reached& e) {
+    out.failure = e.what();
+    out.merged.reset();
+  }
+  out.residual = ev.r.lpNorm<Eigen::Infinity>();
+  out.sol = std::move(ev.sol);
+  return out;
+}
+
+}  // namespace
+
+}  // namespace rhabel::punch::detail::coupled
