@@ -16,6 +16,7 @@
 #include <CLI/CLI.hpp>
 
 #include <rhabel/materials/text_file.hpp>
+#include <rhabel/scene.hpp>
 
 #include <cstdlib>
 #include <exception>
@@ -27,10 +28,9 @@
 
 namespace rhabel::cli {
 
-/// Bad input found by a command after parsing: printed as one line, exit code 2.
-struct input_error : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
+// The scene layer's names (rhabel/scene.hpp) are the command line's: input_error is bad input
+// (printed as one line, exit code 2), one_line keeps an echoed value on one line.
+using namespace rhabel::scene;
 
 /// An output (stdout, a CSV file) could not be written completely: one line, exit code 2.
 struct write_error : std::runtime_error {
@@ -63,10 +63,6 @@ inline constexpr const char* exit_code_help =
     "     (stdout or a CSV file); one line on stderr, no partial CSV file is left\n"
     "  3  solve: the result was written completely, but its status is not ok (see its \"status\");\n"
     "     fit-material: the fit is not ok; sweep: all rows written, some row is not ok";
-
-/// `text` on one line: control characters (bytes 0x00-0x1f and 0x7f) become \n, \r, \t or \xHH,
-/// so that an echoed value (an argument, a file name, a JSON excerpt) cannot break the message.
-inline std::string one_line(std::string_view text) { return materials::printable(text, text.size()); }
 
 /// The check of a floating-point option: a number in [lo, hi] (with lo_open, in (lo, hi]). Unlike
 /// CLI::Range and CLI::PositiveNumber it refuses NaN (every comparison with NaN is false, so those

@@ -2,7 +2,7 @@
 //              [--time-limit S] [--compact]
 //
 // Reads a scene (a JSON file, or stdin for "-"), validates all of it, solves it with the punch
-// layer and prints the result as JSON on stdout. Schemas: cli/scene_json.hpp (scene) and
+// layer and prints the result as JSON on stdout. Schemas: rhabel/scene/scene.hpp (scene) and
 // examples/README.md (scene and result).
 //
 //   --grid N       adds to each indentor "pressure" (N points strictly inside its contact
@@ -31,9 +31,8 @@
 // are printed in the shortest form that reads back to the same double (at most 17 significant
 // digits: lossless round trip): by nlohmann-json in the JSON, by std::to_chars in the CSV files.
 #include "commands.hpp"
-#include "scene_json.hpp"
-#include "scene_solve.hpp"
-#include "material_solve.hpp"
+
+#include <rhabel/scene.hpp>
 
 #include <cerrno>
 #include <charconv>

@@ -2,11 +2,9 @@
 #include "sweep.hpp"
 
 #include "commands.hpp"
-#include "material_solve.hpp"
-#include "scene_json.hpp"
-#include "scene_solve.hpp"
 
 #include <rhabel/materials.hpp>
+#include <rhabel/scene.hpp>
 
 #include <cctype>
 #include <chrono>
@@ -17,6 +15,7 @@
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
+#include <variant>
 
 namespace rhabel::cli {
 namespace {
@@ -400,54 +399,58 @@ std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format forma
     }
     std::string warning;
     const run_outcome outcome = run_scene_with_material(scene, request, &warning);
-    const auto& r = outcome.result;
-    const auto& diag = r.at("diagnostics");
-    status = diag.at("status").get<std::string>();
-    message = status == "ok" ? std::string() : diag.at("status_message").get<std::string>();
-    set("alpha", number_text(scene.material.curve ? r.at("material_fit").at("alpha").get<double>() : scene.material.alpha));
-    set("E1", number_text(scene.material.curve ? r.at("material_fit").at("E1").get<double>() : scene.material.E1));
-    if (scene.material.curve) {
-      const auto& fit = r.at("material_fit");
-      set("omega0", number_text(fit.at("omega0").get<double>()));
-      set("alpha_tan_delta", number_text(fit.at("alpha_tan_delta").get<double>()));
-      if (status == "ok" && fit.at("status") != "ok") {
-        status = fit.at("status").get<std::string>();
-        message = fit.at("warning").get<std::string>();
+    // The row's fields from the typed result (the same doubles as the result document's).
+    const auto diagnostics = [&](const auto& d) {
+      status = punch::to_string(d.code);
+      message = status == "ok" ? std::string() : d.status;
+    };
+    std::visit([&](const auto& r) { diagnostics(r.diagnostics); }, outcome.solved);
+    set("alpha", number_text(outcome.fit ? outcome.fit->fit.alpha : scene.material.alpha));
+    set("E1", number_text(outcome.fit ? outcome.fit->fit.E1 : scene.material.E1));
+    if (outcome.fit) {
+      set("omega0", number_text(outcome.fit->fit.omega0));
+      set("alpha_tan_delta", number_text(outcome.fit->fit.alpha_tan_delta));
+      if (status == "ok" && outcome.fit->status != "ok") {
+        status = outcome.fit->status;
+        message = outcome.fit->warning;
       }
     }
-    if (r.contains("patches")) {  // profile.solver "boundary_element"
-      set("contacts", std::to_string(r.at("patches").size()));
-      set("C_f", number_text(r.at("hysteretic_friction").at("value").get<double>()));
-      set("C_f_error", number_text(r.at("hysteretic_friction").at("error").get<double>()));
-      set("total_friction", number_text(r.at("total_friction").get<double>()));
-      set("contact_fraction", number_text(r.at("contact_fraction").at("value").get<double>()));
-    } else if (r.contains("contacts")) {  // the spectral search: load-weighted over the contacts
+    if (const auto* r = std::get_if<punch::profile_bem_result>(&outcome.solved)) {  // profile.solver "boundary_element"
+      set("contacts", std::to_string(r->patches.size()));
+      set("C_f", number_text(r->hysteretic_friction.value));
+      set("C_f_error", number_text(r->hysteretic_friction.error));
+      set("total_friction", number_text(r->total_friction));
+      set("contact_fraction", number_text(r->contact_fraction.value));
+    } else if (const auto* p = std::get_if<punch::profile_result>(&outcome.solved)) {
+      // The spectral search: load-weighted over the contacts.
       double load = 0, moment = 0, total = 0, width = 0;
-      for (const auto& c : r.at("contacts")) {
-        const double w = c.at("load").get<double>();
-        load += w;
-        moment += w * c.at("hysteretic_friction").get<double>();
-        total += w * c.at("total_friction").get<double>();
-        width += c.at("contact_length").get<double>();
+      for (const auto& c : p->contacts) {
+        load += c.load;
+        moment += c.load * c.hysteretic_friction;
+        total += c.load * c.total_friction;
+        width += c.contact_length;
       }
-      const auto& range = r.at("scene").at("profile").at("x_range");
-      set("contacts", std::to_string(r.at("contacts").size()));
+      set("contacts", std::to_string(p->contacts.size()));
       if (load > 0) set("C_f", number_text(moment / load)), set("total_friction", number_text(total / load));
-      set("contact_fraction", number_text(width / (range.at(1).get<double>() - range.at(0).get<double>())));
+      set("contact_fraction", number_text(width / (scene.profile->x.back() - scene.profile->x.front())));
+    } else {
+      const auto& r = std::get<punch::scene_result>(outcome.solved);
+      for (std::size_t i = 0; i < r.indentors.size(); ++i) {
+        const std::string prefix = "ind" + std::to_string(i) + "_";
+        const auto& ind = r.indentors[i];
+        set(prefix + "a", number_text(ind.a));
+        set(prefix + "b", number_text(ind.b));
+        set(prefix + "contact_length", number_text(ind.contact_length));
+        set(prefix + "load", number_text(ind.load));
+        set(prefix + "C_f", number_text(ind.hysteretic_friction));
+        set(prefix + "total_friction", number_text(ind.total_friction));
+      }
     }
-    static const nlohmann::ordered_json no_indentors = nlohmann::ordered_json::array();  // a profile's rows
-    const auto& inds = r.contains("indentors") ? r.at("indentors") : no_indentors;
-    for (std::size_t i = 0; i < inds.size(); ++i) {
-      const std::string p = "ind" + std::to_string(i) + "_";
-      const auto& ind = inds[i];
-      set(p + "a", number_text(ind.at("contact")[0].get<double>()));
-      set(p + "b", number_text(ind.at("contact")[1].get<double>()));
-      set(p + "contact_length", number_text(ind.at("contact_length").get<double>()));
-      set(p + "load", number_text(ind.at("load").get<double>()));
-      set(p + "C_f", number_text(ind.at("hysteretic_friction").get<double>()));
-      set(p + "total_friction", number_text(ind.at("total_friction").get<double>()));
-    }
-    if (diag.contains("residual")) set("residual", number_text(diag.at("residual").get<double>()));
+    std::visit(
+        [&](const auto& r) {
+          if constexpr (requires { r.diagnostics.residual; }) set("residual", number_text(r.diagnostics.residual));
+        },
+        outcome.solved);
   } catch (const input_error& e) {
     if (status == "ok") status = "no_solution";
     message = e.what();

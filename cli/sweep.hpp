@@ -22,7 +22,7 @@
 //   that holds the scene (made absolute in the rows' scenes, so each row's scene stands alone).
 #pragma once
 
-#include "scene_solve.hpp"
+#include <rhabel/scene.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -32,6 +32,8 @@
 #include <vector>
 
 namespace rhabel::cli {
+
+using namespace rhabel::scene;  // as commands.hpp
 
 inline constexpr std::size_t max_sweep_rows = 100'000'000;
 

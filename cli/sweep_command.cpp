@@ -34,10 +34,10 @@
 // with MPI_Finalize and the same code, and only rank 0 prints the message (mpirun passes the code
 // on; it adds its own note on stderr when the code is not 0 unless run with --quiet).
 #include "commands.hpp"
-#include "scene_json.hpp"
 #include "sweep.hpp"
 
 #include <rhabel/materials/text_file.hpp>
+#include <rhabel/scene.hpp>
 
 #include <algorithm>
 #include <atomic>

@@ -87,6 +87,16 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
         the latter ``"max_panels"`` (the finest grid, 256 .. 8388608, ~130 bytes a panel; default
         2^21).
 
+        Instead of ``alpha`` and ``E1`` the material may name a measured master curve:
+        ``"material": {"master_curve": "FILE.csv", "temperature": 40, "wlf": {"C1": 8.86,
+        "C2": 101.6, "T_ref": 20}, "nu": 0.5, "coulomb": 0.3}`` (``temperature`` and ``wlf``
+        together or not at all; the path relative to the working directory, or to the scene
+        file's directory with load_scene). The scene is then solved with the power law fitted at
+        the contact frequency U/L, iterated to a fixed point (examples/README.md, "A material from a
+        measured master curve"), by the command line's own code: the result gains
+        ``material_fit`` (alpha, E1, omega0, the fit's evidence, its ``status``) and its ``scene``
+        echoes the fitted alpha and E1.
+
         Every field is required except ``apex``, ``name``, ``description``, ``body`` and
         ``height`` (with a body an indentor has no ``load``; flat punches on a body are not
         supported); unknown fields are
@@ -191,14 +201,11 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
     ...                   "indentors": [{"shape": "parabolic", "radius": 0.02, "load": 100}]})
     >>> r.indentors[0].contact, r.indentors[0].hysteretic_friction
     """
-    spec = _validate(scene)
     grid = _grid(grid)
-    if acceptance is None:  # the solver's default, as the command line's
-        bem = "profile" in spec and spec["profile"]["solver"] == "boundary_element"
-        acceptance = 1e-4 if bem else 1e-9
-    acceptance = float(acceptance)
-    if not 1e-15 <= acceptance <= 0.1:
-        raise ValueError(f"acceptance = {acceptance!r} is outside the valid range [1e-15, 0.1]")
+    if acceptance is not None:
+        acceptance = float(acceptance)
+        if not 1e-15 <= acceptance <= 0.1:
+            raise ValueError(f"acceptance = {acceptance!r} is outside the valid range [1e-15, 0.1]")
     if isinstance(threads, bool) or not isinstance(threads, int) or not 0 <= threads <= 1024:
         raise ValueError(f"threads = {threads!r} must be an integer in [0, 1024] (0: every core)")
     time_limit = float(time_limit)
@@ -207,6 +214,13 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
     layered_below = float(layered_below)
     if not (layered_below >= 0 and layered_below < float("inf")):
         raise ValueError(f"layered_below = {layered_below!r} must be finite and >= 0 (0: never)")
+    fit = None
+    if _names_master_curve(scene):
+        scene, fit = _fit_material(scene, tolerance, acceptance, time_limit)
+    spec = _validate(scene)
+    if acceptance is None:  # the solver's default, as the command line's
+        bem = "profile" in spec and spec["profile"]["solver"] == "boundary_element"
+        acceptance = 1e-4 if bem else 1e-9
     if "profile" in spec:
         profile = spec["profile"]
         if profile["solver"] == "boundary_element":
@@ -226,11 +240,39 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
                                   "solver": profile["solver"],
                                   **({"max_panels": profile["max_panels"]} if "max_panels" in profile else {})})
         result["scene"] = echo
+        if fit is not None:
+            result["material_fit"] = Record(fit)
         return Result(result)
     result = _rhabel._solve(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance, threads, time_limit,
                             layered_below)
     result["scene"] = spec
+    if fit is not None:
+        result["material_fit"] = Record(fit)
     return Result(result)
+
+
+def _names_master_curve(scene):
+    material = scene.get("material") if isinstance(scene, dict) else None
+    return isinstance(material, dict) and "master_curve" in material
+
+
+def _fit_material(scene, tolerance, acceptance, time_limit):
+    """The scene with its master curve replaced by the fitted power law, and the fit: the fixed
+    point of the command line (the scene layer, rhabel/scene/material.hpp), which also validates
+    the whole scene with the command line's messages."""
+    def plain(value):  # NumPy arrays and scalars as JSON
+        if hasattr(value, "tolist"):
+            return value.tolist()
+        raise ValueError(f"scene: {type(value).__name__} {value!r} is not a JSON value")
+    try:
+        text = _json.dumps(scene, default=plain, allow_nan=False)
+    except ValueError as e:
+        raise ValueError(f"scene: {e}") from None
+    fit = _rhabel._fit_scene_material(text, float(tolerance), 0.0 if acceptance is None else acceptance, time_limit)
+    fitted = dict(scene)
+    material = {k: v for k, v in scene["material"].items() if k not in ("master_curve", "temperature", "wlf")}
+    fitted["material"] = {"alpha": fit["alpha"], "E1": fit["E1"], **material}
+    return fitted, fit
 
 
 def trial_interval(scene, a, b, tolerance=1e-12):
@@ -339,12 +381,12 @@ def load_scene(path):
         return _json.load(path, object_pairs_hook=pairs)
     with open(path, encoding="utf-8") as f:
         scene = _json.load(f, object_pairs_hook=pairs)
-    # A profile's CSV is relative to the scene file, as for the command line.
-    profile = scene.get("profile") if isinstance(scene, dict) else None
-    if isinstance(profile, dict) and isinstance(profile.get("file"), str):
-        import os
-        if not os.path.isabs(profile["file"]):
-            profile["file"] = os.path.join(os.path.dirname(os.fspath(path)), profile["file"])
+    # A profile's CSV and a master curve are relative to the scene file, as for the command line.
+    import os
+    for key, field in (("profile", "file"), ("material", "master_curve")):
+        item = scene.get(key) if isinstance(scene, dict) else None
+        if isinstance(item, dict) and isinstance(item.get(field), str) and not os.path.isabs(item[field]):
+            item[field] = os.path.join(os.path.dirname(os.fspath(path)), item[field])
     return scene
 
 

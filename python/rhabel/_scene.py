@@ -1,5 +1,5 @@
 """Validation of a scene dict: the JSON scene schema of examples/README.md, with the policy and
-the messages of the command line (cli/scene_json.cpp), so that a scene is accepted by
+the messages of the command line (the scene layer, scene/src/scene.cpp), so that a scene is accepted by
 rhabel.solve exactly when `rhabel solve` accepts the same JSON, and a rejected one gets the same
 one-line message (without the command line's "solve: " prefix; tests/python/test_errors.py
 compares them).
@@ -223,7 +223,7 @@ _MAX_TEXT_FILE_BYTES = 256 << 20
 
 
 def _read_profile_csv(path, shown):
-    """The two-column CSV of a profile, as the command line reads it (cli/scene_json.cpp)."""
+    """The two-column CSV of a profile, as the command line reads it (scene/src/scene.cpp)."""
     import os
     if "\0" in path or not os.path.isfile(path):  # only a regular file: a device or a pipe would be read forever
         _fail(f'profile.file = "{shown}" is not a readable regular file ({path!r})')

@@ -5,7 +5,7 @@
 // examples/README.md: every required field present, no unknown field, numbers in range) and is
 // mapped to rhabel::punch::scene here; the result goes back as nested Records (dicts with
 // attribute access, python/rhabel/_record.py) whose keys are those of the command line's JSON
-// result (cli/scene_solve.cpp). The conversion of a contact's result is written once, in
+// result (scene/src/solve.cpp). The conversion of a contact's result is written once, in
 // add_contact: a new field of punch's indentor_result is added there and nowhere else.
 #include "bindings.hpp"
 
@@ -13,71 +13,15 @@
 #include <rhabel/punch/profile.hpp>
 #include <rhabel/punch/profile_bem.hpp>
 
-#include <chrono>
 #include <cmath>
 #include <functional>
 #include <memory>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
 namespace rhabel::python {
 namespace {
-
-/// Ctrl-C during a solve (punch::solve_options::interrupt). The solve runs without the GIL, so
-/// Python's SIGINT handler cannot run until it returns; this polls the handlers
-/// (PyErr_CheckSignals, the GIL taken back for the call) from the calling thread, at most every
-/// 50 ms. Once the handler has raised (KeyboardInterrupt, or whatever a user's handler raises),
-/// the solve stops at its next time-limit check (punch::interrupted) and `run` raises that
-/// exception instead. Other threads of the solve never poll (Python runs signal
-/// handlers in the main thread only), so only the calling thread touches the state.
-class ctrl_c {
- public:
-  ctrl_c() : state_(std::make_shared<state>()) { state_->thread = std::this_thread::get_id(); }
-
-  std::function<bool()> poll() const {
-    return [s = state_] {
-      if (std::this_thread::get_id() != s->thread) return false;
-      const auto now = std::chrono::steady_clock::now();
-      if (now - s->last < std::chrono::milliseconds(50)) return false;
-      s->last = now;
-      py::gil_scoped_acquire gil;
-      if (PyErr_CheckSignals() == 0) return false;
-      s->fired = true;  // the handler's exception is now Python's error indicator
-      return true;
-    };
-  }
-
-  /// solve() without the GIL (threads may solve other scenes meanwhile); the handler's exception
-  /// in place of punch::interrupted.
-  template <class Solve>
-  auto run(Solve&& solve) const {
-    try {
-      py::gil_scoped_release nogil;
-      return solve();
-    } catch (const punch::interrupted&) {
-      if (state_->fired) throw py::error_already_set();  // the GIL is held again here
-      throw;
-    }
-  }
-
- private:
-  struct state {
-    std::thread::id thread;
-    std::chrono::steady_clock::time_point last{};
-    bool fired = false;
-  };
-  std::shared_ptr<state> state_;
-};
-
-/// solve() (which reads `options`) with options.interrupt polling Ctrl-C (ctrl_c::run).
-template <class Solve>
-auto run_interruptible(punch::solve_options& options, Solve&& solve) {
-  const ctrl_c interrupt;
-  options.interrupt = interrupt.poll();
-  return interrupt.run(std::forward<Solve>(solve));
-}
 
 double number(const py::handle& object, const char* key) { return object[key].cast<double>(); }
 

@@ -9,6 +9,7 @@ PYBIND11_MODULE(_rhabel, m) {
   m.attr("__version__") = rhabel::punch::version();
   rhabel::python::bind_punch(m);
   rhabel::python::bind_quadrature(m);
+  rhabel::python::bind_scene(m);
   auto abel = m.def_submodule("abel", "Generalized Abel equation: the spectral solver (rhabel::abel).");
   rhabel::python::bind_abel(abel);
   auto riemann = m.def_submodule("riemann", "Generalized Abel equation: the Riemann-Hilbert route (rhabel::riemann).");

@@ -15,10 +15,10 @@
 // solved whole (its contact search is a coupled solve) under solve_options::time_limit
 // (fuzz_time_limit), so that a slow input ends in a result rather than in libFuzzer's timeout.
 // Master-curve materials are parsed but not solved (they read a file).
-#include "scene_json.hpp"
-#include "scene_solve.hpp"
 #include "commands.hpp"
 #include "fuzz_support.hpp"
+
+#include <rhabel/scene.hpp>
 
 #include <cstddef>
 #include <cstdint>

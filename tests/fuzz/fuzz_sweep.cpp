@@ -10,8 +10,9 @@
 // not solved (the solve entry has its own target, fuzz_scene). Anything else is a finding.
 #include "commands.hpp"
 #include "fuzz_support.hpp"
-#include "scene_json.hpp"
 #include "sweep.hpp"
+
+#include <rhabel/scene.hpp>
 
 #include <cstddef>
 #include <cstdint>

@@ -1,7 +1,7 @@
-// cli/scene_json.cpp: parsing and validation of the scene file (see scene_json.hpp).
-#include "scene_json.hpp"
+// scene/src/scene.cpp: parsing and validation of the scene file (see rhabel/scene/scene.hpp).
+#include "rhabel/scene/scene.hpp"
 
-#include "commands.hpp"
+#include "rhabel/scene/error.hpp"
 
 #include <nlohmann/json.hpp>
 #include <rhabel/materials/text_file.hpp>
@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-namespace rhabel::cli {
+namespace rhabel::scene {
 
 const char* shape_name(shape_kind shape) noexcept {
   switch (shape) {
@@ -450,4 +450,4 @@ scene_spec parse_scene(std::string_view text, const std::string& source, const s
   return scene;
 }
 
-}  // namespace rhabel::cli
+}  // namespace rhabel::scene

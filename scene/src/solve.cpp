@@ -1,4 +1,4 @@
-// cli/scene_solve.cpp: a validated scene -> rhabel::punch::solve -> the result document.
+// scene/src/solve.cpp: a validated scene -> rhabel::punch::solve -> the result document.
 //
 // The result document (schema in examples/README.md) keeps the names of the issue: beta, regime,
 // indentors[i].{contact, contact_length, epsilon (wedges only), load, hysteretic_friction,
@@ -10,9 +10,9 @@
 // edge is singular; that is written as "peak_pressure": null with "peak_pressure_singular": true
 // (the edge itself carries its exponent and intensity factor). Every other number is checked and a
 // non-finite one is a solver failure (std::runtime_error, exit code 1, nothing printed).
-#include "scene_solve.hpp"
+#include "rhabel/scene/solve.hpp"
 
-#include "commands.hpp"
+#include "rhabel/scene/error.hpp"
 
 #include <rhabel/punch/contact.hpp>
 #include <rhabel/punch/profile.hpp>
@@ -25,7 +25,7 @@
 #include <string>
 #include <utility>
 
-namespace rhabel::cli {
+namespace rhabel::scene {
 namespace {
 
 using ordered_json = nlohmann::ordered_json;
@@ -281,6 +281,7 @@ run_outcome run_profile_bem(const scene_spec& spec, const run_request& request, 
                         {"status", punch::to_string(d.code)},
                         {"status_message", d.status}};
   finish_document(out, spec, d.code);
+  out.solved = r;
   return out;
 }
 
@@ -306,6 +307,7 @@ run_outcome run_profile(const scene_spec& spec, const run_request& request, cons
   if (!std::isnan(r.clearance)) doc["clearance"] = {{"min", r.clearance}, {"at", r.clearance_at}};
   doc["penetrations"] = r.penetrations;
   end_document(out, spec, r.diagnostics);
+  out.solved = std::move(r);
   return out;
 }
 
@@ -322,6 +324,7 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   options.threads = request.threads;
   options.time_limit = request.time_limit;
   options.tolerance = request.tolerance;
+  if (request.interrupt) options.interrupt = request.interrupt;
   if (spec.profile)
     return spec.profile->boundary_element ? run_profile_bem(spec, request, options) : run_profile(spec, request, options);
   punch::scene_result r = solve_or_refuse([&] { return punch::solve(to_punch(spec), options); });
@@ -344,6 +347,7 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   }
   doc["indentors"] = std::move(indentors);
   end_document(out, spec, r.diagnostics);
+  out.solved = std::move(r);
   return out;
 }
 
@@ -394,4 +398,4 @@ void write_document(const run_outcome& outcome, bool compact, const std::functio
   write(std::string_view(text).substr(done));
 }
 
-}  // namespace rhabel::cli
+}  // namespace rhabel::scene

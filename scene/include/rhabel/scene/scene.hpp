@@ -1,4 +1,4 @@
-// cli/scene_json.hpp: the scene file of `rhabel solve`, parsed and validated.
+// rhabel/scene/scene.hpp: the scene file of `rhabel solve` and `rhabel.solve`, parsed and validated.
 //
 // A scene is one JSON object (SI or any consistent units; the schema is documented in
 // examples/README.md and in `rhabel solve --help`):
@@ -64,12 +64,12 @@
 #include <string_view>
 #include <vector>
 
-namespace rhabel::cli {
+namespace rhabel::scene {
 
 /// Deepest nesting of arrays and objects accepted in a scene (the top-level object is level 1).
 inline constexpr std::size_t max_scene_depth = 256;
 
-/// A material given by its measured master curve instead of (alpha, E1) (cli/material_solve.hpp):
+/// A material given by its measured master curve instead of (alpha, E1) (rhabel/scene/material.hpp):
 ///   "material": {"master_curve": "FILE.csv", "temperature": T, "wlf": {"C1": .., "C2": .., "T_ref": ..},
 ///                "nu": .., "coulomb": .., "name": ".."}
 /// The path is relative to the scene file's directory (to the working directory for stdin).
@@ -85,7 +85,7 @@ struct master_curve_spec {
 };
 
 /// Power-law viscoelastic half-space, E(t) = E1 t^-alpha, and its interface friction.
-/// With a master curve, alpha and E1 are 0 until cli/material_solve.cpp fits them.
+/// With a master curve, alpha and E1 are 0 until the master-curve fit (material.hpp) sets them.
 struct material_spec {
   double alpha = 0;    ///< material exponent, [0, 1)
   double E1 = 0;       ///< modulus coefficient, > 0
@@ -139,9 +139,9 @@ struct scene_spec {
 };
 
 /// Parses and validates a scene. `source` names the input in messages (a file name or "stdin").
-/// Throws rhabel::cli::input_error (one line, naming the field and its valid range) on any
+/// Throws rhabel::scene::input_error (one line, naming the field and its valid range) on any
 /// syntax, type, range, missing-field, unknown-field or duplicate-key error. Never partial.
 /// `base_dir` is the directory that a relative "master_curve" path is resolved against.
 scene_spec parse_scene(std::string_view text, const std::string& source, const std::string& base_dir = {});
 
-}  // namespace rhabel::cli
+}  // namespace rhabel::scene

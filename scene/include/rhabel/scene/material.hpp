@@ -1,4 +1,4 @@
-// cli/material_solve.hpp: solving a scene whose material is a measured master curve.
+// rhabel/scene/material.hpp: solving a scene whose material is a measured master curve.
 //
 // A scene with "material": {"master_curve": ...} is solved by the self-consistent fit of
 // rhabel::materials (rhabel/materials/master_curve.hpp): the curve (shifted by WLF to the scene's
@@ -18,21 +18,27 @@
 // run_outcome::ok false (`rhabel solve` exits 3) and is also returned in `warning`.
 #pragma once
 
-#include "scene_json.hpp"
-#include "scene_solve.hpp"
+#include "rhabel/scene/scene.hpp"
+#include "rhabel/scene/solve.hpp"
 
 #include <rhabel/materials.hpp>
 
 #include <string>
 
-namespace rhabel::cli {
+namespace rhabel::scene {
 
 /// The master curve of `spec`, read once per resolved path and process (thread-safe cache), shifted
 /// to its temperature. Throws input_error with one line naming the file, row and column.
 materials::master_curve load_master_curve(const master_curve_spec& spec, const std::string& command);
 
+/// The fixed point above alone, for a scene with a master curve (std::invalid_argument without):
+/// the fitted power law and its evidence. Its trial solves take request's tolerance, interrupt and,
+/// for a profile, acceptance and time limit. Throws input_error naming material.master_curve when
+/// the fixed point leaves the curve's range.
+material_fit_report fit_scene_material(const scene_spec& scene, const run_request& request);
+
 /// run_scene for any scene: with a master curve, the fixed point above first. `warning` receives the
 /// fit's warning (empty when it is ok or the scene has an explicit material).
 run_outcome run_scene_with_material(const scene_spec& scene, const run_request& request, std::string* warning = nullptr);
 
-}  // namespace rhabel::cli
+}  // namespace rhabel::scene

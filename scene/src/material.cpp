@@ -1,7 +1,7 @@
-// cli/material_solve.cpp: see material_solve.hpp.
-#include "material_solve.hpp"
+// scene/src/material.cpp: see rhabel/scene/material.hpp.
+#include "rhabel/scene/material.hpp"
 
-#include "commands.hpp"
+#include "rhabel/scene/error.hpp"
 
 #include <cmath>
 #include <map>
@@ -9,8 +9,9 @@
 #include <mutex>
 #include <optional>
 #include <stdexcept>
+#include <variant>
 
-namespace rhabel::cli {
+namespace rhabel::scene {
 namespace {
 
 using ordered_json = nlohmann::ordered_json;
@@ -26,15 +27,15 @@ std::shared_ptr<const materials::master_curve> read_cached(const std::string& pa
     cache.emplace(path, curve);
     return curve;
   } catch (const std::invalid_argument& e) {
-    throw input_error(command + ": " + one_line(e.what()));
+    throw input_error(command + ": material.master_curve: " + one_line(e.what()));
   }
 }
 
 // The length L of omega0 = U/L of one indentor: its contact length, but a flat punch's width. The
 // flat's face is what deforms the material; at and above alpha + beta/2 = 1/2 it rides on its
 // leading corner (contact length 0), which would leave no contact frequency.
-double fit_length(const indentor_spec& indentor, const nlohmann::ordered_json& solved) {
-  return indentor.shape == shape_kind::flat ? indentor.width : solved.at("contact_length").get<double>();
+double fit_length(const indentor_spec& indentor, const punch::indentor_result& solved) {
+  return indentor.shape == shape_kind::flat ? indentor.width : solved.contact_length;
 }
 
 // The L of omega0 = U/L: the mean over the indentors of fit_length; for a sampled profile, the
@@ -43,24 +44,20 @@ double fit_length(const indentor_spec& indentor, const nlohmann::ordered_json& s
 // which, unlike their panel edges, moves continuously with the material, so that the fixed point
 // converges (measured: with the panel edges it cycled for 60 solves at acceptance 1e-3).
 double mean_contact_length(const scene_spec& scene, const run_outcome& outcome) {
-  const auto& doc = outcome.result;
-  if (scene.profile) {
-    double sum = 0, load = 0;
-    const bool patches = doc.contains("patches");
-    for (const auto& item : doc.at(patches ? "patches" : "contacts")) {
-      const double w = patches ? item.at("load").at("value").get<double>() : item.at("load").get<double>();
-      sum += w * item.at(patches ? "pressure_width" : "contact_length").get<double>();
-      load += w;
-    }
-    return load > 0 ? sum / load : 0.0;
+  double sum = 0, weight = 0;
+  const auto add = [&](double w, double length) {
+    sum += w * length;
+    weight += w;
+  };
+  if (const auto* bem = std::get_if<punch::profile_bem_result>(&outcome.solved)) {
+    for (const auto& p : bem->patches) add(p.load.value, p.pressure_width);
+  } else if (const auto* profile = std::get_if<punch::profile_result>(&outcome.solved)) {
+    for (const auto& c : profile->contacts) add(c.load, c.contact_length);
+  } else {
+    const auto& r = std::get<punch::scene_result>(outcome.solved);
+    for (std::size_t i = 0; i < r.indentors.size(); ++i) add(1.0, fit_length(scene.indentors.at(i), r.indentors[i]));
   }
-  double sum = 0;
-  std::size_t n = 0;
-  for (const auto& item : doc.at("indentors")) {
-    sum += fit_length(scene.indentors.at(n), item);
-    ++n;
-  }
-  return n ? sum / static_cast<double>(n) : 0.0;
+  return weight > 0 ? sum / weight : 0.0;
 }
 
 }  // namespace
@@ -75,14 +72,14 @@ materials::master_curve load_master_curve(const master_curve_spec& spec, const s
   }
 }
 
-run_outcome run_scene_with_material(const scene_spec& scene, const run_request& request, std::string* warning) {
-  if (warning) warning->clear();
-  if (!scene.material.curve) return run_scene(scene, request);
+material_fit_report fit_scene_material(const scene_spec& scene, const run_request& request) {
+  if (!scene.material.curve) throw std::invalid_argument("fit_scene_material: the scene's material is not a master curve");
   const auto& spec = *scene.material.curve;
   const auto curve = load_master_curve(spec, "solve");
   scene_spec trial = scene;
   run_request fit_request;  // the fixed point's trial solves: no samples, the run's tolerance
   fit_request.tolerance = request.tolerance;
+  fit_request.interrupt = request.interrupt;
   // A profile's trial solves: its contact search at the run's acceptance and time limit (a
   // profile's contacts are only verified to what its data is worth: 1e-9 would never be ok).
   if (scene.profile) {
@@ -126,35 +123,50 @@ run_outcome run_scene_with_material(const scene_spec& scene, const run_request& 
   } catch (const std::domain_error& e) {
     throw input_error(std::string("solve: material.master_curve '") + one_line(spec.path) + "': " + e.what());
   }
-  trial.material.alpha = fp.fit.alpha;
-  trial.material.E1 = fp.fit.E1;
+  material_fit_report report;
+  report.fit = fp.fit;
+  report.contact_length = fp.contact_length;
+  report.iterations = fp.iterations;
+  if (spec.shifted) report.log10_aT = materials::wlf_log10_shift({spec.C1, spec.C2, spec.T_ref}, spec.temperature);
+  report.status = fp.converged ? fp.fit.status : "not_converged";
+  report.warning = fp.converged ? fp.fit.warning
+                                : "the fixed point omega0 = U/L did not converge in " + std::to_string(fp.iterations) +
+                                      " solves";
+  return report;
+}
+
+run_outcome run_scene_with_material(const scene_spec& scene, const run_request& request, std::string* warning) {
+  if (warning) warning->clear();
+  if (!scene.material.curve) return run_scene(scene, request);
+  const auto& spec = *scene.material.curve;
+  material_fit_report report = fit_scene_material(scene, request);
+  scene_spec trial = scene;
+  trial.material.alpha = report.fit.alpha;
+  trial.material.E1 = report.fit.E1;
   run_outcome out = run_scene(trial, request);
-  std::string status = fp.converged ? fp.fit.status : "not_converged";
-  std::string message = fp.converged ? fp.fit.warning
-                                     : "the fixed point omega0 = U/L did not converge in " +
-                                           std::to_string(fp.iterations) + " solves";
   ordered_json fit = {{"master_curve", spec.path}};
   if (spec.shifted) {
     fit["temperature"] = spec.temperature;
-    fit["log10_aT"] = materials::wlf_log10_shift({spec.C1, spec.C2, spec.T_ref}, spec.temperature);
+    fit["log10_aT"] = *report.log10_aT;
   }
-  fit["alpha"] = fp.fit.alpha;
-  fit["E1"] = fp.fit.E1;
-  fit["omega0"] = fp.fit.omega0;
-  fit["alpha_slope"] = fp.fit.alpha_slope;
-  fit["alpha_tan_delta"] = fp.fit.alpha_tan_delta;
-  fit["modulus"] = fp.fit.modulus;
-  fit["window"] = {fp.fit.window_lo, fp.fit.window_hi};
-  fit["contact_length"] = fp.contact_length;
-  fit["iterations"] = fp.iterations;
-  fit["status"] = status;
-  fit["warning"] = message;
+  fit["alpha"] = report.fit.alpha;
+  fit["E1"] = report.fit.E1;
+  fit["omega0"] = report.fit.omega0;
+  fit["alpha_slope"] = report.fit.alpha_slope;
+  fit["alpha_tan_delta"] = report.fit.alpha_tan_delta;
+  fit["modulus"] = report.fit.modulus;
+  fit["window"] = {report.fit.window_lo, report.fit.window_hi};
+  fit["contact_length"] = report.contact_length;
+  fit["iterations"] = report.iterations;
+  fit["status"] = report.status;
+  fit["warning"] = report.warning;
   out.result["material_fit"] = std::move(fit);
-  if (status != "ok") {
+  if (report.status != "ok") {
     out.ok = false;
-    if (warning) *warning = status + ": " + message;
+    if (warning) *warning = report.status + ": " + report.warning;
   }
+  out.fit = std::move(report);
   return out;
 }
 
-}  // namespace rhabel::cli
+}  // namespace rhabel::scene

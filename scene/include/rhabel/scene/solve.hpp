@@ -1,19 +1,27 @@
-// cli/scene_solve.hpp: runs a validated scene through the punch layer and renders the result
-// as JSON (and, on request, sampled fields for CSV). The only file of the command line that
-// depends on the physics API is scene_solve.cpp.
+// rhabel/scene/solve.hpp: runs a validated scene through the punch layer and renders the result
+// as JSON (and, on request, sampled fields for CSV), with the solver's typed result beside it (the
+// command line's sweep rows and the master-curve fixed point read that, not the document). The
+// only file of the scene layer that calls the physics API (rhabel::punch) is scene/src/solve.cpp.
 #pragma once
 
-#include "scene_json.hpp"
+#include "rhabel/scene/scene.hpp"
+
+#include "rhabel/punch/contact.hpp"
+#include "rhabel/punch/profile.hpp"
+#include "rhabel/punch/profile_bem.hpp"
+#include "rhabel/materials/master_curve.hpp"
 
 #include <nlohmann/json.hpp>
 
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <variant>
 #include <vector>
 
-namespace rhabel::cli {
+namespace rhabel::scene {
 
 /// What `rhabel solve` was asked to add to the summary.
 struct run_request {
@@ -23,7 +31,10 @@ struct run_request {
   double acceptance = 0;
   std::size_t threads = 1;   ///< punch::solve_options::threads (rhabel sweep keeps 1: it runs rows in parallel)
   double time_limit = 0;     ///< punch::solve_options::time_limit (seconds; 0 = none)
-  double tolerance = 1e-12;  ///< punch::solve_options::tolerance (--tolerance; commands.hpp)
+  double tolerance = 1e-12;  ///< punch::solve_options::tolerance (--tolerance of the command line)
+  /// punch::solve_options::interrupt: polled during a solve; returning true stops it with
+  /// punch::interrupted (the Python package's Ctrl-C). Empty: never.
+  std::function<bool()> interrupt;
 };
 
 /// One indentor's samples of a field: abscissae and values (finite), of equal sizes.
@@ -39,11 +50,27 @@ struct sampled_table {
   std::vector<sampled_field> fields;
 };
 
+/// A master-curve material's fit (material.hpp), typed; the document's "material_fit".
+struct material_fit_report {
+  materials::local_fit fit;      ///< the converged power law at omega0 (alpha, E1, its evidence)
+  double contact_length = 0;     ///< the L of omega0 = U/L at the fixed point
+  std::size_t iterations = 0;    ///< solves of the fixed point
+  std::optional<double> log10_aT;  ///< the WLF shift, when a temperature was given
+  std::string status;            ///< "ok", "poor_power_law", "window_clipped" or "not_converged"
+  std::string warning;           ///< why, when status is not "ok"
+};
+
 /// Everything `rhabel solve` outputs, computed before anything is written. The sampled arrays
 /// live once, in `pressure` and `displacement`: the document holds a placeholder string for each
 /// (an unguessable token, grid_token), which write_document replaces by the array itself, so that
 /// a 10^6-point grid is never copied into the JSON tree.
 struct run_outcome {
+  /// The solver's result, typed (the document below is written from it): punch::scene_result for
+  /// indentors, punch::profile_result for a profile by the spectral search,
+  /// punch::profile_bem_result by the boundary-element method. Its sampled fields, when asked
+  /// for, have moved to `pressure` and `displacement`.
+  std::variant<punch::scene_result, punch::profile_result, punch::profile_bem_result> solved;
+  std::optional<material_fit_report> fit;  ///< a master-curve material's fit (run_scene_with_material)
   nlohmann::ordered_json result;  ///< the result document (finite numbers only)
   sampled_table pressure;         ///< indentor,x,pressure (empty unless grid > 0)
   sampled_table displacement;     ///< indentor,x,displacement (empty unless grid > 0)
@@ -65,4 +92,4 @@ double default_acceptance(const scene_spec& scene);
 /// number (nothing is printed then: no NaN or Inf ever reaches the output).
 run_outcome run_scene(const scene_spec& scene, const run_request& request);
 
-}  // namespace rhabel::cli
+}  // namespace rhabel::scene
