@@ -1,7 +1,7 @@
 // bench_sweep_baseline: the 10^4 single-wedge scenes of bench/sweep_wedges.json solved by
 // rhabel::punch::solve alone (default options), one after the other: the baseline of
 // scripts/bench_sweep.sh, which times `rhabel sweep` on the same scenes (1 and 2 threads, 1 and 2
-// MPI ranks) and prints the ratios. Values as `rhabel sweep` computes a log_range (cli/sweep.cpp).
+// MPI ranks) and prints the ratios. Values as `rhabel sweep` computes a log_range (scene/src/sweep.cpp).
 // Run: build/bin/bench_sweep_baseline --benchmark_repetitions=1
 #include <rhabel/punch/contact.hpp>
 

@@ -28,14 +28,11 @@
 
 namespace rhabel::cli {
 
-// The scene layer's names (rhabel/scene.hpp) are the command line's: input_error is bad input
-// (printed as one line, exit code 2), one_line keeps an echoed value on one line.
+// The scene layer's names (rhabel/scene.hpp) are the command line's: input_error is bad input and
+// write_error an output (stdout, a CSV file) not written completely (each printed as one line,
+// exit code 2); one_line keeps an echoed value on one line.
 using namespace rhabel::scene;
 
-/// An output (stdout, a CSV file) could not be written completely: one line, exit code 2.
-struct write_error : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 /// Exit codes of build/bin/rhabel (see the top of this file).
 inline constexpr int exit_ok = 0;

@@ -1,7 +1,7 @@
 // rhabel sweep SWEEP.json --out FILE.csv [--jsonl] [--threads N] [--time-limit S] [--tolerance TOL]
 //              [--acceptance TOL] [--print-scenes] [--quiet]
 //
-// Solves every scene of a sweep (cli/sweep.hpp) and writes one row per scene: CSV with a header, or
+// Solves every scene of a sweep (rhabel/scene/sweep.hpp) and writes one row per scene: CSV with a header, or
 // JSON lines (--jsonl: one object per line, the same keys). Rows: row, the swept values, status,
 // alpha, E1, omega0 and alpha_tan_delta (master-curve materials), per indentor i: ind<i>_a, _b,
 // _contact_length, _load, _C_f, _total_friction, then residual, seconds (solve time of the row,
@@ -34,34 +34,21 @@
 // with MPI_Finalize and the same code, and only rank 0 prints the message (mpirun passes the code
 // on; it adds its own note on stderr when the code is not 0 unless run with --quiet).
 #include "commands.hpp"
-#include "sweep.hpp"
 
-#include <rhabel/materials/text_file.hpp>
 #include <rhabel/scene.hpp>
 
 #include <algorithm>
-#include <atomic>
-#include <cerrno>
 #include <chrono>
-#include <condition_variable>
 #include <cstdio>
 #include <cstdlib>
-#include <cstring>
-#include <deque>
 #include <exception>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <iterator>
-#include <map>
 #include <memory>
-#include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
-#include <fcntl.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #ifdef RHABEL_WITH_MPI
@@ -119,96 +106,6 @@ struct mpi_context {
 
 constexpr int tag_line = 1;
 
-// ---- the output file -------------------------------------------------------------------------------
-[[noreturn]] void write_failed(const std::string& file, const std::string& what) {
-  throw write_error("sweep: --out " + one_line(file) + ": " + what);
-}
-
-void write_all(int fd, const std::string& text, const std::string& file) {
-  std::size_t done = 0;
-  while (done < text.size()) {
-    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
-    if (n < 0) {
-      if (errno == EINTR) continue;
-      write_failed(file, std::strerror(errno));
-    }
-    done += static_cast<std::size_t>(n);
-  }
-}
-
-// The longest line a row can have when resuming: its numbers take < 30 bytes a column and its
-// message is one line of a few hundred bytes; 16 KiB leaves room for long string values.
-constexpr std::size_t max_row_bytes = 16384;
-
-struct existing_rows {
-  std::map<std::size_t, std::string> lines;  // row -> whole line (with '\n')
-  std::size_t keep_bytes = 0;                 // length of the complete lines (a partial tail is cut)
-  bool has_header = false;
-};
-
-// Reads FILE if it exists: the header must be this sweep's, every complete line one of its rows.
-existing_rows scan_existing(const sweep_spec& sweep, row_format format, const std::string& file) {
-  existing_rows out;
-  if (::access(file.c_str(), F_OK) != 0) return out;  // a new file
-  std::string text;
-  const std::string header = header_line(sweep, format);
-  // A row is at most max_row_bytes, so this bound only stops a file that cannot be this sweep's.
-  const std::size_t bound = std::max(materials::max_text_file_bytes, header.size() + sweep.rows * max_row_bytes);
-  try {  // only a regular file, with a bound (/dev/full, a directory or a FIFO are refused)
-    text = materials::read_text_file(file, "the existing output", bound);
-  } catch (const std::invalid_argument& e) {
-    throw input_error("sweep: --out " + one_line(file) + ": " + e.what());
-  }
-  std::size_t pos = 0, line_no = 0;
-  if (!header.empty()) {
-    if (text.empty()) return out;
-    if (text.compare(0, header.size(), header) != 0) {
-      if (header.compare(0, text.size(), text) == 0 && text.find('\n') == std::string::npos) return out;  // cut header
-      throw input_error("sweep: --out " + one_line(file) +
-                        " exists with another header (from another sweep?): remove it or choose another name");
-    }
-    out.has_header = true;
-    pos = header.size();
-    line_no = 1;
-  }
-  out.keep_bytes = pos;
-  while (pos < text.size()) {
-    const auto end = text.find('\n', pos);
-    if (end == std::string::npos) break;  // partial last line of a killed run: cut off
-    ++line_no;
-    const std::string line = text.substr(pos, end + 1 - pos);
-    pos = end + 1;
-    out.keep_bytes = pos;
-    std::size_t row = 0;
-    const std::size_t skip = format == row_format::csv ? 0 : 7;  // {"row":
-    const char* digits = line.c_str() + std::min(skip, line.size());
-    char* stop = nullptr;
-    errno = 0;
-    row = std::strtoull(digits, &stop, 10);
-    const bool numbered = stop != digits && errno == 0 && row < sweep.rows;
-    const std::string prefix = numbered ? row_prefix(sweep, row, format) : std::string();
-    if (numbered && line.compare(0, prefix.size(), prefix) == 0) {
-      // This sweep's row, unless torn (a killed writer, a disk that filled up): then it is dropped
-      // and solved again, never copied to the result.
-      if (is_complete_row(sweep, format, line)) out.lines.emplace(row, line);  // a duplicate keeps the first
-      continue;
-    }
-    // A line cut short inside its row's own prefix (or inside {"row": before the number) is torn
-    // too; anything else is foreign.
-    const std::string start = numbered ? prefix : std::string(format == row_format::csv ? "" : "{\"row\":");
-    const std::size_t kept = line.size() - 1;  // without its '\n'
-    if (kept < start.size() && start.compare(0, kept, line, 0, kept) == 0) continue;
-    throw input_error("sweep: --out " + one_line(file) + " line " + std::to_string(line_no) +
-                      " is not a row of this sweep (another sweep's file?): remove it or choose another name");
-  }
-  return out;
-}
-
-bool status_ok(const std::string& line, std::size_t prefix, row_format format) {
-  const std::string want = format == row_format::csv ? "ok," : "\"status\":\"ok\",";
-  return line.compare(prefix, want.size(), want) == 0;
-}
-
 // ---- progress ----------------------------------------------------------------------------------------
 class progress {
  public:
@@ -235,59 +132,6 @@ class progress {
   clock::time_point start_, last_;
 };
 
-// ---- workers -------------------------------------------------------------------------------------
-struct finished_row {
-  std::size_t row;
-  std::string line;
-};
-
-class work_pool {
- public:
-  work_pool(const sweep_spec& sweep, row_format format, std::vector<std::size_t> rows, std::size_t threads,
-            const run_request& request)
-      : sweep_(sweep), format_(format), rows_(std::move(rows)), request_(request) {
-    threads = std::max<std::size_t>(1, std::min(threads, rows_.size()));
-    if (rows_.empty()) return;
-    for (std::size_t t = 0; t < threads; ++t) workers_.emplace_back([this] { work(); });
-  }
-  ~work_pool() {
-    stop_ = true;
-    for (auto& w : workers_) w.join();
-  }
-  std::size_t size() const { return rows_.size(); }
-  // Waits up to `wait` for finished rows and moves them out.
-  std::vector<finished_row> take(std::chrono::milliseconds wait) {
-    std::unique_lock lock(mutex_);
-    ready_.wait_for(lock, wait, [this] { return !done_.empty(); });
-    std::vector<finished_row> out(std::make_move_iterator(done_.begin()), std::make_move_iterator(done_.end()));
-    done_.clear();
-    return out;
-  }
- private:
-  void work() {
-    for (;;) {
-      const std::size_t k = next_.fetch_add(1);
-      if (k >= rows_.size() || stop_) return;
-      bool ok = false;
-      std::string line = solve_row(sweep_, rows_[k], format_, ok, request_);
-      {
-        std::lock_guard lock(mutex_);
-        done_.push_back({rows_[k], std::move(line)});
-      }
-      ready_.notify_one();
-    }
-  }
-  const sweep_spec& sweep_;
-  row_format format_;
-  std::vector<std::size_t> rows_;
-  run_request request_;  // each row's solve options
-  std::atomic<std::size_t> next_{0};
-  std::atomic<bool> stop_{false};
-  std::mutex mutex_;
-  std::condition_variable ready_;
-  std::deque<finished_row> done_;
-  std::vector<std::thread> workers_;
-};
 
 std::size_t default_threads(const mpi_context& mpi) {
   std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
@@ -297,27 +141,6 @@ std::size_t default_threads(const mpi_context& mpi) {
     cores = std::max<std::size_t>(1, cores / static_cast<std::size_t>(std::max(1L, ranks_here)));
   }
   return cores;
-}
-
-// Rewrites FILE in row order (temporary in the same directory, then rename).
-void rewrite_sorted(const std::string& file, const std::string& header, const std::map<std::size_t, std::string>& lines) {
-  std::string tmp = file + ".XXXXXX";
-  const int fd = ::mkstemp(tmp.data());
-  if (fd < 0) write_failed(file, std::string("cannot create a temporary next to it: ") + std::strerror(errno));
-  const mode_t mask = ::umask(0);
-  ::umask(mask);
-  ::fchmod(fd, 0666 & ~mask);
-  try {
-    std::string text = header;
-    for (const auto& [row, line] : lines) text += line;
-    write_all(fd, text, file);
-    if (::fsync(fd) != 0 && errno != EINVAL) write_failed(file, std::strerror(errno));
-    if (::close(fd) != 0) write_failed(file, std::strerror(errno));
-    if (std::rename(tmp.c_str(), file.c_str()) != 0) write_failed(file, std::strerror(errno));
-  } catch (...) {
-    std::remove(tmp.c_str());
-    throw;
-  }
 }
 
 int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
@@ -332,26 +155,16 @@ int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
     return exit_ok;
   }
   if (args.out.empty()) throw input_error("sweep: --out FILE is required (or --print-scenes)");
-  const std::string header = header_line(sweep, format);
-
   // Rank 0 reads what is there and decides what is missing; the list goes to every rank.
-  existing_rows existing;
+  std::optional<sweep_output> output;
   std::vector<std::size_t> missing;
-  int fd = -1;
   std::string scan_error;
   if (mpi.rank == 0) {
     try {
-      existing = scan_existing(sweep, format, args.out);
-      fd = ::open(args.out.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0666);
-      if (fd < 0) write_failed(args.out, std::strerror(errno));
-      if (::ftruncate(fd, static_cast<off_t>(existing.keep_bytes)) != 0) write_failed(args.out, std::strerror(errno));
-      if (::lseek(fd, 0, SEEK_END) < 0) write_failed(args.out, std::strerror(errno));
-      if (!existing.has_header) write_all(fd, header, args.out);
+      output.emplace(sweep, format, args.out);
+      missing = output->missing();
     } catch (const std::exception& e) {
       scan_error = e.what();
-    }
-    for (std::size_t i = 0; i < sweep.rows; ++i) {
-      if (!existing.lines.count(i)) missing.push_back(i);
     }
   }
 #ifdef RHABEL_WITH_MPI
@@ -370,10 +183,7 @@ int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
     missing.assign(list.begin(), list.end());
   }
 #endif
-  if (!scan_error.empty()) {
-    if (fd >= 0) ::close(fd);
-    throw input_error(scan_error);
-  }
+  if (!scan_error.empty()) throw input_error(scan_error);
   const std::size_t total_missing = missing.size();
   std::vector<std::size_t> mine;
   for (std::size_t k = 0; k < missing.size(); ++k) {
@@ -382,7 +192,6 @@ int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
 
   const std::size_t threads = args.threads ? args.threads : default_threads(mpi);
   progress bar(mpi.rank == 0 && !args.quiet && ::isatty(2), total_missing);
-  std::map<std::size_t, std::string> lines = std::move(existing.lines);
   std::size_t received = 0;
   {
     mpi.rows_in_flight = mpi.active;
@@ -390,11 +199,10 @@ int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
     request.time_limit = args.time_limit;
     request.tolerance = args.tolerance;
     request.acceptance = args.acceptance;
-    work_pool pool(sweep, format, mine, threads, request);
+    sweep_pool pool(sweep, format, mine, threads, request);
     std::size_t local_done = 0;
     auto store = [&](finished_row&& r) {  // rank 0 only
-      write_all(fd, r.line, args.out);
-      lines.emplace(r.row, std::move(r.line));
+      output->append(std::move(r));
       ++received;
     };
     while (mpi.rank == 0 ? received < total_missing : local_done < mine.size()) {
@@ -437,12 +245,8 @@ int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
   if (mpi.rank == 0) {
     try {
       // Every row exactly once, in row order.
-      if (lines.size() != sweep.rows) throw std::runtime_error("sweep: internal error: rows missing after the run");
-      rewrite_sorted(args.out, header, lines);
-      ::close(fd);
-      for (const auto& [row, line] : lines) {
-        if (!status_ok(line, row_prefix(sweep, row, format).size(), format)) code = exit_not_ok;
-      }
+      output->finish();
+      if (!output->all_ok()) code = exit_not_ok;
     } catch (const std::exception& e) {
       failure = std::current_exception();
       code = exit_code_of(e);

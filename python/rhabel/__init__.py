@@ -6,6 +6,7 @@ The Python face of the C++ library (python/README.md). Everything numerical runs
 
 Contents
     solve(scene, ...)           contact of rigid indentors (rhabel::punch::solve)
+    sweep(sweep, ...)           the rows of a sweep of scenes, as `rhabel sweep` (threads, resumable file)
     trial_interval(scene, a, b) the field of a prescribed contact interval (paper Section 4;
                                 rhabel::punch::trial_interval)
     validate_scene(scene)       the validation of solve() alone
@@ -34,7 +35,7 @@ from . import abel, riemann
 
 __version__ = _rhabel.__version__
 
-__all__ = ["solve", "trial_interval", "load_scene", "validate_scene", "Record", "Result", "gauss_jacobi", "GaussJacobiRule",
+__all__ = ["solve", "sweep", "trial_interval", "load_scene", "validate_scene", "Record", "Result", "gauss_jacobi", "GaussJacobiRule",
            "jacobi_p", "abel", "riemann", "__version__"]
 
 
@@ -273,6 +274,122 @@ def _fit_material(scene, tolerance, acceptance, time_limit):
     material = {k: v for k, v in scene["material"].items() if k not in ("master_curve", "temperature", "wlf")}
     fitted["material"] = {"alpha": fit["alpha"], "E1": fit["E1"], **material}
     return fitted, fit
+
+
+def sweep(sweep, out=None, threads=0, progress=True, tolerance=1e-12, acceptance=None, time_limit=0):
+    """Solve every scene of a sweep: the rows of ``rhabel sweep SWEEP.json``, by the same code.
+
+    Parameters
+    ----------
+    sweep : dict, or a path to a sweep JSON file
+        The sweep schema of examples/README.md ("Sweeps"): ``{"scene": {...} or "FILE.json",
+        "axes": [{"path": "speed", "log_range": {"from": 1e-6, "to": 100, "count": 41}}, ...],
+        "combine": "product" or "zip"}``. Relative files (the scene, a master curve, a profile)
+        are relative to the sweep file, or to the working directory for a dict.
+    out : path or None
+        A file the rows are written to as they complete (CSV with a header; JSON lines when the
+        name ends in ``.jsonl``), resumable as the command line's ``--out``: rows already in the
+        file are kept and only the missing ones solved; at the end it holds every row once, in
+        row order. None (default): no file.
+    threads : int >= 0
+        Rows solved at the same time (default 0: every core).
+    progress : bool
+        Show progress (tqdm when installed, else a line on stderr).
+    tolerance, acceptance, time_limit
+        Each row's solve options, as for solve() (and ``rhabel sweep --tolerance/--acceptance/
+        --time-limit``).
+
+    Returns
+    -------
+    list of Record
+        One per row, in row order, with the columns of the command line's CSV as keys (``row``,
+        the swept paths, ``status``, ``alpha``, ``E1``, ..., ``seconds``, ``message``); numbers
+        equal to the command line's bit for bit (but ``seconds``), empty fields None. A scene
+        that fails is a row too (its ``status`` and ``message``).
+
+    Ctrl-C stops the rows under way (KeyboardInterrupt); the rows done stay in ``out``.
+    """
+    import os
+    if isinstance(sweep, (str, os.PathLike)):
+        path = os.fspath(sweep)
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        source, directory = path, os.path.dirname(os.path.abspath(path))
+    elif isinstance(sweep, dict):
+        text = _json.dumps(sweep, allow_nan=False, default=lambda v: v.tolist() if hasattr(v, "tolist") else str(v))
+        source, directory = "sweep", os.getcwd()
+    else:
+        raise ValueError(f"sweep must be a dict or the path of a sweep file, got {type(sweep).__name__}")
+    if isinstance(threads, bool) or not isinstance(threads, int) or not 0 <= threads <= 1024:
+        raise ValueError(f"threads = {threads!r} must be an integer in [0, 1024] (0: every core)")
+    tolerance = float(tolerance)
+    if not 1e-15 <= tolerance <= 1e-2:
+        raise ValueError(f"tolerance = {tolerance!r} is outside the valid range [1e-15, 0.01]")
+    acceptance = 0.0 if acceptance is None else float(acceptance)
+    if acceptance != 0.0 and not 1e-15 <= acceptance <= 0.1:
+        raise ValueError(f"acceptance = {acceptance!r} is outside the valid range [1e-15, 0.1]")
+    time_limit = float(time_limit)
+    if not (time_limit >= 0 and time_limit < float("inf")):
+        raise ValueError(f"time_limit = {time_limit!r} must be finite and >= 0 (0: no limit)")
+    handle = _rhabel._Sweep(text, source, directory)
+    out = "" if out is None else os.fspath(out)
+    jsonl = not out or out.endswith(".jsonl")
+    bar = _progress(handle.rows) if progress else None
+    try:
+        lines = handle.run(out, jsonl, threads, tolerance, acceptance, time_limit, bar.update if bar else None)
+    finally:
+        if bar:
+            bar.close()
+    columns = handle.columns()
+    return [_sweep_row(line, columns, jsonl) for line in lines]
+
+
+class _progress:
+    """Progress of a sweep: tqdm when installed, else one line on stderr rewritten in place."""
+
+    def __init__(self, total):
+        self.total, self.done = total, 0
+        try:
+            from tqdm import tqdm
+            self.bar = tqdm(total=total, unit="row")
+        except ImportError:
+            self.bar = None
+
+    def update(self, done, todo):
+        step = done - self.done
+        self.done = done
+        if self.bar is not None:
+            self.bar.update(step)
+        else:
+            import sys
+            print(f"\rrhabel.sweep: {done}/{todo} rows", end="", file=sys.stderr, flush=True)
+
+    def close(self):
+        if self.bar is not None:
+            self.bar.close()
+        elif self.done:
+            import sys
+            print(file=sys.stderr)
+
+
+def _sweep_row(line, columns, jsonl):
+    """A row's line (CSV or a JSON line) as a Record keyed by the columns."""
+    if jsonl:
+        return Record(_json.loads(line))
+    import csv
+    fields = next(csv.reader([line.rstrip("\n")]))
+    row = Record()
+    for name, text in zip(columns, fields):
+        if name in ("status", "message"):
+            row[name] = text
+        elif not text:
+            row[name] = None
+        else:
+            try:
+                row[name] = _json.loads(text)
+            except ValueError:  # a swept string value
+                row[name] = text
+    return row
 
 
 def trial_interval(scene, a, b, tolerance=1e-12):

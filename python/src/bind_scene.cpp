@@ -1,12 +1,24 @@
-// python/src/bind_scene.cpp: the scene layer (rhabel/scene.hpp) for the Python package:
-// _rhabel._fit_scene_material(text, tolerance, acceptance, time_limit), the master-curve fixed
-// point of a scene given as JSON text, by the same code as `rhabel solve` (the command line then
-// solves the scene with the fitted power law, and so does rhabel.solve).
+// python/src/bind_scene.cpp: the scene layer (rhabel/scene.hpp) for the Python package, the same
+// code as the command line's:
+//   _rhabel._fit_scene_material(text, tolerance, acceptance, time_limit): the master-curve fixed
+//     point of a scene given as JSON text (`rhabel solve` then solves the scene with the fitted
+//     power law, and so does rhabel.solve);
+//   _rhabel._Sweep(text, source, directory): a sweep file parsed and validated; .run(...) solves its
+//     rows on a pool of threads (into a resumable output file or not) and returns their lines, the
+//     lines of `rhabel sweep`.
 #include "bindings.hpp"
 
 #include <rhabel/scene.hpp>
 
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <map>
+#include <memory>
+#include <optional>
 #include <string>
+#include <thread>
+#include <vector>
 
 namespace rhabel::python {
 namespace {
@@ -51,9 +63,114 @@ py::dict fit_scene_material(const std::string& text, double tolerance, double ac
   return out;
 }
 
+/// A parsed sweep and the run of its rows.
+class sweep_handle {
+ public:
+  sweep_handle(const std::string& text, const std::string& source, const std::string& directory) {
+    try {
+      spec_ = scene::parse_sweep(text, source, directory);
+    } catch (const scene::input_error& e) {
+      throw py::value_error(e.what());
+    }
+  }
+  std::size_t rows() const { return spec_.rows; }
+  std::vector<std::string> columns() const { return scene::row_columns(spec_); }
+  std::string row_scene(std::size_t row) const {
+    if (row >= spec_.rows) throw py::index_error("row " + std::to_string(row) + " of " + std::to_string(spec_.rows));
+    return scene::row_scene(spec_, row);
+  }
+
+  /// Solves the rows (those missing from `out` when it is given: resumed as by `rhabel sweep`) on
+  /// `threads` threads; progress(done, total) from this thread after each batch; Ctrl-C (or an
+  /// exception of progress) stops the rows under way and raises, the rows done kept in `out`.
+  /// Returns every row's line, in row order.
+  std::vector<std::string> run(const std::string& out, bool jsonl, std::size_t threads, double tolerance,
+                               double acceptance, double time_limit, const py::object& progress) {
+    const auto format = jsonl ? scene::row_format::jsonl : scene::row_format::csv;
+    std::optional<scene::sweep_output> output;
+    std::map<std::size_t, std::string> lines;
+    std::vector<std::size_t> todo;
+    if (!out.empty()) {
+      try {
+        output.emplace(spec_, format, out);
+      } catch (const scene::input_error& e) {
+        throw py::value_error(e.what());
+      } catch (const scene::write_error& e) {
+        PyErr_SetString(PyExc_OSError, e.what());
+        throw py::error_already_set();
+      }
+      todo = output->missing();
+    } else {
+      for (std::size_t i = 0; i < spec_.rows; ++i) todo.push_back(i);
+    }
+    const auto stop = std::make_shared<std::atomic<bool>>(false);
+    scene::run_request request;  // grid 0, one thread per row (the rows run in parallel)
+    request.tolerance = tolerance;
+    request.acceptance = acceptance;
+    request.time_limit = time_limit;
+    request.interrupt = [stop] { return stop->load(); };
+    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
+    std::optional<scene::sweep_pool> pool;
+    pool.emplace(spec_, format, todo, threads, request);
+    const auto join = [&] {
+      stop->store(true);
+      py::gil_scoped_release nogil;
+      pool.reset();
+    };
+    try {
+      std::size_t done = 0;
+      while (done < todo.size()) {
+        std::vector<scene::finished_row> batch;
+        {
+          py::gil_scoped_release nogil;
+          batch = pool->take(std::chrono::milliseconds(100));
+        }
+        for (auto& r : batch) {
+          if (output) {
+            output->append(std::move(r));
+          } else {
+            lines.emplace(r.row, std::move(r.line));
+          }
+          ++done;
+        }
+        if (!progress.is_none()) progress(done, todo.size());
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      }
+    } catch (...) {
+      join();
+      throw;
+    }
+    join();
+    if (output) {
+      try {
+        output->finish();
+      } catch (const scene::write_error& e) {
+        PyErr_SetString(PyExc_OSError, e.what());
+        throw py::error_already_set();
+      }
+    }
+    const auto& all = output ? output->lines() : lines;
+    std::vector<std::string> result;
+    result.reserve(all.size());
+    for (const auto& [row, line] : all) result.push_back(line);
+    return result;
+  }
+
+ private:
+  scene::sweep_spec spec_;
+};
+
 }  // namespace
 
 void bind_scene(py::module_& m) {
+  py::class_<sweep_handle>(m, "_Sweep")
+      .def(py::init<const std::string&, const std::string&, const std::string&>(), py::arg("text"), py::arg("source"),
+           py::arg("directory"))
+      .def_property_readonly("rows", &sweep_handle::rows)
+      .def("columns", &sweep_handle::columns)
+      .def("row_scene", &sweep_handle::row_scene, py::arg("row"))
+      .def("run", &sweep_handle::run, py::arg("out"), py::arg("jsonl"), py::arg("threads"), py::arg("tolerance"),
+           py::arg("acceptance"), py::arg("time_limit"), py::arg("progress"));
   m.def("_fit_scene_material", &fit_scene_material, py::arg("text"), py::arg("tolerance"), py::arg("acceptance"),
         py::arg("time_limit"));
 }

@@ -1,4 +1,4 @@
-// libFuzzer target for the sweep schema of `rhabel sweep` (cli/sweep.hpp; tests/fuzz/README.md).
+// libFuzzer target for the sweep schema of `rhabel sweep` (rhabel/scene/sweep.hpp; tests/fuzz/README.md).
 //
 // Each input is the text of a sweep file (its scene inline: a scene named by file is read from the
 // working directory, which holds none of the fuzzer's names). parse_sweep must either refuse it
@@ -10,7 +10,6 @@
 // not solved (the solve entry has its own target, fuzz_scene). Anything else is a finding.
 #include "commands.hpp"
 #include "fuzz_support.hpp"
-#include "sweep.hpp"
 
 #include <rhabel/scene.hpp>
 

@@ -21,6 +21,11 @@ struct input_error : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// An output (stdout, a file) could not be written completely: one line naming it.
+struct write_error : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
 /// `text` on one line: control characters (bytes 0x00-0x1f and 0x7f) become \n, \r, \t or \xHH,
 /// so that an echoed value (an argument, a file name, a JSON excerpt) cannot break the message.
 inline std::string one_line(std::string_view text) { return materials::printable(text, text.size()); }

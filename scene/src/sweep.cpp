@@ -1,10 +1,12 @@
-// cli/sweep.cpp: sweep files and rows (see sweep.hpp).
-#include "sweep.hpp"
+// scene/src/sweep.cpp: sweep files and rows (see rhabel/scene/sweep.hpp).
+#include "rhabel/scene/sweep.hpp"
 
-#include "commands.hpp"
+#include "rhabel/scene/error.hpp"
+#include "rhabel/scene/material.hpp"
+#include "rhabel/scene/scene.hpp"
+#include "rhabel/scene/solve.hpp"
 
-#include <rhabel/materials.hpp>
-#include <rhabel/scene.hpp>
+#include "rhabel/materials.hpp"
 
 #include <cctype>
 #include <chrono>
@@ -17,7 +19,7 @@
 #include <stdexcept>
 #include <variant>
 
-namespace rhabel::cli {
+namespace rhabel::scene {
 namespace {
 
 using json = nlohmann::json;
@@ -329,7 +331,10 @@ std::vector<std::string> row_columns(const sweep_spec& sweep) {
 std::string header_line(const sweep_spec& sweep, row_format format) {
   if (format == row_format::jsonl) return {};
   std::string line;
-  for (const auto& c : row_columns(sweep)) line += (line.empty() ? "" : ",") + csv_field(c);
+  for (const auto& c : row_columns(sweep)) {
+    if (!line.empty()) line += ',';  // (a + "," + b: GCC 12 -Wrestrict false positive at -O3, its bug 105329)
+    line += csv_field(c);
+  }
   return line + "\n";
 }
 
@@ -480,4 +485,39 @@ std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format forma
   return line + (format == row_format::csv ? "\n" : "}\n");
 }
 
-}  // namespace rhabel::cli
+sweep_pool::sweep_pool(const sweep_spec& sweep, row_format format, std::vector<std::size_t> rows, std::size_t threads,
+                       const run_request& request)
+    : sweep_(sweep), format_(format), rows_(std::move(rows)), request_(request) {
+  threads = std::max<std::size_t>(1, std::min(threads, rows_.size()));
+  if (rows_.empty()) return;
+  for (std::size_t t = 0; t < threads; ++t) workers_.emplace_back([this] { work(); });
+}
+
+sweep_pool::~sweep_pool() {
+  stop_ = true;
+  for (auto& w : workers_) w.join();
+}
+
+std::vector<finished_row> sweep_pool::take(std::chrono::milliseconds wait) {
+  std::unique_lock lock(mutex_);
+  ready_.wait_for(lock, wait, [this] { return !done_.empty(); });
+  std::vector<finished_row> out(std::make_move_iterator(done_.begin()), std::make_move_iterator(done_.end()));
+  done_.clear();
+  return out;
+}
+
+void sweep_pool::work() {
+  for (;;) {
+    const std::size_t k = next_.fetch_add(1);
+    if (k >= rows_.size() || stop_) return;
+    bool ok = false;
+    std::string line = solve_row(sweep_, rows_[k], format_, ok, request_);
+    {
+      std::lock_guard lock(mutex_);
+      done_.push_back({rows_[k], std::move(line)});
+    }
+    ready_.notify_one();
+  }
+}
+
+}  // namespace rhabel::scene

@@ -1,5 +1,5 @@
-// cli/sweep.hpp: the sweep file of `rhabel sweep` and the rows it produces (schema in
-// examples/README.md, "Sweeps").
+// rhabel/scene/sweep.hpp: the sweep file of `rhabel sweep` and `rhabel.sweep`, the rows it
+// produces (schema in examples/README.md, "Sweeps"), and the pool of threads that solves them.
 //
 //   {"description": "optional",
 //    "scene": "default_scene.json"  or  {... a scene object ...},
@@ -22,18 +22,23 @@
 //   that holds the scene (made absolute in the rows' scenes, so each row's scene stands alone).
 #pragma once
 
-#include <rhabel/scene.hpp>
+#include "rhabel/scene/solve.hpp"
 
 #include <nlohmann/json.hpp>
 
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
 #include <cstddef>
+#include <deque>
+#include <map>
+#include <mutex>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <vector>
 
-namespace rhabel::cli {
-
-using namespace rhabel::scene;  // as commands.hpp
+namespace rhabel::scene {
 
 inline constexpr std::size_t max_sweep_rows = 100'000'000;
 
@@ -88,4 +93,67 @@ bool is_complete_row(const sweep_spec& sweep, row_format format, std::string_vie
 /// options of each row's solve (time_limit, tolerance, acceptance; grid 0, one thread).
 std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format format, bool& ok, const run_request& request);
 
-}  // namespace rhabel::cli
+/// A row solved by a sweep_pool: its index and its whole line.
+struct finished_row {
+  std::size_t row;
+  std::string line;
+};
+
+/// Worker threads solving `rows` of a sweep (solve_row, each row's solve on one thread); the
+/// caller collects the finished lines with take() in the order they finish. The destructor stops
+/// the workers after the rows under way (request.interrupt ends those early).
+class sweep_pool {
+ public:
+  sweep_pool(const sweep_spec& sweep, row_format format, std::vector<std::size_t> rows, std::size_t threads,
+             const run_request& request);
+  ~sweep_pool();
+  sweep_pool(const sweep_pool&) = delete;
+  sweep_pool& operator=(const sweep_pool&) = delete;
+  std::size_t size() const { return rows_.size(); }
+  /// Waits up to `wait` for finished rows and moves them out.
+  std::vector<finished_row> take(std::chrono::milliseconds wait);
+
+ private:
+  void work();
+  const sweep_spec& sweep_;
+  row_format format_;
+  std::vector<std::size_t> rows_;
+  run_request request_;  // each row's solve options
+  std::atomic<std::size_t> next_{0};
+  std::atomic<bool> stop_{false};
+  std::mutex mutex_;
+  std::condition_variable ready_;
+  std::deque<finished_row> done_;
+  std::vector<std::thread> workers_;
+};
+
+/// The output file of a sweep (`rhabel sweep --out`, `rhabel.sweep(out=...)`), resumable: the
+/// constructor reads FILE if it exists (its header must be this sweep's and every complete line one
+/// of its rows, else input_error naming the file and the line; a torn last line is cut off), opens
+/// it for appending and writes the header when missing; append() writes each new row as one whole
+/// write; finish() rewrites FILE with every row once, in row order (a temporary in the same
+/// directory, then rename). Write failures are write_error, naming the file.
+class sweep_output {
+ public:
+  sweep_output(const sweep_spec& sweep, row_format format, std::string file);
+  ~sweep_output();
+  sweep_output(const sweep_output&) = delete;
+  sweep_output& operator=(const sweep_output&) = delete;
+  /// The rows not yet in FILE, in row order.
+  std::vector<std::size_t> missing() const;
+  void append(finished_row&& row);
+  void finish();
+  /// Every row's line, by row (those found in FILE and those appended).
+  const std::map<std::size_t, std::string>& lines() const { return lines_; }
+  /// Whether every row's status is "ok".
+  bool all_ok() const;
+
+ private:
+  const sweep_spec& sweep_;
+  row_format format_;
+  std::string file_, header_;
+  std::map<std::size_t, std::string> lines_;
+  int fd_ = -1;
+};
+
+}  // namespace rhabel::scene
