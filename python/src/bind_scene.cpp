@@ -23,7 +23,27 @@
 namespace rhabel::python {
 namespace {
 
-py::dict fit_scene_material(const std::string& text, double tolerance, double acceptance, double time_limit) {
+/// A JSON value of the scene layer's document as Python objects (objects as dicts, arrays as lists).
+py::object to_python(const nlohmann::ordered_json& value) {
+  if (value.is_object()) {
+    py::dict out;
+    for (const auto& [key, item] : value.items()) out[py::str(key)] = to_python(item);
+    return out;
+  }
+  if (value.is_array()) {
+    py::list out;
+    for (const auto& item : value) out.append(to_python(item));
+    return out;
+  }
+  if (value.is_string()) return py::str(value.get<std::string>());
+  if (value.is_boolean()) return py::bool_(value.get<bool>());
+  if (value.is_number_unsigned()) return py::int_(value.get<std::size_t>());
+  if (value.is_number_integer()) return py::int_(value.get<long long>());
+  if (value.is_number()) return py::float_(value.get<double>());
+  return py::none();
+}
+
+py::object fit_scene_material(const std::string& text, double tolerance, double acceptance, double time_limit) {
   scene::scene_spec spec;
   try {
     // A relative master_curve is relative to the working directory (rhabel.load_scene makes it
@@ -42,25 +62,7 @@ py::dict fit_scene_material(const std::string& text, double tolerance, double ac
   } catch (const scene::input_error& e) {
     throw py::value_error(e.what());
   }
-  const auto& curve = *spec.material.curve;
-  py::dict out;
-  out["master_curve"] = curve.path;
-  if (curve.shifted) {
-    out["temperature"] = curve.temperature;
-    out["log10_aT"] = *report.log10_aT;
-  }
-  out["alpha"] = report.fit.alpha;
-  out["E1"] = report.fit.E1;
-  out["omega0"] = report.fit.omega0;
-  out["alpha_slope"] = report.fit.alpha_slope;
-  out["alpha_tan_delta"] = report.fit.alpha_tan_delta;
-  out["modulus"] = report.fit.modulus;
-  out["window"] = py::make_tuple(report.fit.window_lo, report.fit.window_hi);
-  out["contact_length"] = report.contact_length;
-  out["iterations"] = report.iterations;
-  out["status"] = report.status;
-  out["warning"] = report.warning;
-  return out;
+  return to_python(scene::material_fit_json(*spec.material.curve, report));
 }
 
 /// A parsed sweep and the run of its rows.

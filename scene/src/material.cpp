@@ -72,6 +72,26 @@ materials::master_curve load_master_curve(const master_curve_spec& spec, const s
   }
 }
 
+nlohmann::ordered_json material_fit_json(const master_curve_spec& spec, const material_fit_report& report) {
+  ordered_json fit = {{"master_curve", spec.path}};
+  if (spec.shifted) {
+    fit["temperature"] = spec.temperature;
+    fit["log10_aT"] = *report.log10_aT;
+  }
+  fit["alpha"] = report.fit.alpha;
+  fit["E1"] = report.fit.E1;
+  fit["omega0"] = report.fit.omega0;
+  fit["alpha_slope"] = report.fit.alpha_slope;
+  fit["alpha_tan_delta"] = report.fit.alpha_tan_delta;
+  fit["modulus"] = report.fit.modulus;
+  fit["window"] = {report.fit.window_lo, report.fit.window_hi};
+  fit["contact_length"] = report.contact_length;
+  fit["iterations"] = report.iterations;
+  fit["status"] = report.status;
+  fit["warning"] = report.warning;
+  return fit;
+}
+
 material_fit_report fit_scene_material(const scene_spec& scene, const run_request& request) {
   if (!scene.material.curve) throw std::invalid_argument("fit_scene_material: the scene's material is not a master curve");
   const auto& spec = *scene.material.curve;
@@ -144,23 +164,7 @@ run_outcome run_scene_with_material(const scene_spec& scene, const run_request& 
   trial.material.alpha = report.fit.alpha;
   trial.material.E1 = report.fit.E1;
   run_outcome out = run_scene(trial, request);
-  ordered_json fit = {{"master_curve", spec.path}};
-  if (spec.shifted) {
-    fit["temperature"] = spec.temperature;
-    fit["log10_aT"] = *report.log10_aT;
-  }
-  fit["alpha"] = report.fit.alpha;
-  fit["E1"] = report.fit.E1;
-  fit["omega0"] = report.fit.omega0;
-  fit["alpha_slope"] = report.fit.alpha_slope;
-  fit["alpha_tan_delta"] = report.fit.alpha_tan_delta;
-  fit["modulus"] = report.fit.modulus;
-  fit["window"] = {report.fit.window_lo, report.fit.window_hi};
-  fit["contact_length"] = report.contact_length;
-  fit["iterations"] = report.iterations;
-  fit["status"] = report.status;
-  fit["warning"] = report.warning;
-  out.result["material_fit"] = std::move(fit);
+  out.result["material_fit"] = material_fit_json(spec, report);
   if (report.status != "ok") {
     out.ok = false;
     if (warning) *warning = report.status + ": " + report.warning;

@@ -37,6 +37,9 @@ materials::master_curve load_master_curve(const master_curve_spec& spec, const s
 /// the fixed point leaves the curve's range.
 material_fit_report fit_scene_material(const scene_spec& scene, const run_request& request);
 
+/// The result document's "material_fit" of `report` (the fields listed at the top).
+nlohmann::ordered_json material_fit_json(const master_curve_spec& spec, const material_fit_report& report);
+
 /// run_scene for any scene: with a master curve, the fixed point above first. `warning` receives the
 /// fit's warning (empty when it is ok or the scene has an explicit material).
 run_outcome run_scene_with_material(const scene_spec& scene, const run_request& request, std::string* warning = nullptr);
