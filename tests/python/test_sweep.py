@@ -99,3 +99,35 @@ def test_another_sweeps_file_is_refused(tmp_path):
     with pytest.raises(ValueError, match="another header"):
         rhabel.sweep(TWO, out=out, progress=False)
     assert out.read_text() == "row,speed,status\n0,1,ok\n"
+
+
+def test_ctrl_c_stops_a_sweep_and_keeps_the_rows_done(tmp_path):
+    # Ctrl-C (SIGINT) during a sweep whose rows each refine for seconds (the periodic example at
+    # acceptances it cannot reach): KeyboardInterrupt, the rows under way stopped (their solves
+    # poll the same flag), the output file holding only whole rows, so that the sweep resumes.
+    # The bound of 5 s is the contract ("within a second") with a margin for a loaded machine.
+    import os
+    import signal
+    import threading
+    import time
+
+    scene = rhabel.load_scene(SOURCE_DIR / "examples" / "rough_periodic.json")
+    slow = {"scene": scene, "axes": [{"path": "speed", "values": [0.01, 0.02, 0.03, 0.04]}]}
+    out = tmp_path / "slow.csv"
+    sent = []
+
+    def interrupt():
+        sent.append(time.monotonic())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    timer = threading.Timer(0.5, interrupt)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            rhabel.sweep(slow, out=out, threads=2, progress=False, acceptance=1e-9)
+    finally:
+        timer.cancel()
+    assert sent and time.monotonic() - sent[0] < 5
+    lines = out.read_text().splitlines(keepends=True)
+    assert lines[0].startswith("row,speed,status") and all(line.endswith("\n") for line in lines)
+    assert not any(",error," in line for line in lines[1:])  # a stopped row is not written as a row
