@@ -10,6 +10,7 @@
 #include "commands.hpp"
 
 #include <rhabel/materials.hpp>
+#include <rhabel/scene.hpp>
 
 #include <nlohmann/json.hpp>
 
@@ -43,34 +44,21 @@ int run(const fit_arguments& args) {
   if (args.wlf.empty() != !args.has_temperature) {
     throw input_error("fit-material: --temperature and --wlf go together (the WLF shift to that temperature)");
   }
-  materials::master_curve curve;
-  try {
-    curve = materials::read_master_curve(args.curve_path);
-  } catch (const std::invalid_argument& e) {
-    throw input_error(std::string("fit-material: ") + e.what());
-  }
-  double log10_aT = 0;
-  if (!args.wlf.empty()) {
-    const materials::wlf_shift wlf{args.wlf[0], args.wlf[1], args.wlf[2]};
-    if (!(wlf.C1 > 0) || !(wlf.C2 > 0)) throw input_error("fit-material: --wlf C1 and C2 must be > 0");
-    log10_aT = materials::wlf_log10_shift(wlf, args.temperature);  // domain_error: exit 2
-    curve = materials::shift_to_temperature(curve, wlf, args.temperature);
-  }
-  materials::fit_options options;
-  options.half_window_decades = args.window;
-  options.warning_threshold = args.threshold;
-  const auto f = materials::fit_at(curve, args.speed / args.length, options);
+  material_fit_request request;
+  request.curve_path = args.curve_path;
+  request.speed = args.speed;
+  request.length = args.length;
+  if (!args.wlf.empty()) request.wlf = materials::wlf_shift{args.wlf[0], args.wlf[1], args.wlf[2]};
+  request.temperature = args.temperature;
+  request.window_decades = args.window;
+  request.threshold = args.threshold;
+  const fitted_material fitted = fit_material(request);
+  const auto& f = fitted.fit;
+  const auto& curve = fitted.curve;
+  const double log10_aT = fitted.log10_aT.value_or(0.0);
   std::string text;
   if (args.json) {
-    nlohmann::ordered_json doc = {{"alpha", f.alpha}, {"E1", f.E1}, {"omega0", f.omega0},
-                                  {"alpha_slope", f.alpha_slope}, {"alpha_tan_delta", f.alpha_tan_delta},
-                                  {"modulus", f.modulus}, {"window", {f.window_lo, f.window_hi}},
-                                  {"status", f.status}, {"warning", f.warning},
-                                  {"master_curve", args.curve_path}, {"points", curve.omega.size()}};
-    if (!args.wlf.empty()) {
-      doc["temperature"] = args.temperature;
-      doc["log10_aT"] = log10_aT;
-    }
+    const nlohmann::ordered_json doc = fitted_material_json(request, fitted);
     text = doc.dump(2) + "\n";
   } else {
     char buf[1024];

@@ -7,6 +7,7 @@ The Python face of the C++ library (python/README.md). Everything numerical runs
 Contents
     solve(scene, ...)           contact of rigid indentors (rhabel::punch::solve)
     sweep(sweep, ...)           the rows of a sweep of scenes, as `rhabel sweep` (threads, resumable file)
+    fit_material(curve, ...)    the local power law of a master curve at U/L, as `rhabel fit-material`
     trial_interval(scene, a, b) the field of a prescribed contact interval (paper Section 4;
                                 rhabel::punch::trial_interval)
     validate_scene(scene)       the validation of solve() alone
@@ -35,7 +36,7 @@ from . import abel, riemann
 
 __version__ = _rhabel.__version__
 
-__all__ = ["solve", "sweep", "trial_interval", "load_scene", "validate_scene", "Record", "Result", "gauss_jacobi", "GaussJacobiRule",
+__all__ = ["solve", "sweep", "fit_material", "trial_interval", "load_scene", "validate_scene", "Record", "Result", "gauss_jacobi", "GaussJacobiRule",
            "jacobi_p", "abel", "riemann", "__version__"]
 
 
@@ -342,6 +343,69 @@ def sweep(sweep, out=None, threads=0, progress=True, tolerance=1e-12, acceptance
             bar.close()
     columns = handle.columns()
     return [_sweep_row(line, columns, jsonl) for line in lines]
+
+
+def fit_material(curve, speed, length, temperature=None, wlf=None, window_decades=0.5, threshold=0.05):
+    """The local power law E(t) = E1 t^-alpha of a measured master curve at omega0 = speed/length:
+    ``rhabel fit-material CURVE --speed U --length L [--temperature T --wlf C1,C2,T_ref] --json``,
+    by the same code (examples/README.md, "A material from a measured master curve").
+
+    Parameters
+    ----------
+    curve : path
+        The master curve, a CSV with the columns omega,E_storage,E_loss or f_hz,E_storage,E_loss or
+        omega,E_abs,tan_delta.
+    speed, length : float > 0
+        The sliding speed U and the contact length L: omega0 = U/L.
+    temperature : float or None, wlf : {"C1", "C2", "T_ref"} or (C1, C2, T_ref) or None
+        Together: the curve shifted to that temperature by the WLF equation first.
+    window_decades : float in [0.01, 5]
+        Half width of the fit window in decades (default 0.5).
+    threshold : float in [1e-6, 1]
+        The status is "poor_power_law" when the two alpha estimates differ by more (default 0.05).
+
+    Returns
+    -------
+    Record
+        alpha, E1, omega0, alpha_slope, alpha_tan_delta, modulus, window, status ("ok",
+        "poor_power_law", "window_clipped"), warning, master_curve, points (and temperature,
+        log10_aT when shifted): the command line's JSON, bit for bit.
+    """
+    import os
+
+    def number(value, name, lo, hi, lo_open):
+        """value as a float in (lo, hi] (lo_open) or [lo, hi], as the command line's option checks."""
+        if isinstance(value, bool) or isinstance(value, str):
+            raise ValueError(f"{name} = {value!r} is not a number")
+        value = float(value)
+        if not ((value > lo if lo_open else value >= lo) and value <= hi):
+            raise ValueError(f"{name} = {value!r} is not in {'(' if lo_open else '['}{lo:g}, {hi:g}]")
+        return value
+
+    big = 1.7976931348623157e308
+    speed = number(speed, "speed", 0.0, big, True)
+    length = number(length, "length", 0.0, big, True)
+    window_decades = number(window_decades, "window_decades", 0.01, 5.0, False)
+    threshold = number(threshold, "threshold", 1e-6, 1.0, False)
+    if (temperature is None) != (wlf is None):
+        raise ValueError("temperature and wlf go together (the WLF shift to that temperature)")
+    constants = None
+    if wlf is not None:
+        if isinstance(wlf, dict):
+            missing = [k for k in ("C1", "C2", "T_ref") if k not in wlf]
+            if missing or len(wlf) != 3:
+                raise ValueError(f"wlf must have the keys C1, C2, T_ref, got {sorted(wlf)}")
+            wlf = (wlf["C1"], wlf["C2"], wlf["T_ref"])
+        if len(wlf) != 3:
+            raise ValueError(f"wlf needs three numbers C1, C2, T_ref, got {len(wlf)}")
+        constants = [float(c) for c in wlf]
+        if not all(_math.isfinite(c) for c in constants):
+            raise ValueError(f"wlf = {wlf!r}: the constants must be finite")
+        temperature = float(temperature)
+        if not _math.isfinite(temperature):
+            raise ValueError(f"temperature = {temperature!r} must be finite")
+    return Record(_rhabel._fit_material(os.fspath(curve), speed, length, temperature, constants, window_decades,
+                                        threshold))
 
 
 class _progress:

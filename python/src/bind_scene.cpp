@@ -3,6 +3,8 @@
 //   _rhabel._fit_scene_material(text, tolerance, acceptance, time_limit): the master-curve fixed
 //     point of a scene given as JSON text (`rhabel solve` then solves the scene with the fitted
 //     power law, and so does rhabel.solve);
+//   _rhabel._fit_material(curve, speed, length, temperature, wlf, window_decades, threshold): the
+//     local power law of a master curve at omega0 = U/L, the JSON of `rhabel fit-material --json`;
 //   _rhabel._Sweep(text, source, directory): a sweep file parsed and validated; .run(...) solves its
 //     rows on a pool of threads (into a resumable output file or not) and returns their lines, the
 //     lines of `rhabel sweep`.
@@ -63,6 +65,26 @@ py::object fit_scene_material(const std::string& text, double tolerance, double 
     throw py::value_error(e.what());
   }
   return to_python(scene::material_fit_json(*spec.material.curve, report));
+}
+
+/// `rhabel fit-material --json` (the scene layer's fit_material); arguments checked by the caller.
+py::object fit_material(const std::string& curve, double speed, double length, std::optional<double> temperature,
+                        std::optional<std::vector<double>> wlf, double window_decades, double threshold) {
+  scene::material_fit_request request;
+  request.curve_path = curve;
+  request.speed = speed;
+  request.length = length;
+  if (wlf && temperature) {
+    request.wlf = materials::wlf_shift{(*wlf).at(0), (*wlf).at(1), (*wlf).at(2)};
+    request.temperature = *temperature;
+  }
+  request.window_decades = window_decades;
+  request.threshold = threshold;
+  try {
+    return to_python(scene::fitted_material_json(request, scene::fit_material(request)));
+  } catch (const scene::input_error& e) {
+    throw py::value_error(e.what());
+  }
 }
 
 /// A parsed sweep and the run of its rows.
@@ -165,6 +187,8 @@ class sweep_handle {
 }  // namespace
 
 void bind_scene(py::module_& m) {
+  m.def("_fit_material", &fit_material, py::arg("curve"), py::arg("speed"), py::arg("length"), py::arg("temperature"),
+        py::arg("wlf"), py::arg("window_decades"), py::arg("threshold"));
   py::class_<sweep_handle>(m, "_Sweep")
       .def(py::init<const std::string&, const std::string&, const std::string&>(), py::arg("text"), py::arg("source"),
            py::arg("directory"))

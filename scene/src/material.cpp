@@ -72,6 +72,43 @@ materials::master_curve load_master_curve(const master_curve_spec& spec, const s
   }
 }
 
+fitted_material fit_material(const material_fit_request& request) {
+  fitted_material out;
+  try {
+    out.curve = materials::read_master_curve(request.curve_path);
+  } catch (const std::invalid_argument& e) {
+    throw input_error(std::string("fit-material: ") + one_line(e.what()));
+  }
+  if (request.wlf) {
+    if (!(request.wlf->C1 > 0) || !(request.wlf->C2 > 0)) throw input_error("fit-material: --wlf C1 and C2 must be > 0");
+    try {
+      out.log10_aT = materials::wlf_log10_shift(*request.wlf, request.temperature);
+    } catch (const std::domain_error& e) {
+      throw input_error(std::string("fit-material: ") + e.what());
+    }
+    out.curve = materials::shift_to_temperature(out.curve, *request.wlf, request.temperature);
+  }
+  materials::fit_options options;
+  options.half_window_decades = request.window_decades;
+  options.warning_threshold = request.threshold;
+  out.fit = materials::fit_at(out.curve, request.speed / request.length, options);
+  return out;
+}
+
+nlohmann::ordered_json fitted_material_json(const material_fit_request& request, const fitted_material& fitted) {
+  const auto& f = fitted.fit;
+  ordered_json doc = {{"alpha", f.alpha}, {"E1", f.E1}, {"omega0", f.omega0},
+                      {"alpha_slope", f.alpha_slope}, {"alpha_tan_delta", f.alpha_tan_delta},
+                      {"modulus", f.modulus}, {"window", {f.window_lo, f.window_hi}},
+                      {"status", f.status}, {"warning", f.warning},
+                      {"master_curve", request.curve_path}, {"points", fitted.curve.omega.size()}};
+  if (fitted.log10_aT) {
+    doc["temperature"] = request.temperature;
+    doc["log10_aT"] = *fitted.log10_aT;
+  }
+  return doc;
+}
+
 nlohmann::ordered_json material_fit_json(const master_curve_spec& spec, const material_fit_report& report) {
   ordered_json fit = {{"master_curve", spec.path}};
   if (spec.shifted) {

@@ -102,3 +102,36 @@ def test_refusals_name_the_field(edit, words):
     assert "\n" not in message
     for word in words:
         assert word in message, message
+
+
+@pytest.mark.parametrize("speed, length, shift", [(0.02, 1e-3, True), (1e-6, 1e-3, False), (10.0, 1e-4, True)])
+def test_fit_material_equals_the_command_line(cli, speed, length, shift):
+    args = [str(cli), "fit-material", str(CURVE), "--speed", repr(speed), "--length", repr(length), "--json"]
+    kwargs = {}
+    if shift:
+        args += ["--temperature", "40", "--wlf", "8.86,101.6,20"]
+        kwargs = {"temperature": 40, "wlf": {"C1": 8.86, "C2": 101.6, "T_ref": 20}}
+    run = subprocess.run(args, capture_output=True, text=True)
+    assert run.returncode in (0, 3), run.stderr
+    assert rhabel.fit_material(CURVE, speed, length, **kwargs) == json.loads(run.stdout)
+    # The tuple form of the WLF constants is the same request.
+    if shift:
+        assert rhabel.fit_material(CURVE, speed, length, temperature=40, wlf=(8.86, 101.6, 20)) == json.loads(run.stdout)
+
+
+@pytest.mark.parametrize("kwargs, words", [
+    ({"speed": 0.0}, ["speed", "0.0"]),
+    ({"length": float("nan")}, ["length", "nan"]),
+    ({"temperature": 40.0}, ["temperature", "wlf"]),
+    ({"temperature": 40.0, "wlf": {"C1": 8.86, "C2": 101.6}}, ["wlf", "T_ref"]),
+    ({"temperature": 40.0, "wlf": (8.86, -1.0, 20.0)}, ["C2", "> 0"]),
+    ({"window_decades": 9.0}, ["window_decades", "9.0"]),
+    ({"curve": "/nonexistent.csv"}, ["/nonexistent.csv"]),
+])
+def test_fit_material_refusals(kwargs, words):
+    call = {"curve": CURVE, "speed": 0.02, "length": 1e-3, **kwargs}
+    with pytest.raises(ValueError) as e:
+        rhabel.fit_material(**call)
+    assert "\n" not in str(e.value)
+    for word in words:
+        assert word in str(e.value), str(e.value)

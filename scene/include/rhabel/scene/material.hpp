@@ -23,6 +23,7 @@
 
 #include <rhabel/materials.hpp>
 
+#include <optional>
 #include <string>
 
 namespace rhabel::scene {
@@ -39,6 +40,31 @@ material_fit_report fit_scene_material(const scene_spec& scene, const run_reques
 
 /// The result document's "material_fit" of `report` (the fields listed at the top).
 nlohmann::ordered_json material_fit_json(const master_curve_spec& spec, const material_fit_report& report);
+
+/// `rhabel fit-material` and rhabel.fit_material: the local power law of a master curve at
+/// omega0 = speed / length, without a scene (rhabel/materials/master_curve.hpp, fit_at).
+struct material_fit_request {
+  std::string curve_path;           ///< the master curve (CSV)
+  double speed = 0, length = 0;     ///< U and L, > 0
+  std::optional<materials::wlf_shift> wlf;  ///< with `temperature`: the curve shifted to it
+  double temperature = 0;
+  double window_decades = 0.5;      ///< materials::fit_options::half_window_decades
+  double threshold = 0.05;          ///< materials::fit_options::warning_threshold
+};
+
+struct fitted_material {
+  materials::master_curve curve;    ///< as read, shifted when a temperature was given
+  materials::local_fit fit;
+  std::optional<double> log10_aT;   ///< the WLF shift, when given
+};
+
+/// Reads, shifts and fits (input_error "fit-material: ..." naming the file, row and column, or
+/// the WLF constants).
+fitted_material fit_material(const material_fit_request& request);
+
+/// The JSON of `rhabel fit-material --json`: alpha, E1, omega0, alpha_slope, alpha_tan_delta,
+/// modulus, window, status, warning, master_curve, points (and temperature, log10_aT when shifted).
+nlohmann::ordered_json fitted_material_json(const material_fit_request& request, const fitted_material& fitted);
 
 /// run_scene for any scene: with a master curve, the fixed point above first. `warning` receives the
 /// fit's warning (empty when it is ok or the scene has an explicit material).
