@@ -58,6 +58,7 @@
 #include "rhabel/abel/detail/far_field.hpp"
 #include "rhabel/abel/detail/numerics.hpp"
 #include "rhabel/abel/detail/union_assembly.hpp"
+#include "rhabel/abel/detail/union_core.hpp"
 
 #include <Eigen/Dense>
 

@@ -1,0 +1,639 @@
+// rhabel/abel/detail/union_core.hpp: the types of the union solver (interval_spec,
+// multi_solve_options, layer_density, multi_solution) and its polynomial route's pieces (the
+// collocation assembly, the solve at one degree, the independent residual), shared by the
+// public header rhabel/abel/multi_interval.hpp (solve_union; the theory, accuracy and cost are
+// documented there) and the boundary-layer route detail/layered_union.hpp. Not included directly.
+#pragma once
+
+#include "rhabel/abel/abel_solver.hpp"
+#include "rhabel/abel/detail/block_gmres.hpp"
+#include "rhabel/abel/detail/far_field.hpp"
+#include "rhabel/abel/detail/union_assembly.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <type_traits>
+#include <vector>
+
+namespace rhabel::abel {
+
+/// One interval of a union with its edge behaviour.
+template <class Real>
+struct interval_spec {
+  Real lo, hi;
+  edge leading = edge::bounded, trailing = edge::bounded;
+};
+
+template <class Real>
+struct multi_solve_options {
+  std::size_t degree = 32;              ///< collocation points (= unknowns) per interval; the first degree tried
+  /// Adaptive degree: while the residual exceeds residual_tolerance the degree grows by 1.5x up
+  /// to max_degree (0: no adaptation, only `degree`). Needs residual_points > 0. Memory and time
+  /// grow like max_degree^2 and ^3 (header: 2 s and a 81 MB peak at 1024 for two intervals;
+  /// bounded by max_memory_bytes).
+  std::size_t max_degree = 0;
+  std::size_t residual_points = 8;      ///< per interval; 0 = skip the residual
+  std::vector<std::optional<Real>> loads;  ///< per interval, used for nu = +1 intervals only
+  /// status = not_converged when the independent residual exceeds this (only if it is computed).
+  Real residual_tolerance = Real(1e-10);
+  /// Bound on the estimated peak memory of one dense solve (detail::union_memory_bytes, bytes):
+  /// solve_union throws std::domain_error, before allocating, when max(degree, max_degree)
+  /// would exceed it. Default 2 GiB (two intervals: degree <= 5181).
+  std::size_t max_memory_bytes = std::size_t(1) << 31;
+  /// Compute multi_solution::homogeneous and homogeneous_defects (one more solve with the
+  /// factorised matrix per nu = +1 interval); false: they stay empty / zero.
+  bool homogeneous = true;
+  /// K >= iterative_from intervals (and K > 1; 0: never): the collocation system by GMRES with the
+  /// block-diagonal preconditioner (detail/block_gmres.hpp; LU if it does not reach its tolerance)
+  /// instead of LU; multi_solution::condition is then NaN. Floating-point Real only.
+  std::size_t iterative_from = 0;
+  /// The far field of exactly these intervals for that route (detail/far_field.hpp), when the
+  /// caller has one (the punch layer builds it for its data anyway); null: solve_union builds it
+  /// with order_for(residual_tolerance / 1000) points per box.
+  std::shared_ptr<const detail::far_field<Real>> far_field;
+};
+
+/// The boundary-layer part of a density on [lo, hi] (solve_union_layered):
+/// g(t) = (1 - x)^del (1 + x)^gam [ sum_k a_k d_k/(d_k + 1 + x) + sum_k b_k e_k/(e_k + 1 - x) ],
+/// poles at x = -1 - d_k (lo_distances) and x = 1 + e_k (hi_distances), reference units.
+/// The whole density of interval i is multi_solution::densities[i] + layers[i].
+template <class Real>
+struct layer_density {
+  Real lo = -1, hi = 1;
+  Real gam = 0, del = 0;
+  std::vector<Real> lo_distances, lo_coefficients;
+  std::vector<Real> hi_distances, hi_coefficients;
+
+  Real half_length() const { return (hi - lo) / 2; }
+  bool empty() const { return lo_distances.empty() && hi_distances.empty(); }
+  Real nearest_lo() const { return lo_distances.empty() ? std::numeric_limits<Real>::infinity() : lo_distances.front(); }
+  Real nearest_hi() const { return hi_distances.empty() ? std::numeric_limits<Real>::infinity() : hi_distances.front(); }
+  /// The bracket at 1 + x, 1 - x (accurate next to either end).
+  Real factor_at_distance(const Real& one_plus_x, const Real& one_minus_x) const {
+    Real sum = 0;
+    for (std::size_t k = 0; k < lo_distances.size(); ++k) sum += lo_coefficients[k] * lo_distances[k] / (lo_distances[k] + one_plus_x);
+    for (std::size_t k = 0; k < hi_distances.size(); ++k) sum += hi_coefficients[k] * hi_distances[k] / (hi_distances[k] + one_minus_x);
+    return sum;
+  }
+  /// g at the point with distances u = t - lo, v = hi - t.
+  Real value_at_distance(const Real& u, const Real& v) const {
+    using std::pow;
+    if (empty()) return Real(0);
+    const Real h = half_length();
+    return pow(v / h, del) * pow(u / h, gam) * factor_at_distance(u / h, v / h);
+  }
+  /// g(t) for lo < t < hi (0 outside).
+  Real operator()(const Real& t) const {
+    if (!(t > lo) || !(t < hi)) return Real(0);
+    return value_at_distance(t - lo, hi - t);
+  }
+  /// int_lo^hi g by Gauss-Jacobi panels graded toward the nearest poles (~ eps relative).
+  Real integral() const {
+    if (empty()) return Real(0);
+    const detail::panel_integrator<Real> rule(del, gam, 24);
+    return half_length() * rule.integrate(Real(2), nearest_lo(), nearest_hi(),
+                                          [&](const Real& u, const Real& v) { return factor_at_distance(u, v); });
+  }
+};
+
+template <class Real>
+struct multi_solution {
+  std::vector<jacobi_density<Real>> densities;      ///< g_i on I_i
+  std::vector<edge_exponents<Real>> exponents;      ///< (gam, del, nu) per interval
+  std::vector<Real> solvability_defects;            ///< nu = -1 intervals (0 elsewhere)
+  std::vector<std::vector<jacobi_density<Real>>> homogeneous;  ///< per interval: empty unless nu = +1 (and options.homogeneous)
+  std::vector<std::vector<Real>> homogeneous_defects;  ///< [k][j]: defect of homogeneous[k] on nu = -1 interval j
+  Real residual = std::numeric_limits<Real>::quiet_NaN();  ///< max relative residual, independent route
+  /// 1-norm condition number of the collocation matrix: Eigen's rcond estimate for float and
+  /// double, exact for other types (see the header).
+  Real condition = 0;
+  /// Boundary-layer parts (solve_union_layered; empty from solve_union): g_i = densities[i] +
+  /// layers[i]; homogeneous_layers[k][i] likewise for homogeneous[k][i].
+  std::vector<layer_density<Real>> layers;
+  std::vector<std::vector<layer_density<Real>>> homogeneous_layers;
+  /// int g_i: densities[i].integral() plus the layer's.
+  Real load(std::size_t i) const {
+    return densities[i].integral() + (i < layers.size() ? layers[i].integral() : Real(0));
+  }
+  std::size_t degree = 0;                            ///< collocation points per interval of the returned solve
+  /// not_converged: residual > options.residual_tolerance (typically nearly touching intervals,
+  /// see the header); converged otherwise, or when no residual was computed.
+  solve_status status = solve_status::converged;
+};
+
+namespace detail {
+
+/// Nodes of I_i (physical t, weight including w_i and dt = (L/2) dx, reference x) graded toward
+/// the end of I_i facing the point set at distance `gap` (left if facing_left); `nodes` per
+/// panel (cross_nodes: detail/union_assembly.hpp). The independent route of the residual (the
+/// assembly uses degree_graded_cross_nodes).
+template <class Real>
+cross_nodes<Real> make_cross_nodes(const jacobi_density<Real>& g, const Real& gap, bool facing_left, std::size_t nodes) {
+  const Real h = g.half_length();
+  const panel_integrator<Real> rule(g.del, g.gam, nodes);
+  const Real inf = std::numeric_limits<Real>::infinity();
+  const Real d = gap / h;
+  cross_nodes<Real> out;
+  rule.for_each_node(Real(2), facing_left ? d : inf, facing_left ? inf : d,
+                     [&](const Real& u, const Real& v, const Real& weight) {
+                       out.x.push_back(u <= v ? u - 1 : 1 - v);
+                       out.weight.push_back(h * weight);
+                       out.t_minus_lo.push_back(h * u);
+                       out.hi_minus_t.push_back(h * v);
+                     });
+  return out;
+}
+
+}  // namespace detail
+
+/// A g at s for densities on a union of disjoint intervals (each with its own class). Own
+/// interval: spectral relation; others: graded quadrature. Any s (also outside every interval).
+template <class Real>
+Real apply_union(const abel_parameters<Real>& par, const std::vector<jacobi_density<Real>>& densities, const Real& s) {
+  Real total = 0;
+  for (const auto& g : densities) total += abel_operator<Real>(par, g.lo, g.hi).apply(g, s);
+  return total;
+}
+
+namespace detail {
+
+/// The density of class e on the interval with n zero coefficients (to be filled by a solve).
+template <class Real>
+jacobi_density<Real> zero_density(const interval_spec<Real>& iv, const edge_exponents<Real>& e, std::size_t n) {
+  jacobi_density<Real> g;
+  g.lo = iv.lo;
+  g.hi = iv.hi;
+  g.gam = e.gam;
+  g.del = e.del;
+  g.coefficients.assign(n, Real(0));
+  return g;
+}
+
+/// Signed distance bookkeeping of a collocation/residual point s of I_j: distances to lo_j and hi_j.
+template <class Real>
+struct union_point {
+  Real s, from_lo, to_hi;
+};
+
+/// Points of I_j at the Chebyshev grid `grid` (distances to both ends without cancellation).
+template <class Real>
+std::vector<union_point<Real>> union_points(const interval_spec<Real>& iv, const chebyshev_grid<Real>& grid) {
+  const Real h = (iv.hi - iv.lo) / 2;
+  std::vector<union_point<Real>> out;
+  for (std::size_t k = 0; k < grid.x.size(); ++k) {
+    const Real u = h * grid.one_plus_x[k], v = h * grid.one_minus_x[k];
+    out.push_back({u <= v ? iv.lo + u : iv.hi - v, u, v});
+  }
+  return out;
+}
+
+/// Estimated peak memory (bytes, as a double: no overflow for any size_t arguments) of
+/// solve_union_at_degree for K intervals at M collocation points each, T = K M unknowns: the
+/// larger of the assembly phase, T^2 + 6 M^2 numbers (the matrix plus one cross block's kernel
+/// values M x Q, basis values Q x M and their M x M product; Q ~ 2M nodes at gaps down to 1e-4,
+/// 2.5M at 1e-12), and the factorisation phase, T^2 numbers (LU in place) or 2 T^2 for non-IEEE
+/// types (the inverse, see `condition`). Measured peaks: the header's "Memory" paragraph.
+template <class Real>
+double union_memory_bytes(std::size_t K, std::size_t M) {
+  const double T = double(K) * double(M), m = double(M);
+  const double assembly = T * T + (K > 1 ? 6 * m * m : 0);
+  const double factorisation = (std::is_floating_point_v<Real> ? 1 : 2) * T * T;
+  return double(sizeof(Real)) * std::max(assembly, factorisation);
+}
+
+/// The largest M with union_memory_bytes<Real>(K, M) <= bytes (K >= 1; bisection, the estimate
+/// is increasing in M and >= sizeof(Real) (K M)^2).
+template <class Real>
+std::size_t union_degree_limit(std::size_t K, std::size_t bytes) {
+  using std::sqrt;
+  std::size_t lo = 0;  // union_memory_bytes(K, lo) <= bytes
+  std::size_t hi = static_cast<std::size_t>(sqrt(double(bytes) / (double(sizeof(Real)) * double(K) * double(K)))) + 1;
+  while (hi - lo > 1) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    (union_memory_bytes<Real>(K, mid) <= double(bytes) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+/// Gap between intervals i and j (i != j), sorted and disjoint.
+template <class Real>
+Real union_gap(const std::vector<interval_spec<Real>>& intervals, std::size_t i, std::size_t j) {
+  return i > j ? intervals[i].lo - intervals[j].hi : intervals[j].lo - intervals[i].hi;
+}
+
+/// Estimated peak memory (bytes) of the matrix-free route (far field, far_field.hpp) for K
+/// intervals at M points each with `near` near pairs in all: the own and near blocks and the
+/// diagonal blocks' LUs ((2 K + near) M^2), the Krylov basis and work vectors (64 K M), the
+/// moment matrices (K p M) and the pairs' kernel matrices (pairs p^2).
+template <class Real>
+double union_far_memory_bytes(const far_field<Real>& far, std::size_t M) {
+  const double K = double(far.leaves()), m = double(M), p = double(far.order());
+  double near = 0;
+  for (std::size_t j = 0; j < far.leaves(); ++j) near += double(far.near_leaves(j).size());
+  return double(sizeof(Real)) * ((2 * K + near) * m * m + 64 * K * m + K * p * m + double(far.pairs()) * p * p);
+}
+
+/// The largest M (>= 1) with union_far_memory_bytes(far, M) <= bytes (0 if none: the estimate is
+/// increasing in M).
+template <class Real>
+std::size_t union_far_degree_limit(const far_field<Real>& far, std::size_t bytes) {
+  if (union_far_memory_bytes(far, 1) > double(bytes)) return 0;
+  std::size_t lo = 1, hi = 2;
+  while (union_far_memory_bytes(far, hi) <= double(bytes)) lo = hi, hi *= 2;
+  while (hi - lo > 1) {
+    const std::size_t mid = lo + (hi - lo) / 2;
+    (union_far_memory_bytes(far, mid) <= double(bytes) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+/// One solve of the coupled system at `degree` collocation points per interval (no residual).
+/// far: null for the dense system (LU, or GMRES on the assembled matrix from iterative_from on);
+/// else the far field of these intervals: only the own and near blocks are assembled and the
+/// far part is applied by the far field inside GMRES (the header, "Many intervals"). Returns
+/// nothing when that GMRES does not reach its tolerance (the caller then solves densely).
+template <class Real>
+std::optional<multi_solution<Real>> solve_union_at_degree(const abel_parameters<Real>& par,
+                                                          const std::vector<interval_spec<Real>>& intervals,
+                                                          const std::vector<std::function<Real(Real)>>& F,
+                                                          const multi_solve_options<Real>& options, std::size_t M,
+                                                          const far_field<Real>* far = nullptr) {
+  using std::pow;
+  const std::size_t K = intervals.size();
+  const Real alpha = par.alpha();
+  multi_solution<Real> sol;
+  sol.degree = M;
+  std::vector<abel_operator<Real>> ops;
+  // Unknowns of interval i: the coefficients c^i_n (n_basis[i] of them; for nu = +1 c^i_0 is
+  // fixed by the load and not an unknown) and, for nu = -1, the defect d_i. Rows: the M
+  // collocation equations of interval i. Both number M per interval: the system is square.
+  std::vector<std::size_t> n_basis(K), offset(K);
+  for (std::size_t i = 0; i < K; ++i) {
+    ops.emplace_back(par, intervals[i].lo, intervals[i].hi);
+    const auto e = par.exponents(intervals[i].leading, intervals[i].trailing);
+    sol.exponents.push_back(e);
+    n_basis[i] = e.nu == -1 ? M - 1 : (e.nu == 0 ? M : M + 1);
+    offset[i] = i * M;
+    sol.densities.push_back(zero_density(intervals[i], e, n_basis[i]));
+  }
+  const std::size_t total = K * M;
+  // Column of c^i_n within interval i's block (-1: the fixed c_0 of nu = +1).
+  auto local_index = [&](std::size_t i, std::size_t n) -> long {
+    if (sol.exponents[i].nu == 1) return n == 0 ? -1 : static_cast<long>(n - 1);
+    return static_cast<long>(n);
+  };
+  // Column of the defect d_i (nu = -1): the last unknown of the block.
+  const auto defect_column = static_cast<Eigen::Index>(M - 1);
+  auto fixed_c0 = [&](std::size_t i) -> Real {
+    if (sol.exponents[i].nu != 1) return Real(0);
+    if (i < options.loads.size() && options.loads[i]) {
+      const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[i].del, sol.exponents[i].gam);
+      return *options.loads[i] / (ops[i].half_length() * h0);
+    }
+    return Real(0);
+  };
+  using matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
+  using vector = Eigen::Matrix<Real, Eigen::Dynamic, 1>;
+  const auto T = static_cast<Eigen::Index>(total);
+  const auto Mi = static_cast<Eigen::Index>(M);
+  const chebyshev_grid<Real> grid(M);
+  separated_basis_cache<Real> basis_cache;
+  std::vector<std::vector<union_point<Real>>> pts(K);
+  std::vector<Real> scale(K);  // equations of interval j in units of h_j^alpha
+  vector rhs(T);
+  for (std::size_t j = 0; j < K; ++j) {
+    scale[j] = pow(ops[j].half_length(), -alpha);
+    pts[j] = union_points(intervals[j], grid);
+    for (std::size_t k = 0; k < M; ++k) {
+      const Real v = F[j](pts[j][k].s);
+      check_finite_value("rhabel::abel::solve_union", v, pts[j][k].s);
+      rhs[static_cast<Eigen::Index>(offset[j] + k)] = scale[j] * v;
+    }
+  }
+  // Own block of interval j (M x M, j's unknowns): A(w P_n) = h^alpha lambda_n P_{n - nu}^(gam + nu,
+  // del + nu) (spectral relation); nu = -1: F - A g = d_j P_0 (the part of the data outside the range).
+  auto own_block = [&](std::size_t j) {
+    const auto& e = sol.exponents[j];
+    const Real p = e.gam + Real(e.nu), q = e.del + Real(e.nu);
+    const std::vector<Real> lambda = ops[j].eigenvalues(n_basis[j], e);  // O(n_basis) in all
+    matrix B = matrix::Zero(Mi, Mi);
+    for (std::size_t k = 0; k < M; ++k) {
+      const auto r = static_cast<Eigen::Index>(k);
+      const auto image = jacobi_values_any(M, p, q, grid.x[k]);
+      for (std::size_t n = 0; n < n_basis[j]; ++n) {
+        const long m = static_cast<long>(n) - e.nu;
+        if (m < 0) continue;  // nu = +1, n = 0: the homogeneous solution, image 0
+        const long c = local_index(j, n);
+        if (c >= 0) B(r, c) += lambda[n] * image[static_cast<std::size_t>(m)];
+      }
+      if (e.nu == -1) B(r, defect_column) += Real(1);
+    }
+    return B;
+  };
+  // Cross block of interval i acting on j's collocation points (M x M in i's unknowns) and the
+  // column of i's fixed c_0 (nu = +1).
+  auto cross = [&](std::size_t j, std::size_t i, vector& c0_column) {
+    const bool right = i > j;
+    std::vector<Real> dist(M);
+    for (std::size_t k = 0; k < M; ++k) dist[k] = right ? pts[j][k].to_hi : pts[j][k].from_lo;
+    const auto B = cross_block(sol.densities[i], union_gap(intervals, i, j), right, dist, n_basis[i], scale[j],
+                               [&](const Real& t_minus_s) { return cross_kernel(par, t_minus_s); }, &basis_cache);
+    matrix out = matrix::Zero(Mi, Mi);
+    c0_column = vector::Zero(Mi);
+    for (std::size_t n = 0; n < n_basis[i]; ++n) {
+      const long c = local_index(i, n);
+      if (c >= 0)
+        out.col(c) += B.col(static_cast<Eigen::Index>(n));
+      else
+        c0_column += B.col(static_cast<Eigen::Index>(n));
+    }
+    return out;
+  };
+  std::vector<Real> c0(K, Real(0));
+  for (std::size_t i = 0; i < K; ++i) c0[i] = fixed_c0(i);
+  auto unpack = [&](const vector& x, const std::vector<Real>& c0s) {
+    std::vector<jacobi_density<Real>> out = sol.densities;
+    for (std::size_t i = 0; i < K; ++i)
+      for (std::size_t n = 0; n < n_basis[i]; ++n) {
+        const long u = local_index(i, n);
+        out[i].coefficients[n] = u >= 0 ? x[static_cast<Eigen::Index>(offset[i]) + u] : c0s[i];
+      }
+    return out;
+  };
+  auto defects = [&](const vector& x) {
+    std::vector<Real> out(K, Real(0));
+    for (std::size_t j = 0; j < K; ++j)
+      if (sol.exponents[j].nu == -1) out[j] = x[static_cast<Eigen::Index>(offset[j]) + defect_column];
+    return out;
+  };
+  // The linear solve x = A^-1 right, and the image of fixed c_0 values (subtracted from the data).
+  std::function<std::optional<vector>(const vector&)> linear_solve;
+  std::function<vector(const std::vector<Real>&)> c0_image;
+  // Dense route: A assembled. LU in place (Eigen::Ref): A holds the factors from then on. With a
+  // copy of A (PartialPivLU of a matrix; its rcond() then also allocated a T x T temporary) the
+  // peak was 3 (K M)^2 numbers: 405 MB against 143 MB now at K = 1, M = 4096; 410 MB against
+  // 268 MB at K = 2, M = 2048. The factorisation is the same, bit for bit (checked on a random
+  // 2000 x 2000).
+  matrix A;
+  std::vector<vector> c0_columns;  // dense route: image of the fixed c_0 of nu = +1 intervals
+  std::unique_ptr<Eigen::PartialPivLU<Eigen::Ref<matrix>>> lu;
+  std::unique_ptr<block_gmres<Real>> gmres;
+  // Matrix-free route: own and near blocks, moment matrices, the far field's interpolation.
+  std::vector<matrix> own(K), moment(K);
+  std::vector<std::vector<std::pair<std::size_t, matrix>>> near(K);  // near[j]: (i, block)
+  std::vector<std::vector<std::pair<std::size_t, vector>>> near_c0(K);
+  matrix interpolation;
+  if (!far) {
+    A = matrix::Zero(T, T);
+    c0_columns.assign(K, vector::Zero(T));
+    for (std::size_t j = 0; j < K; ++j) {
+      const auto row0 = static_cast<Eigen::Index>(offset[j]);
+      A.block(row0, row0, Mi, Mi) = own_block(j);
+      for (std::size_t i = 0; i < K; ++i) {
+        if (i == j) continue;
+        vector c0_column;
+        A.block(row0, static_cast<Eigen::Index>(offset[i]), Mi, Mi) += cross(j, i, c0_column);
+        c0_columns[i].segment(row0, Mi) += c0_column;
+      }
+    }
+    // 1-norm of A for the exact condition of non-IEEE types (A is overwritten below).
+    Real norm_A = 0;
+    if constexpr (!std::is_floating_point_v<Real>) norm_A = A.cwiseAbs().colwise().sum().maxCoeff();
+    auto factorise = [&, norm_A] {
+      gmres.reset();  // it refers to A, which the LU overwrites
+      lu = std::make_unique<Eigen::PartialPivLU<Eigen::Ref<matrix>>>(A);
+      if constexpr (std::is_floating_point_v<Real>) {
+        (void)norm_A;  // used for the exact condition of non-IEEE types only
+        sol.condition = 1 / lu->rcond();
+      } else {
+        // Eigen's estimator needs NumTraits<Real>::infinity(), which the Boost.Multiprecision
+        // bindings lack: the exact 1-norm condition instead (O(size^3), like the LU itself).
+        const matrix inverse = lu->inverse();
+        sol.condition = norm_A * inverse.cwiseAbs().colwise().sum().maxCoeff();
+      }
+    };
+    // Many intervals (options.iterative_from): GMRES with the block-diagonal preconditioner
+    // (detail/block_gmres.hpp), O(T^2) per iteration against the LU's 2/3 T^3; `condition` is
+    // then not computed (NaN). Otherwise, or when GMRES does not reach its tolerance: LU.
+    if (std::is_floating_point_v<Real> && K > 1 && options.iterative_from > 1 && K >= options.iterative_from) {
+      gmres = std::make_unique<block_gmres<Real>>(A, Mi);
+      sol.condition = std::numeric_limits<Real>::quiet_NaN();
+    } else {
+      factorise();
+    }
+    linear_solve = [&, factorise](const vector& right) -> std::optional<vector> {
+      if (gmres) {
+        vector x;
+        if (gmres->solve(right, x, Real(1e-14))) return x;
+        factorise();
+      }
+      return vector(lu->solve(right));
+    };
+    c0_image = [&](const std::vector<Real>& c0s) {
+      vector out = vector::Zero(T);
+      for (std::size_t i = 0; i < K; ++i)
+        if (sol.exponents[i].nu == 1) out += c0s[i] * c0_columns[i];
+      return out;
+    };
+  } else {
+    interpolation = far->interpolation(grid.x);
+    for (std::size_t j = 0; j < K; ++j) {
+      own[j] = own_block(j);
+      moment[j] = far->moment_matrix(j, sol.densities[j].del, sol.densities[j].gam, n_basis[j]);
+      for (std::size_t i : far->near_leaves(j)) {
+        vector c0_column;
+        near[j].emplace_back(i, cross(j, i, c0_column));
+        near_c0[j].emplace_back(i, std::move(c0_column));
+      }
+    }
+    // The far part of A x (coefficients from x and the fixed c_0 values c0s).
+    auto far_part = [&](const vector& x, const std::vector<Real>& c0s) {
+      std::vector<vector> W(K);
+      for (std::size_t i = 0; i < K; ++i) {
+        vector c(static_cast<Eigen::Index>(n_basis[i]));
+        for (std::size_t n = 0; n < n_basis[i]; ++n) {
+          const long u = local_index(i, n);
+          c[static_cast<Eigen::Index>(n)] = u >= 0 ? x[static_cast<Eigen::Index>(offset[i]) + u] : c0s[i];
+        }
+        W[i] = moment[i] * c;
+      }
+      const auto local = far->far_values(W);
+      vector out(T);
+      for (std::size_t j = 0; j < K; ++j) out.segment(static_cast<Eigen::Index>(offset[j]), Mi) = scale[j] * (interpolation * local[j]);
+      return out;
+    };
+    const std::vector<Real> no_c0(K, Real(0));
+    auto apply = [&, far_part, no_c0](const vector& x) {
+      vector out = far_part(x, no_c0);
+      for (std::size_t j = 0; j < K; ++j) {
+        const auto row0 = static_cast<Eigen::Index>(offset[j]);
+        out.segment(row0, Mi) += own[j] * x.segment(row0, Mi);
+        for (const auto& [i, B] : near[j]) out.segment(row0, Mi) += B * x.segment(static_cast<Eigen::Index>(offset[i]), Mi);
+      }
+      return out;
+    };
+    gmres = std::make_unique<block_gmres<Real>>(apply, own);
+    sol.condition = std::numeric_limits<Real>::quiet_NaN();
+    linear_solve = [&](const vector& right) -> std::optional<vector> {
+      vector x;
+      if (gmres->solve(right, x, Real(1e-14))) return x;
+      return std::nullopt;
+    };
+    c0_image = [&, far_part](const std::vector<Real>& c0s) {
+      vector out = far_part(vector::Zero(T), c0s);
+      for (std::size_t j = 0; j < K; ++j)
+        for (const auto& [i, column] : near_c0[j])
+          if (sol.exponents[i].nu == 1) out.segment(static_cast<Eigen::Index>(offset[j]), Mi) += c0s[i] * column;
+      return out;
+    };
+  }
+  const auto c = linear_solve(rhs - c0_image(c0));
+  if (!c) return std::nullopt;
+  sol.densities = unpack(*c, c0);
+  sol.solvability_defects = defects(*c);
+  sol.homogeneous.assign(K, {});
+  sol.homogeneous_defects.assign(K, std::vector<Real>(K, Real(0)));
+  for (std::size_t k = 0; k < K && options.homogeneous; ++k) {
+    if (sol.exponents[k].nu != 1) continue;
+    const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[k].del, sol.exponents[k].gam);
+    std::vector<Real> c0k(K, Real(0));
+    c0k[k] = 1 / (ops[k].half_length() * h0);
+    const auto x = linear_solve(-c0_image(c0k));
+    if (!x) return std::nullopt;
+    sol.homogeneous[k] = unpack(*x, c0k);
+    sol.homogeneous_defects[k] = defects(*x);
+  }
+  return sol;
+}
+
+/// sum_q weight_q K(t_q - s) value_q: the action on a point s of I_j of a density of I_i given by
+/// its values at `nodes` (i_right_of_j: I_i lies to the right; dist: distance of s to the end of
+/// I_j facing I_i; t - s formed from the distances, without cancellation).
+template <class Real>
+Real cross_sum(const abel_parameters<Real>& par, const cross_nodes<Real>& nodes, const std::vector<Real>& values,
+               bool i_right_of_j, const Real& gap, const Real& dist) {
+  Real sum = 0;
+  for (std::size_t q = 0; q < nodes.x.size(); ++q) {
+    const Real t_minus_s = i_right_of_j ? nodes.t_minus_lo[q] + gap + dist : -(nodes.hi_minus_t[q] + gap + dist);
+    sum += nodes.weight[q] * cross_kernel(par, t_minus_s) * values[q];
+  }
+  return sum;
+}
+
+/// Independent residual of the original equation (see the header): max over the intervals of
+/// max_s |A g(s) - (F(s) - h^alpha d_j)| / max_s |F(s)|, at Chebyshev points of another power of
+/// 2 than the collocation grid and at points graded toward every facing end.
+template <class Real>
+Real union_residual(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
+                    const std::vector<std::function<Real(Real)>>& F, const multi_solution<Real>& sol,
+                    std::size_t points, const far_field<Real>* far = nullptr) {
+  using std::abs;
+  using std::max;
+  using std::pow;
+  const std::size_t K = intervals.size();
+  const Real alpha = par.alpha();
+  Real worst = 0;
+  // With a far field: the far intervals' action through it (the local values of every interval
+  // from the densities' moments), the near ones by quadrature as below.
+  std::vector<Eigen::Matrix<Real, Eigen::Dynamic, 1>> local;
+  if (far) {
+    std::vector<Eigen::Matrix<Real, Eigen::Dynamic, 1>> W;
+    for (const auto& g : sol.densities) W.push_back(far->density_moments(W.size(), g));
+    local = far->far_values(W);
+  }
+  auto coupled = [&](std::size_t j, std::size_t i) {
+    if (i == j) return false;
+    if (!far) return true;
+    const auto& near = far->near_leaves(j);
+    return std::binary_search(near.begin(), near.end(), i);
+  };
+  for (std::size_t j = 0; j < K; ++j) {
+    const auto& gj = sol.densities[j];
+    const abel_operator<Real> op(par, intervals[j].lo, intervals[j].hi);
+    const typename abel_operator<Real>::quadrature_evaluator own(op, gj.gam, gj.del, gj.coefficients.size());
+    const Real h = op.half_length();
+    const Real defect = sol.exponents[j].nu == -1 ? pow(h, alpha) * sol.solvability_defects[j] : Real(0);
+    // Never at the collocation points (residual_grid_size): there the residual is ~ rounding.
+    auto pts = union_points(intervals[j], chebyshev_grid<Real>(residual_grid_size(points, sol.degree)));
+    // Points at distances 0.37 gap 3^k (k = 0, 1, ... while < h/2) from each facing end: the
+    // boundary layer of width ~ gap that a coarse Chebyshev grid would step over. (0.37: no
+    // coincidence with collocation points or panel breaks.)
+    for (int side = 0; side < 2; ++side) {
+      if ((side == 0 && j == 0) || (side == 1 && j + 1 == K)) continue;
+      const Real gap = side == 0 ? union_gap(intervals, j - 1, j) : union_gap(intervals, j + 1, j);
+      for (Real d = Real(0.37) * gap; d < h / 2; d *= 3)
+        pts.push_back(side == 0 ? union_point<Real>{intervals[j].lo + d, d, 2 * h - d}
+                                : union_point<Real>{intervals[j].hi - d, 2 * h - d, d});
+    }
+    // Nodes per panel: n/2 + 24 (n coefficients); a separated pair (gap >= h_i: one panel) takes
+    // 4 more than the assembly's separated_cross_nodes when that is fewer (the same analyticity
+    // bound, eps/100; another node set than the assembly's all the same).
+    std::vector<cross_nodes<Real>> nodes(K);
+    for (std::size_t i = 0; i < K; ++i)
+      if (coupled(j, i)) {
+        const std::size_t n = sol.densities[i].coefficients.size();
+        const Real gap = union_gap(intervals, i, j);
+        std::size_t count = n / 2 + 24;
+        if (const std::size_t separated = separated_cross_nodes(gap / sol.densities[i].half_length(), n); separated > 0)
+          count = std::min(count, separated + 4);
+        nodes[i] = make_cross_nodes(sol.densities[i], gap, i > j, count);
+      }
+    // g_i at the cross nodes once (the residual is O(points x nodes), the series O(nodes x degree)),
+    // each series with its recurrence coefficients computed once (jacobi_density::series_evaluator).
+    std::vector<std::vector<Real>> series(K);
+    for (std::size_t i = 0; i < K; ++i) {
+      if (!coupled(j, i)) continue;
+      const auto gi = sol.densities[i].series_evaluator();
+      for (const auto& x : nodes[i].x) series[i].push_back(gi(x));
+    }
+    const auto gj_series = gj.series_evaluator();
+    Real worst_j = 0, scale_j = 0;
+    for (const auto& pt : pts) {
+      Real value = own([&](const Real& x) { return gj_series(x); }, pt.s);
+      if (far) value += far->interpolate(local[j], pt.from_lo <= pt.to_hi ? pt.from_lo / h - 1 : 1 - pt.to_hi / h);
+      for (std::size_t i = 0; i < K; ++i)
+        if (coupled(j, i)) value += cross_sum(par, nodes[i], series[i], i > j, union_gap(intervals, i, j), i > j ? pt.to_hi : pt.from_lo);
+      const Real Fs = F[j](pt.s);
+      worst_j = max(worst_j, abs(value - (Fs - defect)));
+      scale_j = max(scale_j, abs(Fs));
+    }
+    worst = max(worst, scale_j > 0 ? worst_j / scale_j : worst_j);
+  }
+  return worst;
+}
+
+/// The argument checks of solve_union and solve_union_layered (their comments list them).
+template <class Real>
+void check_union_arguments(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
+                           const std::vector<std::function<Real(Real)>>& F, const multi_solve_options<Real>& options) {
+  const std::size_t K = intervals.size();
+  if (K == 0) throw_bad_parameter("rhabel::abel::solve_union", "number of intervals", 0, "[1, inf)");
+  if (F.size() != K)
+    throw_bad_parameter("rhabel::abel::solve_union", "number of data functions", F.size(), "equal to the number of intervals");
+  for (std::size_t i = 0; i < K; ++i) {
+    abel_operator<Real> check(par, intervals[i].lo, intervals[i].hi);  // validates lo < hi
+    (void)check;
+    if (i > 0 && !(intervals[i].lo > intervals[i - 1].hi))
+      throw_bad_parameter("rhabel::abel::solve_union", "interval lo", intervals[i].lo,
+                          "> hi of the previous interval (sorted, disjoint intervals)");
+  }
+  if (options.max_degree != 0 && options.max_degree < options.degree)
+    throw_bad_parameter("rhabel::abel::solve_union", "options.max_degree", options.max_degree,
+                        "0 (no adaptation) or >= options.degree");
+  if (options.max_degree > options.degree && options.residual_points == 0)
+    throw_bad_parameter("rhabel::abel::solve_union", "options.residual_points", 0,
+                        "> 0 when options.max_degree > options.degree (the residual drives the degree)");
+}
+
+}  // namespace detail
+
+}  // namespace rhabel::abel
