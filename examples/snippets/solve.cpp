@@ -26,12 +26,11 @@ int main() {
   std::printf("beta = %.6g, kappa = %.6g, regime %s, status %s\n", r.beta, r.kappa, r.regime.c_str(),
               to_string(r.diagnostics.code));
   for (const indentor_result& ind : r.indentors) {
-    const char* shape = ind.epsilon ? "wedge" : "parabolic";
     char peak[64];
     if (std::isinf(ind.peak_pressure)) std::snprintf(peak, sizeof peak, "singular");
     else std::snprintf(peak, sizeof peak, "%.6g Pa", ind.peak_pressure);
-    std::printf("%-9s contact [%.6g, %.6g] m, C_f = %.6g, C_f + k = %.6g, peak %s at %.6g m\n", shape, ind.a, ind.b,
-                ind.hysteretic_friction, ind.total_friction, peak, ind.peak_pressure_at);
+    std::printf("%-9s contact [%.6g, %.6g] m, C_f = %.6g, C_f + k = %.6g, peak %s at %.6g m\n", to_string(ind.shape),
+                ind.a, ind.b, ind.hysteretic_friction, ind.total_friction, peak, ind.peak_pressure_at);
     for (const edge_report& e : ind.edges)
       std::printf("    %-8s edge: p ~ K d^%.6g\n", e.side == edge_side::leading ? "leading" : "trailing", e.exponent);
   }

@@ -87,6 +87,16 @@ double material::effective_modulus(double speed) const {
   return E1 * boost::math::tgamma(1 - alpha) * std::pow(speed, alpha) / (1 - poisson * poisson);
 }
 
+const char* to_string(shape_kind shape) {
+  switch (shape) {
+    case shape_kind::parabolic: return "parabolic";
+    case shape_kind::wedge: return "wedge";
+    case shape_kind::flat: return "flat";
+    case shape_kind::general: return "general";
+  }
+  return "unknown";
+}
+
 const char* to_string(status_code code) {
   switch (code) {
     case status_code::ok: return "ok";

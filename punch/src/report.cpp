@@ -275,6 +275,12 @@ indentor_result report_contact(const std::vector<indentor_state>& st, std::size_
   const double ps = cx.pressure_scale;
   const auto& g = st[i].g;
   indentor_result r;
+  switch (st[i].k) {
+    case kind::parabola: r.shape = shape_kind::parabolic; break;
+    case kind::wedge: r.shape = shape_kind::wedge; break;
+    case kind::flat: r.shape = shape_kind::flat; break;
+    case kind::general: r.shape = shape_kind::general; break;
+  }
   r.a = g.jacobi.lo;
   r.b = g.jacobi.hi;
   r.contact_length = g.length();

@@ -44,6 +44,21 @@ std::string message_of(const scene& s) {
 }
 }  // namespace
 
+TEST_CASE("indentor_result::shape names each indentor's shape, in scene order") {
+  const material m{0.3, 1.0, 0.0, 0.0};
+  const scene s{m, 1.0, {indentor{wedge{0.1, 0.1}, 0.1, 0.0}, indentor{parabolic{1.0}, 0.1, 5.0},
+                         indentor{flat{0.2}, 0.1, 10.0}}};
+  const auto r = solve(s);
+  REQUIRE(r.indentors.size() == 3);
+  CHECK(r.indentors[0].shape == shape_kind::wedge);
+  CHECK(r.indentors[1].shape == shape_kind::parabolic);
+  CHECK(r.indentors[2].shape == shape_kind::flat);
+  CHECK(std::string(to_string(shape_kind::parabolic)) == "parabolic");
+  CHECK(std::string(to_string(shape_kind::wedge)) == "wedge");
+  CHECK(std::string(to_string(shape_kind::flat)) == "flat");
+  CHECK(std::string(to_string(shape_kind::general)) == "general");
+}
+
 TEST_CASE("parabolic punch reproduces the closed form of docs/theory.md section 5 on both sides of the boundary") {
   for (double alpha : {0.0, 0.2, 0.45, 0.5, 0.7}) {  // 0.5 with k = 0 is the boundary kappa = 0
     for (double k : {0.0, 0.5, 2.0}) {

@@ -60,6 +60,8 @@ TEST_CASE("a profile sampled from a parabola gives the parabola's answer") {
     const auto ref = pu::solve(sc, o);
     const auto& c = ours.contacts[0];
     const auto& r = ref.indentors[0];
+    CHECK(c.shape == pu::shape_kind::general);  // a profile's contact
+    CHECK(r.shape == pu::shape_kind::parabolic);
     CHECK(std::abs(c.a - r.a) <= edge_tol * r.contact_length);
     CHECK(std::abs(c.b - r.b) <= edge_tol * r.contact_length);
     CHECK(std::abs(c.load - load) <= 1e-9 * load);  // the body's load, matched to the acceptance

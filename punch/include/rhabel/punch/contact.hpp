@@ -241,6 +241,12 @@ struct general_profile {
   double search_hi = 1;                 ///< idem for the trailing edge [m]
 };
 
+/// Which of the shapes above an indentor has (indentor_result::shape; a sampled profile's contacts
+/// are `general`).
+enum class shape_kind { parabolic, wedge, flat, general };
+/// "parabolic", "wedge", "flat" or "general" (the scene file's names).
+const char* to_string(shape_kind shape);
+
 struct indentor {
   std::variant<parabolic, wedge, flat, general_profile> shape;
   double load = 1;  ///< load per unit length lambda > 0 [N/m] (not used with scene::body)
@@ -365,6 +371,7 @@ struct edge_report {
 };
 
 struct indentor_result {
+  shape_kind shape = shape_kind::parabolic;  ///< the indentor's shape (a profile's contact: general)
   double a = 0;                     ///< leading edge [m]
   double b = 0;                     ///< trailing edge [m]
   double contact_length = 0;        ///< L = b - a [m] (0 for a line load)
