@@ -7,8 +7,12 @@ Environment (set by tests/CMakeLists.txt; defaults for a manual run from the sou
     RHABEL_CLI         the command-line program (default: BINARY/bin/rhabel; tests skip without it)
 """
 
+import contextlib
 import os
 import pathlib
+import signal
+import threading
+import time
 
 import pytest
 
@@ -33,3 +37,23 @@ def parabola_scene(alpha=0.3, nu=0.5, coulomb=0.0, radius=0.02, load=100.0, apex
     return {"material": {"alpha": alpha, "E1": E1, "nu": nu, "coulomb": coulomb},
             "speed": speed,
             "indentors": [{"shape": "parabolic", "radius": radius, "load": load, "apex": apex}]}
+
+
+@contextlib.contextmanager
+def sigint_after(seconds):
+    """Sends this process SIGINT (Ctrl-C) `seconds` into the block, which must raise
+    KeyboardInterrupt; yields a list that then holds the moment the signal was sent
+    (time.monotonic()), so that the test can bound how long the interruption took."""
+    sent = []
+
+    def interrupt():
+        sent.append(time.monotonic())
+        os.kill(os.getpid(), signal.SIGINT)
+
+    timer = threading.Timer(seconds, interrupt)
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            yield sent
+    finally:
+        timer.cancel()

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import rhabel
-from conftest import SOURCE_DIR
+from conftest import SOURCE_DIR, sigint_after
 
 EXAMPLE = SOURCE_DIR / "examples" / "rough_profile.json"
 PERIODIC = SOURCE_DIR / "examples" / "rough_periodic.json"
@@ -132,25 +132,11 @@ def test_ctrl_c_stops_a_long_solve():
     # signal to the exception (a 1364-patch solve). The bound of 5 s is the contract ("within a second") with
     # a margin for a loaded machine, not a speed measurement: without the polling the exception
     # came only after the whole solve.
-    import os
-    import signal
-    import threading
     import time
 
     scene = rhabel.load_scene(PERIODIC)
-    sent = []
-
-    def interrupt():
-        sent.append(time.monotonic())
-        os.kill(os.getpid(), signal.SIGINT)
-
-    timer = threading.Timer(0.5, interrupt)
-    timer.start()
     result = None
-    try:
-        with pytest.raises(KeyboardInterrupt):
-            result = rhabel.solve(scene, acceptance=1e-9)
-    finally:
-        timer.cancel()
+    with sigint_after(0.5) as sent:
+        result = rhabel.solve(scene, acceptance=1e-9)
     assert result is None
     assert sent and time.monotonic() - sent[0] < 5

@@ -10,7 +10,7 @@ import subprocess
 import pytest
 
 import rhabel
-from conftest import SOURCE_DIR
+from conftest import SOURCE_DIR, sigint_after
 
 RUBBER_SWEEP = SOURCE_DIR / "examples" / "friction_speed_sweep.json"
 TWO = {"scene": {"material": {"alpha": 0.3, "E1": 1.0e6, "nu": 0.5, "coulomb": 0.2}, "speed": 0.01,
@@ -106,27 +106,13 @@ def test_ctrl_c_stops_a_sweep_and_keeps_the_rows_done(tmp_path):
     # acceptances it cannot reach): KeyboardInterrupt, the rows under way stopped (their solves
     # poll the same flag), the output file holding only whole rows, so that the sweep resumes.
     # The bound of 5 s is the contract ("within a second") with a margin for a loaded machine.
-    import os
-    import signal
-    import threading
     import time
 
     scene = rhabel.load_scene(SOURCE_DIR / "examples" / "rough_periodic.json")
     slow = {"scene": scene, "axes": [{"path": "speed", "values": [0.01, 0.02, 0.03, 0.04]}]}
     out = tmp_path / "slow.csv"
-    sent = []
-
-    def interrupt():
-        sent.append(time.monotonic())
-        os.kill(os.getpid(), signal.SIGINT)
-
-    timer = threading.Timer(0.5, interrupt)
-    timer.start()
-    try:
-        with pytest.raises(KeyboardInterrupt):
-            rhabel.sweep(slow, out=out, threads=2, progress=False, acceptance=1e-9)
-    finally:
-        timer.cancel()
+    with sigint_after(0.5) as sent:
+        rhabel.sweep(slow, out=out, threads=2, progress=False, acceptance=1e-9)
     assert sent and time.monotonic() - sent[0] < 5
     lines = out.read_text().splitlines(keepends=True)
     assert lines[0].startswith("row,speed,status") and all(line.endswith("\n") for line in lines)
