@@ -102,17 +102,25 @@ namespace {
 // ---------------------------------------------------------------------------------------------
 // Start: isolated contacts, scaled for the continuation.
 
-/// Isolated contacts at the scene's loads scaled by t: lengths and apex offsets scale like t^(1/p).
-edges scaled_guess(const problem& pb, const edges& isolated, double t) {
-  edges x = isolated;
+/// Contacts scaled about their apexes as isolated ones would be when contact i's load is
+/// multiplied by factor[i] (lengths like load^(1/p)): both edges of a smooth contact, the leading
+/// one of a wedge ending at its apex (the trailing edge is the apex); a line load and a flat
+/// punch's fixed faces keep theirs.
+edges rescaled(const problem& pb, const edges& x, const std::vector<double>& factor) {
+  edges out = x;
   const auto& st = *pb.st;
   for (std::size_t i = 0; i < st.size(); ++i) {
     if (pb.roles[i] != role::smooth_both && pb.roles[i] != role::apex_ended) continue;
-    const double f = std::pow(t, 1 / load_exponent(st[i], *pb.cx));
-    x.a[i] = st[i].apex + (isolated.a[i] - st[i].apex) * f;
-    x.b[i] = st[i].apex + (isolated.b[i] - st[i].apex) * f;
+    const double f = std::pow(factor[i], 1 / load_exponent(st[i], *pb.cx));
+    out.a[i] = st[i].apex + (x.a[i] - st[i].apex) * f;
+    if (pb.roles[i] == role::smooth_both) out.b[i] = st[i].apex + (x.b[i] - st[i].apex) * f;
   }
-  return x;
+  return out;
+}
+
+/// Isolated contacts at the scene's loads scaled by t: lengths and apex offsets scale like t^(1/p).
+edges scaled_guess(const problem& pb, const edges& isolated, double t) {
+  return rescaled(pb, isolated, std::vector<double>(pb.st->size(), t));
 }
 
 /// Smallest gap between neighbours relative to the smaller of the two lengths (inf for one contact,
@@ -137,7 +145,6 @@ constexpr double continuation_accuracy = 1e-6;
 /// by continuation in the load; pb.load_factor ends at the last load factor solved.
 newton_result attempt(problem& pb, const edges& isolated) {
   const auto& st = *pb.st;
-  const auto& cx = *pb.cx;
   pb.load_factor = 1;
   newton_result result;
   bool done = false;
@@ -169,13 +176,7 @@ newton_result attempt(problem& pb, const edges& isolated) {
     problem next = pb;
     next.load_factor = t_next;
     // Predictor: the current contacts scaled about their apexes as isolated ones would be.
-    edges guess = result.x;
-    for (std::size_t i = 0; i < st.size(); ++i) {
-      if (pb.roles[i] != role::smooth_both && pb.roles[i] != role::apex_ended) continue;
-      const double f = std::pow(t_next / t, 1 / load_exponent(st[i], cx));
-      guess.a[i] = st[i].apex + (guess.a[i] - st[i].apex) * f;
-      if (pb.roles[i] == role::smooth_both) guess.b[i] = st[i].apex + (guess.b[i] - st[i].apex) * f;
-    }
+    edges guess = rescaled(pb, result.x, std::vector<double>(st.size(), t_next / t));
     if (gap_ratio(next, guess) <= 0) guess = result.x;  // the predictor would overlap: corrector only
     auto trial = newton(stage(next), guess);
     total += trial.iterations;
@@ -238,21 +239,6 @@ newton_result height_continuation(problem& pb, const edges& isolated) {
   if (r.converged && p.height_factor < 1) r.converged = false;
   pb = p;
   return r;
-}
-
-/// Contacts scaled about their apexes as isolated ones would be when contact i's load is
-/// multiplied by factor[i] (lengths like load^(1/p)); a contact of a line load, a flat punch or a
-/// wedge keeps its edges.
-edges rescaled(const problem& pb, const edges& x, const std::vector<double>& factor) {
-  edges out = x;
-  const auto& st = *pb.st;
-  for (std::size_t i = 0; i < st.size(); ++i) {
-    if (pb.roles[i] != role::smooth_both && pb.roles[i] != role::apex_ended) continue;
-    const double f = std::pow(factor[i], 1 / load_exponent(st[i], *pb.cx));
-    out.a[i] = st[i].apex + (x.a[i] - st[i].apex) * f;
-    if (pb.roles[i] == role::smooth_both) out.b[i] = st[i].apex + (x.b[i] - st[i].apex) * f;
-  }
-  return out;
 }
 
 /// Independent indentors of unequal loads, when the other starts failed: continuation in the

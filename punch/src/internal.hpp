@@ -121,10 +121,7 @@ struct context {
   /// Set once options.interrupt has returned true (shared by the copies of the context).
   std::shared_ptr<std::atomic<bool>> interrupted = std::make_shared<std::atomic<bool>>(false);
   /// Whether options.time_limit has run out or the solve was interrupted.
-  bool out_of_time() const {
-    return *interrupted ||
-           (deadline != std::chrono::steady_clock::time_point::max() && std::chrono::steady_clock::now() >= deadline);
-  }
+  bool out_of_time() const { return *interrupted || seconds_left() <= 0; }
   /// Seconds until the deadline (negative past it; infinity without a time limit).
   double seconds_left() const {
     if (deadline == std::chrono::steady_clock::time_point::max()) return std::numeric_limits<double>::infinity();

@@ -254,7 +254,7 @@ run_outcome run_profile_bem(const scene_spec& spec, const run_request& request, 
   const punch::profile_scene ps = profile_scene_of(spec);
   punch::bem_options bem;
   if (spec.profile->max_panels > 0) bem.max_panels = spec.profile->max_panels;
-  const punch::profile_bem_result r = solve_or_refuse([&] { return punch::solve_profile_bem(ps, options, bem); });
+  punch::profile_bem_result r = solve_or_refuse([&] { return punch::solve_profile_bem(ps, options, bem); });
   run_outcome out;
   auto& doc = out.result;
   begin_document(out, request, r, ps.material.effective_modulus(spec.speed));
@@ -281,7 +281,7 @@ run_outcome run_profile_bem(const scene_spec& spec, const run_request& request, 
                         {"status", punch::to_string(d.code)},
                         {"status_message", d.status}};
   finish_document(out, spec, d.code);
-  out.solved = r;
+  out.solved = std::move(r);
   return out;
 }
 
