@@ -258,18 +258,24 @@ def _names_master_curve(scene):
     return isinstance(material, dict) and "master_curve" in material
 
 
+def _json_text(value, what):
+    """A scene or a sweep (dicts, lists, numbers, strings, NumPy arrays and scalars) as JSON text
+    for the scene layer; ValueError naming `what` for NaN, infinities or a value JSON has not."""
+    def plain(v):
+        if hasattr(v, "tolist"):
+            return v.tolist()
+        raise TypeError(f"{type(v).__name__} {v!r} is not a JSON value")
+    try:
+        return _json.dumps(value, default=plain, allow_nan=False)
+    except (TypeError, ValueError) as e:
+        raise ValueError(f"{what}: {e}") from None
+
+
 def _fit_material(scene, tolerance, acceptance, time_limit):
     """The scene with its master curve replaced by the fitted power law, and the fit: the fixed
     point of the command line (the scene layer, rhabel/scene/material.hpp), which also validates
     the whole scene with the command line's messages."""
-    def plain(value):  # NumPy arrays and scalars as JSON
-        if hasattr(value, "tolist"):
-            return value.tolist()
-        raise ValueError(f"scene: {type(value).__name__} {value!r} is not a JSON value")
-    try:
-        text = _json.dumps(scene, default=plain, allow_nan=False)
-    except ValueError as e:
-        raise ValueError(f"scene: {e}") from None
+    text = _json_text(scene, "scene")
     fit = _rhabel._fit_scene_material(text, float(tolerance), 0.0 if acceptance is None else acceptance, time_limit)
     fitted = dict(scene)
     material = {k: v for k, v in scene["material"].items() if k not in ("master_curve", "temperature", "wlf")}
@@ -317,7 +323,7 @@ def sweep(sweep, out=None, threads=0, progress=True, tolerance=1e-12, acceptance
             text = f.read()
         source, directory = path, os.path.dirname(os.path.abspath(path))
     elif isinstance(sweep, dict):
-        text = _json.dumps(sweep, allow_nan=False, default=lambda v: v.tolist() if hasattr(v, "tolist") else str(v))
+        text = _json_text(sweep, "sweep")
         source, directory = "sweep", os.getcwd()
     else:
         raise ValueError(f"sweep must be a dict or the path of a sweep file, got {type(sweep).__name__}")
@@ -375,9 +381,12 @@ def fit_material(curve, speed, length, temperature=None, wlf=None, window_decade
 
     def number(value, name, lo, hi, lo_open):
         """value as a float in (lo, hi] (lo_open) or [lo, hi], as the command line's option checks."""
-        if isinstance(value, bool) or isinstance(value, str):
-            raise ValueError(f"{name} = {value!r} is not a number")
-        value = float(value)
+        try:
+            if isinstance(value, (bool, str)):
+                raise TypeError
+            value = float(value)
+        except (TypeError, ValueError):
+            raise ValueError(f"{name} = {value!r} is not a number") from None
         if not ((value > lo if lo_open else value >= lo) and value <= hi):
             raise ValueError(f"{name} = {value!r} is not in {'(' if lo_open else '['}{lo:g}, {hi:g}]")
         return value
@@ -392,18 +401,17 @@ def fit_material(curve, speed, length, temperature=None, wlf=None, window_decade
     constants = None
     if wlf is not None:
         if isinstance(wlf, dict):
-            missing = [k for k in ("C1", "C2", "T_ref") if k not in wlf]
-            if missing or len(wlf) != 3:
-                raise ValueError(f"wlf must have the keys C1, C2, T_ref, got {sorted(wlf)}")
+            if any(k not in wlf for k in ("C1", "C2", "T_ref")) or len(wlf) != 3:
+                raise ValueError(f"wlf must have the keys C1, C2, T_ref, got {list(wlf)}")
             wlf = (wlf["C1"], wlf["C2"], wlf["T_ref"])
+        try:
+            wlf = tuple(wlf)
+        except TypeError:
+            raise ValueError(f"wlf = {wlf!r} must be (C1, C2, T_ref) or a dict of them") from None
         if len(wlf) != 3:
             raise ValueError(f"wlf needs three numbers C1, C2, T_ref, got {len(wlf)}")
-        constants = [float(c) for c in wlf]
-        if not all(_math.isfinite(c) for c in constants):
-            raise ValueError(f"wlf = {wlf!r}: the constants must be finite")
-        temperature = float(temperature)
-        if not _math.isfinite(temperature):
-            raise ValueError(f"temperature = {temperature!r} must be finite")
+        constants = [number(c, f"wlf.{key}", -big, big, False) for c, key in zip(wlf, ("C1", "C2", "T_ref"))]
+        temperature = number(temperature, "temperature", -big, big, False)
     return Record(_rhabel._fit_material(os.fspath(curve), speed, length, temperature, constants, window_decades,
                                         threshold))
 
