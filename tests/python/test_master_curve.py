@@ -122,6 +122,9 @@ def test_fit_material_equals_the_command_line(cli, speed, length, shift):
 @pytest.mark.parametrize("kwargs, words", [
     ({"speed": 0.0}, ["speed", "0.0"]),
     ({"length": float("nan")}, ["length", "nan"]),
+    ({"speed": None}, ["speed", "None", "not a number"]),
+    ({"temperature": 40.0, "wlf": 5}, ["wlf", "C1, C2, T_ref"]),
+    ({"temperature": float("inf"), "wlf": (8.86, 101.6, 20.0)}, ["temperature", "inf"]),
     ({"temperature": 40.0}, ["temperature", "wlf"]),
     ({"temperature": 40.0, "wlf": {"C1": 8.86, "C2": 101.6}}, ["wlf", "T_ref"]),
     ({"temperature": 40.0, "wlf": (8.86, -1.0, 20.0)}, ["C2", "> 0"]),

@@ -93,6 +93,13 @@ def test_refusals_name_the_field(edit, words):
         assert word in str(e.value)
 
 
+def test_a_value_json_has_not_is_refused():
+    bad = json.loads(json.dumps(TWO))
+    bad["scene"]["speed"] = object()
+    with pytest.raises(ValueError, match="sweep: object .* is not a JSON value"):
+        rhabel.sweep(bad, progress=False)
+
+
 def test_another_sweeps_file_is_refused(tmp_path):
     out = tmp_path / "other.csv"
     out.write_text("row,speed,status\n0,1,ok\n")
