@@ -73,7 +73,7 @@ int run(const fit_arguments& args) {
                   "status           %s\n",
                   one_line(args.curve_path).c_str(), curve.omega.size(), curve.omega.front(), curve.omega.back(),
                   args.wlf.empty() ? "" : (", shifted: log10 a_T = " + std::to_string(log10_aT)).c_str(), f.omega0,
-                  f.alpha, f.alpha_tan_delta, f.E1, f.modulus, f.window_lo, f.window_hi, f.status.c_str());
+                  f.alpha, f.alpha_tan_delta, f.E1, f.modulus, f.window_lo, f.window_hi, materials::to_string(f.status));
     text = buf;
   }
   errno = 0;
@@ -82,7 +82,7 @@ int run(const fit_arguments& args) {
     throw write_error(std::string("fit-material: cannot write to stdout: ") + std::strerror(errno));
   }
   if (!f.ok()) {
-    std::cerr << "rhabel: fit-material: warning: " << one_line(f.status + ": " + f.warning) << '\n';
+    std::cerr << "rhabel: fit-material: warning: " << one_line(std::string(materials::to_string(f.status)) + ": " + f.warning) << '\n';
     return exit_not_ok;
   }
   return exit_ok;

@@ -1,14 +1,18 @@
-// rhabel solve SCENE.json [--grid N] [--csv PREFIX] [--acceptance TOL] [--tolerance TOL] [--threads N]
-//              [--time-limit S] [--compact]
+// rhabel solve SCENE.json [--grid N] [--grid-spacing uniform|graded] [--csv PREFIX] [--acceptance TOL]
+//              [--tolerance TOL] [--threads N] [--time-limit S] [--compact]
 //
 // Reads a scene (a JSON file, or stdin for "-"), validates all of it, solves it with the punch
 // layer and prints the result as JSON on stdout. Schemas: rhabel/scene/scene.hpp (scene) and
 // examples/README.md (scene and result).
 //
 //   --grid N       adds to each indentor "pressure" (N points strictly inside its contact
-//                  interval) and "displacement" (N points on [a - L, b + L]), 2 <= N <= 1e6.
+//                  interval) and "displacement" (N points on [a - L, b + L]), 2 <= N <= 1e6;
+//                  several contacts: "surface" (the whole surface, N points a contact).
+//   --grid-spacing uniform (default) or graded: the pressure samples at midpoints of equal
+//                  cells or at Chebyshev points (dense next to the edges).
 //   --csv PREFIX   also writes PREFIX_pressure.csv (indentor,x,pressure) and
-//                  PREFIX_displacement.csv (indentor,x,displacement): all indentors in one file
+//                  PREFIX_displacement.csv (indentor,x,displacement): all indentors in one file;
+//                  several contacts: PREFIX_surface.csv (x,displacement), the whole surface
 //                  each, `indentor` is the index in the scene; implies --grid 201 unless given.
 //   --acceptance TOL  the bar of status "ok" (punch::solve_options::acceptance, default 1e-9; 1e-4 for
 //                     profile.solver boundary_element).
@@ -46,6 +50,7 @@
 #include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include <sys/stat.h>
 #include <unistd.h>
@@ -59,6 +64,7 @@ constexpr std::size_t max_grid = 1'000'000;
 struct solve_arguments {
   std::string scene_path;
   std::size_t grid = 0;
+  std::string spacing = "uniform";  // --grid-spacing: "uniform" or "graded"
   std::string csv_prefix;
   bool csv = false;  // --csv given (an empty prefix is an error, not "no CSV")
   bool compact = false;
@@ -88,8 +94,10 @@ void write_table(std::FILE* out, const sampled_table& table) {
   std::string buffer;
   char number[64];
   auto append = [&](double v) { buffer.append(number, std::to_chars(number, number + sizeof number, v).ptr); };
+  // A table of one curve (the surface) has no index column.
+  const bool indexed = table.columns.size() == 3;
   for (const auto& field : table.fields) {
-    const std::string indentor = std::to_string(field.indentor) + ",";
+    const std::string indentor = indexed ? std::to_string(field.indentor) + "," : std::string();
     for (std::size_t k = 0; k < field.x.size(); ++k) {
       buffer += indentor;
       append(field.x[k]);
@@ -105,18 +113,18 @@ void write_table(std::FILE* out, const sampled_table& table) {
   std::fwrite(buffer.data(), 1, buffer.size(), out);
 }
 
-// The two CSV files as one transaction: write() puts each into a fresh temporary file in the
+// The CSV files (PREFIX_pressure.csv, PREFIX_displacement.csv, and PREFIX_surface.csv for
+// several contacts) as one transaction: write() puts each into a fresh temporary file in the
 // same directory (PREFIX_pressure.csv.XXXXXX, mkstemp, so nothing of the user's is overwritten
-// before the end), commit() renames both into place. Until commit() succeeds the destructor
+// before the end), commit() renames them into place. Until commit() succeeds the destructor
 // removes every temporary, on any error or exception, so a failed run leaves no CSV file and no
 // temporary (only a signal that kills the process can leave a temporary behind).
 class csv_transaction {
  public:
   csv_transaction(std::string prefix, const run_outcome& outcome) : prefix_(std::move(prefix)) {
-    names_[0] = prefix_ + "_pressure.csv";
-    names_[1] = prefix_ + "_displacement.csv";
-    tables_[0] = &outcome.pressure;
-    tables_[1] = &outcome.displacement;
+    add("_pressure.csv", outcome.pressure);
+    add("_displacement.csv", outcome.displacement);
+    if (!outcome.surface.fields.empty()) add("_surface.csv", outcome.surface);
   }
   csv_transaction(const csv_transaction&) = delete;
   csv_transaction& operator=(const csv_transaction&) = delete;
@@ -127,15 +135,15 @@ class csv_transaction {
   }
 
   void write() {
-    for (int i = 0; i < 2; ++i) write_one(i);
+    for (std::size_t i = 0; i < names_.size(); ++i) write_one(i);
   }
 
-  // Renames both temporaries into place; if the second rename fails the first file is removed.
+  // Renames the temporaries into place; if a rename fails the files already renamed are removed.
   void commit() {
-    for (int i = 0; i < 2; ++i) {
+    for (std::size_t i = 0; i < names_.size(); ++i) {
       if (std::rename(temporaries_[i].c_str(), names_[i].c_str()) != 0) {
         const std::string reason = std::strerror(errno);
-        if (i == 1) std::remove(names_[0].c_str());
+        for (std::size_t j = 0; j < i; ++j) std::remove(names_[j].c_str());
         fail("cannot create '" + names_[i] + "': " + reason);
       }
       temporaries_[i].clear();
@@ -147,7 +155,13 @@ class csv_transaction {
     throw write_error("solve: --csv " + prefix_ + ": " + what);
   }
 
-  void write_one(int i) {
+  void add(const char* suffix, const sampled_table& table) {
+    names_.push_back(prefix_ + suffix);
+    tables_.push_back(&table);
+    temporaries_.emplace_back();
+  }
+
+  void write_one(std::size_t i) {
     std::string pattern = names_[i] + ".XXXXXX";
     errno = 0;
     const int fd = ::mkstemp(pattern.data());
@@ -174,9 +188,9 @@ class csv_transaction {
   }
 
   std::string prefix_;
-  std::string names_[2];
-  const sampled_table* tables_[2] = {nullptr, nullptr};
-  std::string temporaries_[2];
+  std::vector<std::string> names_;
+  std::vector<const sampled_table*> tables_;
+  std::vector<std::string> temporaries_;
 };
 
 // Writes the document and a newline to stdout and flushes; throws write_error on any failure
@@ -202,6 +216,7 @@ int run(const solve_arguments& args) {
 
   run_request request;
   request.grid = args.grid;
+  request.spacing = args.spacing == "graded" ? punch::sample_spacing::graded : punch::sample_spacing::uniform;
   request.acceptance = args.acceptance;
   request.tolerance = args.tolerance;
   request.threads = args.threads;
@@ -240,11 +255,18 @@ void add_solve_command(CLI::App& app, command_action& action) {
   solve->add_option("SCENE", args->scene_path, "scene file (JSON), or - for stdin")->required();
   solve
       ->add_option("--grid", args->grid,
-                   "sample pressure (N points in each contact interval) and surface displacement (N points)")
+                   "sample pressure (N points in each contact interval) and surface displacement (N points; "
+                   "several contacts: also the whole surface on N points a contact)")
       ->check(CLI::Range(std::size_t{2}, max_grid));
+  solve
+      ->add_option("--grid-spacing", args->spacing,
+                   "where the pressure samples lie: uniform (midpoints of equal cells, the default) or graded "
+                   "(Chebyshev points, dense next to the edges)")
+      ->check(CLI::IsMember({"uniform", "graded"}));
   auto* csv = solve->add_option("--csv", args->csv_prefix,
-                    "also write PREFIX_pressure.csv (indentor,x,pressure) and PREFIX_displacement.csv "
-                    "(indentor,x,displacement); implies --grid 201");
+                    "also write PREFIX_pressure.csv (indentor,x,pressure), PREFIX_displacement.csv "
+                    "(indentor,x,displacement) and, for several contacts, PREFIX_surface.csv (x,displacement); "
+                    "implies --grid 201");
   add_acceptance_option(solve, args->acceptance);
   add_tolerance_option(solve, args->tolerance);
   solve

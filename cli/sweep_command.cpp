@@ -149,7 +149,7 @@ int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
   if (args.print_scenes) {
     if (mpi.rank != 0) return exit_ok;
     std::string text;
-    for (std::size_t i = 0; i < sweep.rows; ++i) text += row_scene(sweep, i) + "\n";
+    for (std::size_t i = 0; i < sweep.rows; ++i) text += row_scene(sweep, i).dump() + "\n";
     std::fwrite(text.data(), 1, text.size(), stdout);
     if (std::fflush(stdout) != 0 || std::ferror(stdout)) throw write_error("sweep: cannot write to stdout");
     return exit_ok;

@@ -40,7 +40,7 @@ int main() {
         const auto r = solve_single(m, 1.0, indentor{wedge{S1, S1 * ratio}, 1.0, 0.0});
         const double scaled = r.contact_length * std::pow(S1, 1 / (1 - alpha));  // E_U = 1, load = 1
         std::printf("%.2f,%.10f,%.10f,%s,%g,%.15g,%.15g,%.15g,%.12g,%.2e,%zu\n", alpha, m.beta(), m.kappa(),
-                    regime(m).c_str(), ratio, r.epsilon.value_or(1.0), r.contact_length, scaled,
+                    to_string(regime(m)), ratio, r.epsilon.value_or(1.0), r.contact_length, scaled,
                     r.hysteretic_friction / S1, r.error_estimate, r.degree);
       }
     }

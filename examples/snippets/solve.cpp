@@ -23,7 +23,7 @@ int main() {
   options.grid_points = 401;                                      // pressure and displacement samples
 
   const scene_result r = solve(s, options);
-  std::printf("beta = %.6g, kappa = %.6g, regime %s, status %s\n", r.beta, r.kappa, r.regime.c_str(),
+  std::printf("beta = %.6g, kappa = %.6g, regime %s, status %s\n", r.beta, r.kappa, to_string(r.regime),
               to_string(r.diagnostics.code));
   for (const indentor_result& ind : r.indentors) {
     char peak[64];
@@ -36,4 +36,6 @@ int main() {
   }
   const auto& p = r.indentors[0].pressure;  // p at r.indentors[0].grid_x, inside the contact
   std::printf("parabola pressure samples: %zu, max %.6g Pa\n", p.size(), *std::max_element(p.begin(), p.end()));
+  const indentor_result& parabola = r.indentors[0];  // the solved pressure at points of one's own
+  std::printf("parabola pressure at the contact's centre: %.6g Pa\n", parabola.pressure_at({(parabola.a + parabola.b) / 2})[0]);
 }

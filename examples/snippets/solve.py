@@ -18,3 +18,5 @@ for ind in r.indentors:
         print(f"    {e.side:8s} edge: p ~ K d^{e.exponent:.6g}")
 p = r.indentors[0].pressure          # NumPy arrays x [m], p [Pa] on 401 points inside the contact
 print(f"parabola pressure samples: {p.x.size}, max {p.p.max():.6g} Pa")
+a, b = r.indentors[0].contact        # the solved pressure at points of one's own: pressure_at
+print(f"parabola pressure at the contact's centre: {r.indentors[0].pressure_at((a + b) / 2):.6g} Pa")

@@ -207,6 +207,16 @@ master_curve shift_to_temperature(const master_curve& curve, const wlf_shift& wl
   return out;
 }
 
+const char* to_string(fit_status status) {
+  switch (status) {
+    case fit_status::ok: return "ok";
+    case fit_status::poor_power_law: return "poor_power_law";
+    case fit_status::window_clipped: return "window_clipped";
+    case fit_status::not_converged: return "not_converged";
+  }
+  return "unknown";
+}
+
 local_fit fit_at(const master_curve& curve, double omega0, const fit_options& options) {
   if (curve.omega.size() < 2) throw std::invalid_argument("fit_at: the master curve has fewer than 2 points");
   if (!(options.half_window_decades > 0) || !(options.warning_threshold > 0)) {
@@ -246,12 +256,12 @@ local_fit fit_at(const master_curve& curve, double omega0, const fit_options& op
   f.E1 = f.modulus / (std::tgamma(1 - f.alpha) * std::pow(omega0, f.alpha));
   const double gap = std::fabs(f.alpha_slope - f.alpha_tan_delta);
   if (gap > options.warning_threshold) {
-    f.status = "poor_power_law";
+    f.status = fit_status::poor_power_law;
     f.warning = "the power law is poor at omega0 = " + short_num(omega0) + " rad/s: alpha from the slope of |E*| = " +
                 short_num(f.alpha_slope) + ", from tan delta = " + short_num(f.alpha_tan_delta) + " (differ by " +
                 short_num(gap) + " > " + short_num(options.warning_threshold) + ")";
   } else if (clipped) {
-    f.status = "window_clipped";
+    f.status = fit_status::window_clipped;
     f.warning = "the fit window around omega0 = " + short_num(omega0) + " rad/s was clipped to [" +
                 short_num(f.window_lo) + ", " + short_num(f.window_hi) + "] rad/s by the end of the measured range";
   }

@@ -317,6 +317,27 @@ coupled_outcome solve_states(const scene& s, scene_states& ss, const context& cx
   return {};
 }
 
+// The surface displacement of several contacts on one grid (scene_result::surface): grid_points
+// a contact, uniform over the contacts' span widened by the longest contact on either side.
+void report_surface(const std::vector<indentor_state>& st, const surface& heights, const context& cx, double origin,
+                    scene_result& out) {
+  double lo = st.front().g.a(), hi = st.front().g.b(), longest = 0;
+  for (const auto& state : st) {
+    lo = std::min(lo, state.g.a());
+    hi = std::max(hi, state.g.b());
+    longest = std::max(longest, state.g.length());
+  }
+  if (!(longest > 0)) longest = hi - lo > 0 ? hi - lo : 1.0;
+  lo -= longest;
+  hi += longest;
+  const std::size_t n = cx.options.grid_points * st.size();
+  std::vector<double> xs(n);
+  for (std::size_t k = 0; k < n; ++k) xs[k] = lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(n - 1);
+  out.surface = heights.absolute(xs);
+  for (double& x : xs) x += origin;
+  out.surface_x = std::move(xs);
+}
+
 scene_result report_scene(const scene& s, const scene_states& ss, const context& cx, const coupled_outcome& coupled) {
   const auto& st = ss.st;
   const bool isolated = st.size() == 1;
@@ -328,13 +349,14 @@ scene_result report_scene(const scene& s, const scene_states& ss, const context&
   double worst_residual = 0;
   const surface heights(st, cx);
   for (std::size_t i = 0; i < st.size(); ++i) {
-    indentor_result r = report_contact(st, i, cx, heights, s.material.coulomb, !isolated);
+    indentor_result r = report_contact(st, i, cx, heights, s.material.coulomb, !isolated, ss.origin);
     if (!isolated || s.body) r.approach = heights.approach(i);
     if (!cx.options.residual) worst_residual = r.residual;
     else if (!std::isnan(worst_residual)) worst_residual = std::max(worst_residual, r.residual);
     shift(r, ss.origin);
     out.indentors[st[i].scene_index] = std::move(r);
   }
+  if (!isolated && cx.options.grid_points > 0 && cx.options.displacement) report_surface(st, heights, cx, ss.origin, out);
   out.diagnostics.residual = worst_residual;
   out.diagnostics.code = coupled.code;
   out.diagnostics.status = coupled.code == status_code::ok ? "ok" : coupled.message;

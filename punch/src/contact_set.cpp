@@ -560,6 +560,8 @@ profile_result report_profile(const profile_model& m, const context& cx, const s
   out.kappa = r.kappa;
   out.regime = r.regime;
   out.contacts = r.indentors;
+  out.surface_x = r.surface_x;
+  out.surface = r.surface;
   for (auto& c : out.contacts) c.status = rename(c.status, m, last.runs);
   for (const run& rn : last.runs) out.tips.push_back(s.profile.x[m.tip(rn)]);
   out.body_approach = r.body_approach.value_or(std::numeric_limits<double>::quiet_NaN());

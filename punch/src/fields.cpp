@@ -23,6 +23,7 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 namespace rhabel::punch::detail {
@@ -79,8 +80,11 @@ boost::math::quadrature::tanh_sinh<double>& tanh_sinh_rule() {
 // alpha = 0).
 // Returns the largest error estimate of the g_1 values used (densities' two orders), relative to
 // max g_1.
-double rh_pressure(const riemann::abel_rh_solution<double>& unit, double lo, double hi, double gam, double del,
-                   double apex, double L, double scale, indentor_result& r) {
+namespace {
+double rh_pressure(const rh_wedge& wedge, double gam, double del, double L, const std::vector<double>& x,
+                   std::vector<double>& p) {
+  const riemann::abel_rh_solution<double>& unit = *wedge.unit;
+  const double lo = -wedge.eps, hi = wedge.one_minus_eps, apex = wedge.apex, scale = wedge.scale;
   constexpr std::size_t points = 16;
   struct panel {
     double u, v;
@@ -91,10 +95,10 @@ double rh_pressure(const riemann::abel_rh_solution<double>& unit, double lo, dou
   // nearest sample's distance from the apex): the few samples nearer to the apex are taken
   // directly, which is cheaper than the 16 nodes of each further panel (g_1 costs most next to
   // the apex, where densities() grades its far part deeply towards the log singularity of A~).
-  std::vector<double> u(r.grid_x.size());
+  std::vector<double> u(x.size());
   double nearest_left = -lo, nearest_right = hi;
   for (std::size_t k = 0; k < u.size(); ++k) {
-    u[k] = (r.grid_x[k] - apex) / L;
+    u[k] = (x[k] - apex) / L;
     if (u[k] < 0) nearest_left = std::min(nearest_left, -u[k]);
     if (u[k] > 0) nearest_right = std::min(nearest_right, u[k]);
   }
@@ -127,7 +131,7 @@ double rh_pressure(const riemann::abel_rh_solution<double>& unit, double lo, dou
   std::vector<std::size_t> direct;
   for (std::size_t k = 0; k < u.size(); ++k) {
     if (u[k] == 0) {
-      r.pressure[k] = std::numeric_limits<double>::infinity();
+      p[k] = std::numeric_limits<double>::infinity();
     } else if (u[k] > lo && u[k] < hi && u[k] >= covered_left && u[k] <= covered_right) {
       direct.push_back(k);
       nodes.push_back(u[k]);
@@ -147,17 +151,91 @@ double rh_pressure(const riemann::abel_rh_solution<double>& unit, double lo, dou
     for (std::size_t j = 0; j < points; ++j) values[j] = g[i * points + j].value / weight(panels[i], nodes[i * points + j]);
     panels[i].c = abel::detail::chebyshev_coefficients(values);
   }
-  for (std::size_t j = 0; j < direct.size(); ++j) r.pressure[direct[j]] = scale * g[panels.size() * points + j].value;
+  for (std::size_t j = 0; j < direct.size(); ++j) p[direct[j]] = scale * g[panels.size() * points + j].value;
   for (std::size_t k = 0; k < u.size(); ++k) {
     const double t = u[k];
     if (!(t > lo && t < hi) || (t >= covered_left && t <= covered_right)) continue;
     const auto it = std::upper_bound(panels.begin(), panels.end(), t, [](double x, const panel& p) { return x < p.v; });
     if (it == panels.end()) continue;
-    const double x = ((t - it->u) - (it->v - t)) / (it->v - it->u);
-    r.pressure[k] = scale * weight(*it, t) * riemann::detail::chebyshev_fit<double>::clenshaw(it->c, x);
+    const double y = ((t - it->u) - (it->v - t)) / (it->v - it->u);
+    p[k] = scale * weight(*it, t) * riemann::detail::chebyshev_fit<double>::clenshaw(it->c, y);
   }
   return largest > 0 ? estimate / largest : estimate;
 }
+}  // namespace
+
+std::vector<double> pressure_grid(double a, double b, std::size_t n, sample_spacing spacing) {
+  std::vector<double> t(n);
+  const double L = b - a, pi = boost::math::constants::pi<double>();
+  for (std::size_t k = 0; k < n; ++k) {
+    const double cell = (static_cast<double>(k) + 0.5) / static_cast<double>(n);
+    if (spacing == sample_spacing::uniform) {
+      t[k] = a + L * cell;
+    } else {
+      // (1 - cos(pi c))/2 = sin^2(pi c/2), from the nearer end without cancellation.
+      const double near = std::sin(pi * std::min(cell, 1 - cell) / 2);
+      t[k] = cell <= 0.5 ? a + L * near * near : b - L * near * near;
+    }
+  }
+  return t;
+}
+
+// g.value(t) at every sample through one abel::enriched_evaluator, in one values() call (the
+// series' recurrence coefficients once, the series of four samples summed together, the weight
+// w = (1-x)^del (1+x)^gam once per sample): without a map the density whose series is g.jacobi
+// and whose enrichment is g.apex's; mapped (apex near an edge) g.apex itself, whose series lives
+// in the mapped variable, plus g.jacobi's c_0. An isolated wedge with a Riemann-Hilbert solution
+// takes its samples from it (rh_pressure).
+double sample_pressure(const pressure_field::source& field, const std::vector<double>& t, std::vector<double>& p) {
+  const contact_density& g = field.g;
+  p.assign(t.size(), 0.0);
+  if (field.rh) return rh_pressure(*field.rh, g.jacobi.gam, g.jacobi.del, g.length(), t, p);
+  if (g.line_load) return 0.0;
+  const bool mapped = g.has_apex && g.apex.mobius != 0;
+  abel::enriched_density<double> whole = g.apex;
+  if (!mapped) whole.smooth = g.jacobi;
+  if (!g.has_apex) whole.enrichment = 0;
+  const abel::enriched_evaluator<double> density(whole);
+  const double h = g.jacobi.half_length();
+  std::vector<std::size_t> inside;  // samples strictly inside the contact, evaluated in one batch
+  std::vector<double> one_plus, one_minus;
+  for (std::size_t k = 0; k < t.size(); ++k) {
+    if (!(t[k] > g.a()) || !(t[k] < g.b())) continue;
+    inside.push_back(k);
+    one_plus.push_back((t[k] - g.jacobi.lo) / h);
+    one_minus.push_back((g.jacobi.hi - t[k]) / h);
+  }
+  std::vector<double> values(inside.size());
+  density.values(one_plus.data(), one_minus.data(), values.data(), inside.size());
+  for (std::size_t j = 0; j < inside.size(); ++j) {
+    const double x = t[inside[j]];
+    double value = values[j];
+    if (mapped) value += g.jacobi.value_at_distance(x - g.jacobi.lo, g.jacobi.hi - x);
+    p[inside[j]] = field.scale * value;
+  }
+  return 0.0;
+}
+
+}  // namespace rhabel::punch::detail
+
+namespace rhabel::punch {
+
+std::vector<double> pressure_field::operator()(const std::vector<double>& x) const {
+  if (!source_) throw std::logic_error("rhabel::punch::pressure_field: empty (a field comes from a solve)");
+  std::vector<double> t(x.size());
+  for (std::size_t k = 0; k < x.size(); ++k) {
+    if (!std::isfinite(x[k]))
+      throw std::invalid_argument("rhabel::punch::pressure_field: x[" + std::to_string(k) + "] is not finite");
+    t[k] = x[k] - origin_;
+  }
+  std::vector<double> p;
+  detail::sample_pressure(*source_, t, p);
+  return p;
+}
+
+}  // namespace rhabel::punch
+
+namespace rhabel::punch::detail {
 
 // Peak pressure on [a, b] of a bounded density: sampling + Brent refinement.
 std::pair<double, double> peak_of(const contact_density& g) {

@@ -207,15 +207,37 @@ double wedge_friction(const contact_density& g, const wedge& w, double apex);
 /// The density on [a, b] of the class e for the forcing F (adaptive when `adaptive`).
 contact_density build(double a, double b, const context& cx, const edge_exponents& e, const forcing& F, bool adaptive);
 
+/// An isolated wedge whose pressure comes from its Riemann-Hilbert solution g_1 on the unit
+/// interval [-eps, one_minus_eps] (apex at 0): p(t) = scale g_1((t - apex)/L).
+struct rh_wedge {
+  std::shared_ptr<const riemann::abel_rh_solution<double>> unit;
+  double eps = 0, one_minus_eps = 0, apex = 0, scale = 0;
+};
+
+}  // namespace rhabel::punch::detail
+
+namespace rhabel::punch {
+/// What a pressure_field evaluates: the contact's density and the scale that makes it a pressure.
+struct pressure_field::source {
+  detail::contact_density g;          ///< in the solve's coordinates
+  double scale = 0;                   ///< p = scale g
+  std::optional<detail::rh_wedge> rh;  ///< the Riemann-Hilbert route, when the report samples by it
+};
+}  // namespace rhabel::punch
+
+namespace rhabel::punch::detail {
+
 // ---- fields.cpp
 /// K = lim g / distance^exponent at an edge (Richardson estimate next to a split wedge's apex).
 double edge_intensity(const contact_density& g, bool trailing);
 /// Peak of a bounded density and where: sampling + Brent.
 std::pair<double, double> peak_of(const contact_density& g);
-/// Pressure samples of an isolated wedge from its Riemann-Hilbert solution (fills r.pressure);
-/// returns the estimate of their error relative to the peak.
-double rh_pressure(const riemann::abel_rh_solution<double>& unit, double lo, double hi, double gam, double del,
-                   double apex, double L, double scale, indentor_result& r);
+/// n pressure abscissae strictly inside (a, b), increasing (sample_spacing).
+std::vector<double> pressure_grid(double a, double b, std::size_t n, sample_spacing spacing);
+/// p at the abscissae t (the solve's coordinates) into p: the density times its scale, 0 outside
+/// (a, b). Returns the error estimate of the Riemann-Hilbert values relative to the peak (0 when
+/// the density is a series).
+double sample_pressure(const pressure_field::source& field, const std::vector<double>& t, std::vector<double>& p);
 /// The surface displacement's kernel Psi(t, s) (closed-form integral in s of (8)'s kernel).
 double psi(double t, double s, double alpha, double one_minus_kappa_over_alpha, double kappa);
 double psi_distance(double d, double alpha, double one_minus_kappa_over_alpha, double kappa);
@@ -226,9 +248,10 @@ boost::math::quadrature::tanh_sinh<double>& tanh_sinh_rule();
 class surface;
 /// Moves a result computed relative to `origin` (solve's first apex) back to absolute abscissae.
 void shift(indentor_result& r, double origin);
-/// The result of contact i with its evidence and status; `several`: other indentors are present.
+/// The result of contact i with its evidence and status; `several`: other indentors are present;
+/// `origin`: where the solve's x = 0 lies (its pressure_at takes absolute abscissae).
 indentor_result report_contact(const std::vector<indentor_state>& st, std::size_t i, const context& cx,
-                               const surface& heights, double coulomb, bool several);
+                               const surface& heights, double coulomb, bool several, double origin);
 
 // ---- coupled_solve.cpp (with coupled_fixed.cpp, coupled_newton.cpp)
 /// Outcome of the coupled solve (coupled_solve.cpp).

@@ -110,10 +110,19 @@ const char* to_string(status_code code) {
   return "unknown";
 }
 
-std::string regime(const material& m) {
+const char* to_string(regime_kind regime) {
+  switch (regime) {
+    case regime_kind::below: return "below";
+    case regime_kind::boundary: return "boundary";
+    case regime_kind::above: return "above";
+  }
+  return "unknown";
+}
+
+regime_kind regime(const material& m) {
   const double off = regime_offset(m);
-  if (std::abs(off) <= boundary_width) return "boundary";
-  return off < 0 ? "below" : "above";
+  if (std::abs(off) <= boundary_width) return regime_kind::boundary;
+  return off < 0 ? regime_kind::below : regime_kind::above;
 }
 
 }  // namespace rhabel::punch

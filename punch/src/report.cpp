@@ -207,6 +207,150 @@ std::vector<double> check_points(const std::vector<indentor_state>& st, std::siz
   return out;
 }
 
+// C_f = int f' g / int g with the indentor's own f' (0 for a line load, a flat face, and a
+// density that carries no load); a wedge's plain series (apex next to an edge) by Richardson
+// extrapolation, whose spread joins r.error_estimate.
+void report_friction(const indentor_state& state, const context& cx, indentor_result& r) {
+  const auto& g = state.g;
+  if (g.line_load) {
+    r.hysteretic_friction = 0;
+  } else if (state.friction) {
+    r.hysteretic_friction = *state.friction;
+    r.error_estimate = std::max(r.error_estimate, state.friction_error);
+  } else if (state.k == kind::wedge && (g.has_apex || cx.offset >= 0)) {
+    r.hysteretic_friction = wedge_friction(g, std::get<wedge>(state.source->shape), state.apex);
+  } else if (state.k == kind::wedge) {
+    const auto& w = std::get<wedge>(state.source->shape);
+    // Plain series (apex next to an edge): C_f = S1 - (S1 + S2) int_apex^b g / int g. The Jacobi
+    // series of int_apex^b g converges only algebraically (the step of F at the apex): its truncation error behaves like
+    // N^(alpha-1) (1 + O(1/N)), so the partial sums at N/4, N/2, N are Richardson-extrapolated
+    // with the exponents alpha - 1 and alpha - 2; the spread of the extrapolants is the estimate.
+    auto fraction_behind = [&](std::size_t terms) {
+      contact_density t = g;
+      t.jacobi.coefficients.resize(std::min(terms, g.jacobi.coefficients.size()));
+      return t.integral_from(state.apex) / g.integral();
+    };
+    const std::size_t N = g.jacobi.coefficients.size();
+    double behind = fraction_behind(N);
+    if (N >= 32) {
+      const double s1 = fraction_behind(N / 4), s2 = fraction_behind(N / 2), s3 = behind;
+      const double r1 = std::pow(2.0, 1 - cx.alpha), r2 = std::pow(2.0, 2 - cx.alpha);
+      const double e12 = s2 + (s2 - s1) / (r1 - 1), e23 = s3 + (s3 - s2) / (r1 - 1);
+      behind = e23 + (e23 - e12) / (r2 - 1);
+      r.error_estimate = std::max(r.error_estimate, std::abs(behind - e23));
+    }
+    r.hysteretic_friction = w.slope_leading - (w.slope_leading + w.slope_trailing) * behind;
+  } else if (state.k == kind::flat) {
+    r.hysteretic_friction = 0;
+  } else {
+    r.hysteretic_friction = mean_slope(state, g);
+  }
+  // A density that carries no load (a coupled solve that failed before this contact was solved:
+  // its status says so) has no mean slope: 0, never NaN.
+  if (!std::isfinite(r.hysteretic_friction)) r.hysteretic_friction = 0;
+}
+
+// The edges (exponents, intensity factors) and the peak pressure: +inf at a singular edge or a
+// wedge's apex below the boundary, else the density's maximum (peak_of).
+void report_edges(const indentor_state& state, double ps, indentor_result& r) {
+  const auto& g = state.g;
+  if (!g.line_load) {
+    const edge_exponents e = g.exponents();
+    edge_report lead{edge_side::leading, g.jacobi.lo, e.gam < 0, e.gam, ps * edge_intensity(g, false)};
+    edge_report trail{edge_side::trailing, g.jacobi.hi, e.del < 0, e.del, ps * edge_intensity(g, true)};
+    r.edges = {lead, trail};
+    if (lead.singular) {
+      r.peak_pressure = std::numeric_limits<double>::infinity();
+      r.peak_pressure_at = g.jacobi.lo;
+    } else if (trail.singular) {
+      r.peak_pressure = std::numeric_limits<double>::infinity();
+      r.peak_pressure_at = g.jacobi.hi;
+    } else if (state.k == kind::wedge) {
+      // Below the boundary the wedge density has a weak singularity at the apex
+      // (|s|^-alpha, logarithmic at alpha = 0: docs/theory.md section 5).
+      r.peak_pressure = std::numeric_limits<double>::infinity();
+      r.peak_pressure_at = state.apex;
+    } else {
+      const auto [peak, where] = peak_of(g);
+      r.peak_pressure = ps * peak;
+      r.peak_pressure_at = where;
+    }
+  } else {
+    r.edges = {edge_report{edge_side::leading, g.jacobi.lo, true, -1, ps * g.line_weight},
+               edge_report{edge_side::trailing, g.jacobi.hi, true, -1, ps * g.line_weight}};
+    r.peak_pressure = std::numeric_limits<double>::infinity();
+    r.peak_pressure_at = g.jacobi.lo;
+  }
+}
+
+// The relative residual of (8) at the check points by an independent quadrature (evidence: see
+// check_points). abel's quadrature_evaluator and enrichment image are uniform down to alpha = 0
+// (kernel singularity subtracted for small alpha), so the elastic limit is checked too.
+double contact_residual(const std::vector<indentor_state>& st, std::size_t i, const context& cx, const surface& heights,
+                        const std::vector<double>& points) {
+  const auto& g = st[i].g;
+  double worst = 0;
+  // Relative to the data's scale: max |F| at the points, and for a flat face (F = 0) the size
+  // of the density's own action, mean(g) (L/2)^alpha.
+  double scale = g.integral() / g.length() * std::pow(g.length() / 2, cx.alpha);
+  // In the boundary-layer basis: the densities as solved (series and poles; g is their
+  // projection, within g.tail), every other contact summed directly (fewer than
+  // iterative_from contacts: no far field).
+  const auto as_solved = [&](std::size_t j) -> const contact_density& { return st[j].solved ? *st[j].solved : st[j].g; };
+  const bool layered = std::any_of(st.begin(), st.end(), [](const indentor_state& s) { return s.solved.has_value(); });
+  const auto others = [&](double s) {
+    if (!layered) return heights.others_action(i, s);
+    double sum = 0;
+    for (std::size_t j = 0; j < st.size(); ++j)
+      if (j != i) sum += apply_outside(as_solved(j), s, cx.par);
+    return sum;
+  };
+  const inside_action apply_inside(as_solved(i), cx.par);
+  for (const double sck : points) {
+    const double lhs = apply_inside(sck) + others(sck);
+    const double rhs = own_slope(st[i], sck) / cx.gamma_factor;
+    worst = std::max(worst, std::abs(lhs - rhs));
+    scale = std::max(scale, std::abs(rhs));
+  }
+  return scale > 0 ? worst / scale : worst;
+}
+
+// The fields: the pressure as a function always (its source is a copy of the density), the
+// pressure and displacement samples on request.
+void report_fields(const std::vector<indentor_state>& st, std::size_t i, const context& cx, const surface& heights,
+                   double origin, indentor_result& r) {
+  const solve_options& options = cx.options;
+  const double ps = cx.pressure_scale;
+  const auto& g = st[i].g;
+  auto field = std::make_shared<pressure_field::source>();
+  field->g = g;
+  field->scale = ps;
+  if (st[i].rh_unit) field->rh = rh_wedge{st[i].rh_unit, *st[i].epsilon, st[i].rh_one_minus_eps, st[i].apex,
+                                          ps * std::pow(g.length(), -cx.alpha)};
+  if (options.grid_points > 0) {
+    r.grid_x = pressure_grid(g.a(), g.b(), options.grid_points, options.spacing);
+    const double estimate = sample_pressure(*field, r.grid_x, r.pressure);
+    if (field->rh) {
+      std::ostringstream os;
+      os.precision(2);
+      os << "; pressure grid error estimate " << estimate << " of the peak";
+      r.status += os.str();
+    }
+    if (g.line_load) r.status += "; pressure grid is empty of meaning for a line load (all zeros)";
+  }
+  r.pressure_at = pressure_field(std::move(field), origin);
+  if (options.grid_points > 0 && options.displacement) {
+    const std::size_t n = options.grid_points;
+    const double L = g.length() > 0 ? g.length() : 1.0;
+    r.displacement_x.resize(n);
+    r.displacement.resize(n);
+    const double lo = g.jacobi.lo - L, hi = g.jacobi.hi + L;
+    for (std::size_t k = 0; k < n; ++k)
+      r.displacement_x[k] = n == 1 ? (lo + hi) / 2 : lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(n - 1);
+    r.displacement = heights.heights(i, r.displacement_x);
+  }
+}
+
 // The status of one contact from its evidence (contact.hpp, status_code): the residual, the error
 // estimate, the sign of the pressure (at 64 interior points and the check points, relative to the
 // mean pressure) and the load. Keeps the solver's note (st.status) in front of the findings.
@@ -270,7 +414,7 @@ void judge(indentor_result& r, const indentor_state& st, const std::vector<doubl
 // caller): edges and their intensities, load, friction, peak, the residual of (8) at the check
 // points and the status (judge), and the sampled fields on request.
 indentor_result report_contact(const std::vector<indentor_state>& st, std::size_t i, const context& cx,
-                               const surface& heights, double coulomb, bool several) {
+                               const surface& heights, double coulomb, bool several, double origin) {
   const solve_options& options = cx.options;
   const double ps = cx.pressure_scale;
   const auto& g = st[i].g;
@@ -291,162 +435,18 @@ indentor_result report_contact(const std::vector<indentor_state>& st, std::size_
   r.degree = series.empty() ? 0 : series.size() - 1;
   r.error_estimate = g.tail;
   r.status = st[i].status;
-  // Hysteretic friction C_f = int f' g / int g with the indentor's own f'.
-  if (g.line_load) {
-    r.hysteretic_friction = 0;
-  } else if (st[i].friction) {
-    r.hysteretic_friction = *st[i].friction;
-    r.error_estimate = std::max(r.error_estimate, st[i].friction_error);
-  } else if (st[i].k == kind::wedge && (g.has_apex || cx.offset >= 0)) {
-    r.hysteretic_friction = wedge_friction(g, std::get<wedge>(st[i].source->shape), st[i].apex);
-  } else if (st[i].k == kind::wedge) {
-    const auto& w = std::get<wedge>(st[i].source->shape);
-    // Plain series (apex next to an edge): C_f = S1 - (S1 + S2) int_apex^b g / int g. The Jacobi series of int_apex^b g converges only
-    // algebraically (the step of F at the apex): its truncation error behaves like
-    // N^(alpha-1) (1 + O(1/N)), so the partial sums at N/4, N/2, N are Richardson-extrapolated
-    // with the exponents alpha - 1 and alpha - 2; the spread of the extrapolants is the estimate.
-    auto fraction_behind = [&](std::size_t terms) {
-      contact_density t = g;
-      t.jacobi.coefficients.resize(std::min(terms, g.jacobi.coefficients.size()));
-      return t.integral_from(st[i].apex) / g.integral();
-    };
-    const std::size_t N = g.jacobi.coefficients.size();
-    double behind = fraction_behind(N);
-    if (N >= 32) {
-      const double s1 = fraction_behind(N / 4), s2 = fraction_behind(N / 2), s3 = behind;
-      const double r1 = std::pow(2.0, 1 - cx.alpha), r2 = std::pow(2.0, 2 - cx.alpha);
-      const double e12 = s2 + (s2 - s1) / (r1 - 1), e23 = s3 + (s3 - s2) / (r1 - 1);
-      behind = e23 + (e23 - e12) / (r2 - 1);
-      r.error_estimate = std::max(r.error_estimate, std::abs(behind - e23));
-    }
-    r.hysteretic_friction = w.slope_leading - (w.slope_leading + w.slope_trailing) * behind;
-  } else if (st[i].k == kind::flat) {
-    r.hysteretic_friction = 0;
-  } else {
-    r.hysteretic_friction = mean_slope(st[i], g);
-  }
-  // A density that carries no load (a coupled solve that failed before this contact was solved:
-  // its status says so) has no mean slope: 0, never NaN.
-  if (!std::isfinite(r.hysteretic_friction)) r.hysteretic_friction = 0;
+  report_friction(st[i], cx, r);
   r.total_friction = r.hysteretic_friction + coulomb;
-  // Edges.
-  if (!g.line_load) {
-    const edge_exponents e = g.exponents();
-    edge_report lead{edge_side::leading, g.jacobi.lo, e.gam < 0, e.gam, ps * edge_intensity(g, false)};
-    edge_report trail{edge_side::trailing, g.jacobi.hi, e.del < 0, e.del, ps * edge_intensity(g, true)};
-    r.edges = {lead, trail};
-    if (lead.singular) {
-      r.peak_pressure = std::numeric_limits<double>::infinity();
-      r.peak_pressure_at = g.jacobi.lo;
-    } else if (trail.singular) {
-      r.peak_pressure = std::numeric_limits<double>::infinity();
-      r.peak_pressure_at = g.jacobi.hi;
-    } else if (st[i].k == kind::wedge) {
-      // Below the boundary the wedge density has a weak singularity at the apex
-      // (|s|^-alpha, logarithmic at alpha = 0: docs/theory.md section 5).
-      r.peak_pressure = std::numeric_limits<double>::infinity();
-      r.peak_pressure_at = st[i].apex;
-    } else {
-      const auto [peak, where] = peak_of(g);
-      r.peak_pressure = ps * peak;
-      r.peak_pressure_at = where;
-    }
-  } else {
-    r.edges = {edge_report{edge_side::leading, g.jacobi.lo, true, -1, ps * g.line_weight},
-               edge_report{edge_side::trailing, g.jacobi.hi, true, -1, ps * g.line_weight}};
-    r.peak_pressure = std::numeric_limits<double>::infinity();
-    r.peak_pressure_at = g.jacobi.lo;
-  }
-  // Residual of (8) at check points, by an independent quadrature (evidence: see check_points).
-  // abel's quadrature_evaluator and enrichment image are uniform down to alpha = 0 (kernel
-  // singularity subtracted for small alpha), so the elastic limit is checked too.
+  report_edges(st[i], ps, r);
   const auto points = check_points(st, i);
   if (!options.residual) {
     r.residual = std::numeric_limits<double>::quiet_NaN();  // not asked for (documented)
   } else if (!g.line_load) {
-    double worst = 0;
-    // Relative to the data's scale: max |F| at the points, and for a flat face (F = 0) the size
-    // of the density's own action, mean(g) (L/2)^alpha.
-    double scale = g.integral() / g.length() * std::pow(g.length() / 2, cx.alpha);
-    // In the boundary-layer basis: the densities as solved (series and poles; g is their
-    // projection, within g.tail), every other contact summed directly (fewer than
-    // iterative_from contacts: no far field).
-    const auto as_solved = [&](std::size_t j) -> const contact_density& { return st[j].solved ? *st[j].solved : st[j].g; };
-    const bool layered = std::any_of(st.begin(), st.end(), [](const indentor_state& s) { return s.solved.has_value(); });
-    const auto others = [&](double s) {
-      if (!layered) return heights.others_action(i, s);
-      double sum = 0;
-      for (std::size_t j = 0; j < st.size(); ++j)
-        if (j != i) sum += apply_outside(as_solved(j), s, cx.par);
-      return sum;
-    };
-    const inside_action apply_inside(as_solved(i), cx.par);
-    for (const double sck : points) {
-      const double lhs = apply_inside(sck) + others(sck);
-      const double rhs = own_slope(st[i], sck) / cx.gamma_factor;
-      worst = std::max(worst, std::abs(lhs - rhs));
-      scale = std::max(scale, std::abs(rhs));
-    }
-    r.residual = scale > 0 ? worst / scale : worst;
+    r.residual = contact_residual(st, i, cx, heights, points);
   }
   judge(r, st[i], points, cx.pressure_scale, options.acceptance,
         several ? worst_gap(heights, st, i) : std::pair<double, double>{0.0, 0.0});
-  // Fields on request.
-  if (options.grid_points > 0) {
-    const std::size_t n = options.grid_points;
-    r.grid_x.resize(n);
-    r.pressure.resize(n);
-    // g.value(t) at every sample through one abel::enriched_evaluator, in one values() call (the
-    // series' recurrence coefficients once, the series of four samples summed together, the
-    // weight w = (1-x)^del (1+x)^gam once per sample): without a map the
-    // density whose series is g.jacobi and whose enrichment is g.apex's; mapped (apex near an
-    // edge) g.apex itself, whose series lives in the mapped variable, plus g.jacobi's c_0.
-    const bool mapped = g.has_apex && g.apex.mobius != 0;
-    abel::enriched_density<double> whole = g.apex;
-    if (!mapped) whole.smooth = g.jacobi;
-    if (!g.has_apex) whole.enrichment = 0;
-    const abel::enriched_evaluator<double> density(whole);
-    const double h = g.jacobi.half_length();
-    std::vector<std::size_t> inside;  // samples strictly inside the contact, evaluated in one batch
-    std::vector<double> one_plus, one_minus;
-    for (std::size_t k = 0; k < n; ++k) {
-      const double t = g.jacobi.lo + g.length() * (static_cast<double>(k) + 0.5) / static_cast<double>(n);
-      r.grid_x[k] = t;
-      r.pressure[k] = 0.0;
-      if (st[i].rh_unit) continue;  // filled by rh_pressure below
-      if (g.line_load || !(t > g.a()) || !(t < g.b())) continue;
-      inside.push_back(k);
-      one_plus.push_back((t - g.jacobi.lo) / h);
-      one_minus.push_back((g.jacobi.hi - t) / h);
-    }
-    std::vector<double> values(inside.size());
-    density.values(one_plus.data(), one_minus.data(), values.data(), inside.size());
-    for (std::size_t j = 0; j < inside.size(); ++j) {
-      const double t = r.grid_x[inside[j]];
-      double value = values[j];
-      if (mapped) value += g.jacobi.value_at_distance(t - g.jacobi.lo, g.jacobi.hi - t);
-      r.pressure[inside[j]] = ps * value;
-    }
-    if (st[i].rh_unit) {
-      const double estimate = rh_pressure(*st[i].rh_unit, -*st[i].epsilon, st[i].rh_one_minus_eps, g.jacobi.gam,
-                                          g.jacobi.del, st[i].apex, g.length(), ps * std::pow(g.length(), -cx.alpha), r);
-      std::ostringstream os;
-      os.precision(2);
-      os << "; pressure grid error estimate " << estimate << " of the peak";
-      r.status += os.str();
-    }
-    if (g.line_load) r.status += "; pressure grid is empty of meaning for a line load (all zeros)";
-  }
-  if (options.grid_points > 0 && options.displacement) {
-    const std::size_t n = options.grid_points;
-    const double L = g.length() > 0 ? g.length() : 1.0;
-    r.displacement_x.resize(n);
-    r.displacement.resize(n);
-    const double lo = g.jacobi.lo - L, hi = g.jacobi.hi + L;
-    for (std::size_t k = 0; k < n; ++k)
-      r.displacement_x[k] = n == 1 ? (lo + hi) / 2 : lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(n - 1);
-    r.displacement = heights.heights(i, r.displacement_x);
-  }
+  report_fields(st, i, cx, heights, origin, r);
   return r;
 }
 

@@ -93,6 +93,15 @@ class surface {
     return cx_.gamma_factor * (h - datum(i));
   }
 
+  /// The surface displacement w at every x of xs in the datum of approach(): w = f_j + approach(j)
+  /// on contact j (f_j with f_j(apex) = 0), heights(i, xs) + Gamma datum(i) for any i.
+  std::vector<double> absolute(const std::vector<double>& xs) const {
+    std::vector<double> out = heights(0, xs);
+    const double base = cx_.gamma_factor * datum(0);
+    for (double& w : out) w += base;
+    return out;
+  }
+
   /// sum_{j != i} A g_j (s): the other contacts' action at s (apply_outside each), the far ones
   /// through far_action's tree (many contacts).
   double others_action(std::size_t i, double s) const {

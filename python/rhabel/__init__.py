@@ -14,6 +14,7 @@ Contents
     load_scene(path)            read a scene JSON file (duplicate keys rejected, as the CLI)
     Record                      the result type: a dict whose keys are also attributes
     Result                      the Record of solve(): repr one line per contact, to_dict()
+    Contact                     the Record of one contact: pressure_at(x), the solved pressure
     gauss_jacobi(n, p, q, ...)  Gauss-Jacobi rule (rhabel::quadrature::gauss_jacobi)
     jacobi_p(n, p, q, x)        Jacobi polynomials, vectorised over x
     rhabel.abel                 spectral solver of the generalized Abel equation
@@ -27,24 +28,25 @@ solve scenes in parallel.
 
 import json as _json
 import math as _math
+import os as _os
 from collections import namedtuple as _namedtuple
 
 from . import _rhabel
-from ._record import Record, Result
-from ._scene import validate as _validate
+from ._record import Contact, Record, Result
+from ._scene import json_text as _json_text
 from . import abel, riemann
 
 __version__ = _rhabel.__version__
 
-__all__ = ["solve", "sweep", "fit_material", "trial_interval", "load_scene", "validate_scene", "Record", "Result", "gauss_jacobi", "GaussJacobiRule",
+__all__ = ["solve", "sweep", "fit_material", "trial_interval", "load_scene", "validate_scene", "Record", "Result", "Contact", "gauss_jacobi", "GaussJacobiRule",
            "jacobi_p", "abel", "riemann", "__version__"]
 
 
 def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acceptance=None, threads=1, time_limit=0,
-          layered_below=3e-3):
+          layered_below=3e-3, spacing="uniform"):
     """Solve a scene: rigid indentors sliding together at speed U towards -x over a power-law
     viscoelastic half-space E(t) = E1 t^-alpha (plane strain, steady state). Same schema, same
-    validation and same numbers as ``rhabel solve SCENE.json`` (examples/README.md).
+    validation and same numbers as the command line's ``rhabel solve SCENE.json``: the same code.
 
     Parameters
     ----------
@@ -82,7 +84,7 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
         Instead of ``indentors``, with a ``body``: ``"profile": {"x": [...], "z": [...]}`` (or
         ``{"file": "FILE.csv"}``, two columns x,z, relative to the working directory, or to the
         scene file's directory with load_scene) and optional ``"corners"``: a sampled rigid
-        profile whose contacts are found (examples/README.md, "A sampled (measured) profile").
+        profile whose contacts are found.
         Optional ``"period"`` (> 0: the profile repeats, samples in [x_0, x_0 + period), the load
         is per period) and ``"solver"``: ``"spectral"`` (finite windows; the default without a
         period) or ``"boundary_element"`` (finite or periodic; the default with a period), and for
@@ -94,8 +96,9 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
         "C2": 101.6, "T_ref": 20}, "nu": 0.5, "coulomb": 0.3}`` (``temperature`` and ``wlf``
         together or not at all; the path relative to the working directory, or to the scene
         file's directory with load_scene). The scene is then solved with the power law fitted at
-        the contact frequency U/L, iterated to a fixed point (examples/README.md, "A material from a
-        measured master curve"), by the command line's own code: the result gains
+        the contact frequency U/L, iterated to a fixed point (omega0 = U/L with L the contact
+        length, or the load-weighted patch width of a profile), by the command line's own code:
+        the result gains
         ``material_fit`` (alpha, E1, omega0, the fit's evidence, its ``status``) and its ``scene``
         echoes the fitted alpha and E1.
 
@@ -106,14 +109,25 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
         finite ints or floats (NumPy scalars too), not booleans or strings.
     grid : int
         0 (default): no sampled fields. N >= 2: each indentor also gets ``pressure`` (N points
-        strictly inside its contact) and ``displacement`` (N points on [a - L, b + L]).
+        strictly inside its contact) and ``displacement`` (N points on [a - L, b + L], relative
+        to its value at the leading edge a); several contacts also give ``surface`` {``x``,
+        ``w``}: the whole surface on one grid (N points a contact over the contacts' span widened
+        by the longest contact on either side), in the datum of the contacts' ``approach`` (w =
+        f_i + approach_i on contact i), so that the contacts' displacements join into one curve.
+        Whatever the grid, each contact's ``pressure_at(x)`` evaluates the solved pressure at any
+        points.
     displacement : bool
-        With grid > 0, also the displacement samples (the costlier of the two).
+        With grid > 0, also the displacement samples and the surface (the costlier fields).
+    spacing : "uniform" or "graded"
+        Where the N pressure samples lie: midpoints of N equal cells (default), or Chebyshev
+        points a + L (1 - cos(pi (k + 1/2)/N))/2, dense next to the edges where the pressure
+        vanishes or blows up like a power of the distance (``--grid-spacing`` of the command
+        line).
     tolerance : float in (0, 1)
         Relative tolerance of the root finders and expansions (default 1e-12).
     residual : bool
         Compute the independent residual of the Abel equation (the evidence that the density
-        solves it). False skips it (a quarter to a third of a wedge solve); residuals are NaN.
+        solves it). False skips it (a quarter to a third of a wedge solve); residuals are None.
     acceptance : float in [1e-15, 0.1] or None
         The bar of status "ok" (residual, negative pressure, load defect, error estimate;
         default None: 1e-9, and 1e-4 for ``profile.solver = "boundary_element"``, a first-order
@@ -131,7 +145,7 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
     layered_below : float >= 0
         Several contacts, fewer than six: neighbours closer than this fraction of the shorter
         contact (default 3e-3) have their coupling solved with poles clustered beyond the facing
-        ends (docs/theory.md section 7), whose cost grows like log(L/gap) instead of the Jacobi
+        ends (a boundary-layer basis), whose cost grows like log(L/gap) instead of the Jacobi
         series' sqrt(L/gap). 0: never; 1: for every pair closer than a contact length. The
         reported density is a Jacobi series either way.
 
@@ -155,19 +169,26 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
           ``side``, ``at``, ``singular``, ``exponent``, ``intensity_factor``: p ~ K d^exponent),
           ``residual`` (relative residual of the Abel equation, an estimate), ``error_estimate``
           (an estimate, not a bound), ``approach`` (several indentors: the rigid approach w - f
-          on the contact [m], w the displacement of docs/theory.md section 7),
+          on the contact [m], w the surface displacement of the kernel's closed-form integral,
+          whose constant a plane-strain half-space leaves free: differences between contacts are
+          meaningful),
           ``degree``, ``status`` ("ok", "not_converged", "tension", "load_mismatch",
           "contacts_merge", "penetration" or "contact_lost": "ok" only when the residual, the sign of the
           pressure, the load and the error estimate pass the acceptance 1e-9),
           ``status_message`` (the numbers behind a non-ok status, or a note);
           with grid > 0 ``pressure`` {``x``, ``p``} and ``displacement`` {``x``, ``w``} as NumPy
           arrays (w: downward displacement relative to the leading edge, = f(x) - f(a) in contact).
+          Each contact is a ``Contact`` record: ``pressure_at(x)`` evaluates its solved pressure
+          at any points (a float or an array in, the same out).
+        - ``surface`` {``x``, ``w``} (several contacts, grid > 0, displacement): the whole
+          surface displacement on one grid, in the datum of ``approach``.
         - ``diagnostics``: ``residual`` (max over indentors), ``seconds`` (wall time of the
           solve), ``iterations`` (Newton iterations of the coupled solve), ``status`` (the
           worst of the indentors' and the coupled solve's), ``status_message``.
         - ``scene``: the validated scene, defaults filled in.
         - With a profile: ``contacts`` instead of ``indentors`` (each with its ``tip``, the
-          highest sample inside it, and the fields above but ``shape``/``name``), ``clearance``
+          highest sample inside it, and the fields above but ``shape``/``name``), ``surface``,
+          ``clearance``
           {``min``, ``at``} (the smallest gap between surface and profile at the samples outside
           the contacts, relative to max z - min z), ``penetrations`` (where the profile
           penetrates the surface outside the contacts found: the contacts a result that is not
@@ -216,71 +237,13 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
     layered_below = float(layered_below)
     if not (layered_below >= 0 and layered_below < float("inf")):
         raise ValueError(f"layered_below = {layered_below!r} must be finite and >= 0 (0: never)")
-    fit = None
-    if _names_master_curve(scene):
-        scene, fit = _fit_material(scene, tolerance, acceptance, time_limit)
-    spec = _validate(scene)
-    if acceptance is None:  # the solver's default, as the command line's
-        bem = "profile" in spec and spec["profile"]["solver"] == "boundary_element"
-        acceptance = 1e-4 if bem else 1e-9
-    if "profile" in spec:
-        profile = spec["profile"]
-        if profile["solver"] == "boundary_element":
-            if grid:
-                raise ValueError('grid samples the fields of profile.solver "spectral"; the boundary-element solver '
-                                 "reports its patches only")
-            result = _rhabel._solve_profile_bem(spec, acceptance, time_limit)
-        else:
-            result = _rhabel._solve_profile(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance,
-                                            threads, time_limit, layered_below)
-        # The command line's echo of a profile: the samples stand as their count and range.
-        echo = Record({k: v for k, v in spec.items() if k != "profile"})
-        echo["profile"] = Record({**({"file": profile["file"]} if "file" in profile else {}),
-                                  "samples": len(profile["x"]), "x_range": [profile["x"][0], profile["x"][-1]],
-                                  "corners": profile["corners"],
-                                  **({"period": profile["period"]} if "period" in profile else {}),
-                                  "solver": profile["solver"],
-                                  **({"max_panels": profile["max_panels"]} if "max_panels" in profile else {})})
-        result["scene"] = echo
-        if fit is not None:
-            result["material_fit"] = Record(fit)
-        return Result(result)
-    result = _rhabel._solve(spec, grid, bool(displacement), float(tolerance), bool(residual), acceptance, threads, time_limit,
-                            layered_below)
-    result["scene"] = spec
-    if fit is not None:
-        result["material_fit"] = Record(fit)
-    return Result(result)
-
-
-def _names_master_curve(scene):
-    material = scene.get("material") if isinstance(scene, dict) else None
-    return isinstance(material, dict) and "master_curve" in material
-
-
-def _json_text(value, what):
-    """A scene or a sweep (dicts, lists, numbers, strings, NumPy arrays and scalars) as JSON text
-    for the scene layer; ValueError naming `what` for NaN, infinities or a value JSON has not."""
-    def plain(v):
-        if hasattr(v, "tolist"):
-            return v.tolist()
-        raise TypeError(f"{type(v).__name__} {v!r} is not a JSON value")
-    try:
-        return _json.dumps(value, default=plain, allow_nan=False)
-    except (TypeError, ValueError) as e:
-        raise ValueError(f"{what}: {e}") from None
-
-
-def _fit_material(scene, tolerance, acceptance, time_limit):
-    """The scene with its master curve replaced by the fitted power law, and the fit: the fixed
-    point of the command line (the scene layer, rhabel/scene/material.hpp), which also validates
-    the whole scene with the command line's messages."""
-    text = _json_text(scene, "scene")
-    fit = _rhabel._fit_scene_material(text, float(tolerance), 0.0 if acceptance is None else acceptance, time_limit)
-    fitted = dict(scene)
-    material = {k: v for k, v in scene["material"].items() if k not in ("master_curve", "temperature", "wlf")}
-    fitted["material"] = {"alpha": fit["alpha"], "E1": fit["E1"], **material}
-    return fitted, fit
+    if spacing not in ("uniform", "graded"):
+        raise ValueError(f'spacing = {spacing!r} must be "uniform" or "graded"')
+    if acceptance is None:
+        acceptance = 0.0  # the solver's default, as the command line's (1e-9; 1e-4 by the boundary-element method)
+    return Result(_rhabel._solve_scene(_json_text(scene, "scene"), _os.getcwd(), grid, bool(displacement),
+                                       float(tolerance), bool(residual), acceptance, threads, time_limit, layered_below,
+                                       spacing == "graded"))
 
 
 def sweep(sweep, out=None, threads=0, progress=True, tolerance=1e-12, acceptance=None, time_limit=0):
@@ -289,7 +252,7 @@ def sweep(sweep, out=None, threads=0, progress=True, tolerance=1e-12, acceptance
     Parameters
     ----------
     sweep : dict, or a path to a sweep JSON file
-        The sweep schema of examples/README.md ("Sweeps"): ``{"scene": {...} or "FILE.json",
+        The sweep schema of ``rhabel sweep``: ``{"scene": {...} or "FILE.json",
         "axes": [{"path": "speed", "log_range": {"from": 1e-6, "to": 100, "count": 41}}, ...],
         "combine": "product" or "zip"}``. Relative files (the scene, a master curve, a profile)
         are relative to the sweep file, or to the working directory for a dict.
@@ -354,7 +317,7 @@ def sweep(sweep, out=None, threads=0, progress=True, tolerance=1e-12, acceptance
 def fit_material(curve, speed, length, temperature=None, wlf=None, window_decades=0.5, threshold=0.05):
     """The local power law E(t) = E1 t^-alpha of a measured master curve at omega0 = speed/length:
     ``rhabel fit-material CURVE --speed U --length L [--temperature T --wlf C1,C2,T_ref] --json``,
-    by the same code (examples/README.md, "A material from a measured master curve").
+    by the same code.
 
     Parameters
     ----------
@@ -476,8 +439,8 @@ def trial_interval(scene, a, b, tolerance=1e-12):
     vanishes), so the load and C_f are the solution's.
 
     Section 4 of the paper conjectures that among the trial intervals carrying a given load, C_f
-    is stationary at the true one (docs/theory.md section 8; notebooks/two_indentors.ipynb
-    measures it for the parabola and the wedge).
+    is stationary at the true one (the notebook two_indentors of the source distribution measures
+    it for the parabola and the wedge).
 
     Parameters
     ----------
@@ -508,17 +471,18 @@ def trial_interval(scene, a, b, tolerance=1e-12):
     >>> t = rhabel.trial_interval(sc, -0.6, 0.5)
     >>> t.load, t.hysteretic_friction
     """
-    spec = _validate(scene)
-    if len(spec["indentors"]) != 1:
-        raise ValueError(f"trial_interval: the scene has {len(spec['indentors'])} indentors; "
-                         "a trial interval belongs to exactly one")
+    text = _json_text(scene, "scene")
+    spec = _rhabel._validate_scene(text, _os.getcwd())
+    if "indentors" not in spec or len(spec["indentors"]) != 1:
+        count = len(spec["indentors"]) if "indentors" in spec else "no"
+        raise ValueError(f"trial_interval: the scene has {count} indentors; a trial interval belongs to exactly one")
     if not (0 < tolerance < 1):
         raise ValueError(f"trial_interval: tolerance = {tolerance!r} is outside the valid range (0, 1)")
     a, b = _finite(a, "a"), _finite(b, "b")
     if not _math.isfinite(b - a):
         raise ValueError(f"trial_interval: b - a = {b!r} - {a!r} overflows a double: the interval must be shorter")
     try:
-        result = _rhabel._trial_interval(spec, a, b, float(tolerance))
+        result = _rhabel._trial_interval(text, _os.getcwd(), a, b, float(tolerance))
     except OverflowError as e:
         raise ValueError(f"trial_interval: the interval [a, b] = [{a!r}, {b!r}] takes the field beyond the double "
                          f"range ({e})") from None
@@ -550,8 +514,9 @@ def _grid(grid):
 
 def validate_scene(scene):
     """The scene as rhabel.solve validates it (a new dict, numbers as floats, ``apex`` filled
-    in). Raises ValueError naming the first offending field."""
-    return _validate(scene)
+    in, a profile's file read into its samples ``x`` and ``z``): the command line's parser and
+    checks. Raises ValueError naming the first offending field."""
+    return _rhabel._validate_scene(_json_text(scene, "scene"), _os.getcwd())
 
 
 def load_scene(path):
@@ -598,7 +563,7 @@ def gauss_jacobi(n, p, q, lo=-1.0, hi=1.0):
     1 + x, accurate even where x itself keeps only a few digits of them: use them for endpoint
     factors such as (1 - x)^p) and ``weight``.
 
-    Accuracy (measured against 60-digit tables, rhabel/quadrature/gauss_jacobi.hpp): for
+    Accuracy (measured against tables computed to 60 digits): for
     p, q in (-1, 5] and n <= 10^6 every weight and min(1 - x, 1 + x) to <= 45 eps relative
     (worst measured 8.9 and 3.2 eps). O(n): n = 10^4 in ~0.6 ms, 10^6 in ~60-90 ms.
     Raises ValueError for n = 0 or above 10^6 (checked before allocating), p or q outside (-1, 30],
@@ -615,8 +580,8 @@ def jacobi_p(n, p, q, x):
 
     Three-term recurrence, in Reinsch's difference form near the ends and the endpoint
     hypergeometric series in the boundary layers n^2 (1 -+ x) <= 2: relative error O(n eps)
-    away from the zeros (measured <= 0.3 (n + 10) eps relative to the local scale for n <= 10^6,
-    rhabel/quadrature/jacobi_polynomial.hpp). Raises ValueError for p or q <= -1 or a non-finite
+    away from the zeros (measured <= 0.3 (n + 10) eps relative to the local scale for n <= 10^6).
+    Raises ValueError for p or q <= -1 or a non-finite
     x, OverflowError when the value exceeds the double range (|x| far beyond 1). Releases the GIL.
     """
     return _rhabel.jacobi_p(n, p, q, x)

@@ -1,12 +1,13 @@
 # Type stubs of the package rhabel (the implementation: __init__.py and the extension _rhabel).
 from os import PathLike
-from typing import IO, Any, Mapping, NamedTuple, Sequence, Union, overload
+from typing import IO, Any, Literal, Mapping, NamedTuple, Sequence, Union, overload
 
 import numpy as np
 import numpy.typing as npt
 
 from . import abel as abel
 from . import riemann as riemann
+from ._record import Contact as Contact
 from ._record import Record as Record
 from ._record import Result as Result
 
@@ -17,7 +18,7 @@ __all__: list[str]
 
 def solve(scene: Mapping[str, Any], grid: int = ..., displacement: bool = ..., tolerance: float = ...,
           residual: bool = ..., acceptance: float | None = ..., threads: int = ..., time_limit: float = ...,
-          layered_below: float = ...) -> Result: ...
+          layered_below: float = ..., spacing: Literal["uniform", "graded"] = ...) -> Result: ...
 def sweep(sweep: Union[Mapping[str, Any], str, PathLike[str]], out: Union[str, PathLike[str], None] = ...,
           threads: int = ..., progress: bool = ..., tolerance: float = ..., acceptance: float | None = ...,
           time_limit: float = ...) -> list[Record]: ...

@@ -67,6 +67,24 @@ def _plain(value, keep_arrays=False):
     return value
 
 
+class Contact(Record):
+    """The Record of one contact (an indentor's, or a contact of a sampled profile), with its
+    solved pressure as a function: ``pressure_at(x)``."""
+
+    __slots__ = ("_pressure",)
+
+    def pressure_at(self, x):
+        """The solved contact pressure p(x) [Pa] at any abscissae x (a float, or any array-like:
+        an array of the same shape), evaluated from the solution itself (its spectral density),
+        not interpolated from samples: equal to the ``pressure`` samples at their abscissae (to
+        rounding), 0 outside the open contact interval, +inf at a singular point inside (a wedge's
+        apex below the boundary). Accuracy: the density's, ``error_estimate`` relative to the peak
+        (an estimate). ValueError for a non-finite x. Releases the GIL."""
+        xs = np.asarray(x, dtype=float)
+        p = self._pressure(np.ascontiguousarray(xs.ravel())).reshape(xs.shape)
+        return float(p) if xs.ndim == 0 else p
+
+
 class Result(Record):
     """The result of rhabel.solve: a Record (a dict whose keys are also attributes) whose repr is
     a short summary, one line for the solve and one per contact (interval, load, C_f, status), at

@@ -13,7 +13,7 @@ g ~ (t - a)^gam at a and (b - t)^del at b:
 with index nu = -(gam + del + alpha): -1 (bounded at both ends: exists iff F satisfies one
 orthogonality condition, reported as solvability_defect), 0, or +1 (unbounded at both: one free
 constant, fixed by ``load`` = int g). "unbounded" at the leading edge needs 2 alpha + beta < 1.
-Theory and measured accuracy: abel/include/rhabel/abel/abel_solver.hpp.
+Theory and measured accuracy: the header rhabel/abel/abel_solver.hpp of the C++ library.
 """
 
 from ._rhabel import abel as _abel

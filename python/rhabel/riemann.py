@@ -6,7 +6,8 @@ solved through a scalar Riemann-Hilbert problem with Cauchy integrals and an ele
 inversion: independent of rhabel.abel by its method (no spectral relation, no Jacobi expansion of
 F), so the two solvers check each other. F = smooth part + steps (the wedge is one step). Every
 value is returned with an error estimate (|value at order n - value at order 3n/2|: an estimate,
-not a bound). Theory and measured accuracy: riemann/include/rhabel/riemann/abel_solver.hpp.
+not a bound). Theory and measured accuracy: the header rhabel/riemann/abel_solver.hpp of the C++
+library.
 """
 
 from ._rhabel import riemann as _riemann

@@ -1,13 +1,18 @@
 // python/src/bind_scene.cpp: the scene layer (rhabel/scene.hpp) for the Python package, the same
 // code as the command line's:
-//   _rhabel._fit_scene_material(text, tolerance, acceptance, time_limit): the master-curve fixed
-//     point of a scene given as JSON text (`rhabel solve` then solves the scene with the fitted
-//     power law, and so does rhabel.solve);
 //   _rhabel._fit_material(curve, speed, length, temperature, wlf, window_decades, threshold): the
 //     local power law of a master curve at omega0 = U/L, the JSON of `rhabel fit-material --json`;
 //   _rhabel._Sweep(text, source, directory): a sweep file parsed and validated; .run(...) solves its
 //     rows on a pool of threads (into a resumable output file or not) and returns their lines, the
-//     lines of `rhabel sweep`.
+//     lines of `rhabel sweep`;
+//   _rhabel._solve_scene(text, directory, ...): `rhabel solve`: the scene parsed and validated,
+//     solved (a master curve's fixed point first) and its result document as nested Records, the
+//     sampled fields as NumPy arrays;
+//   _rhabel._validate_scene(text, directory): the validated scene, as the document echoes it;
+//   _rhabel._trial_interval(text, directory, a, b, tolerance): punch::trial_interval for the
+//     scene's one indentor.
+// Scenes arrive as JSON text (python/rhabel/_scene.py turns a dict into it), so that one parser
+// with its one-line messages serves the command line and Python.
 #include "bindings.hpp"
 
 #include <rhabel/scene.hpp>
@@ -20,6 +25,7 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <variant>
 #include <vector>
 
 namespace rhabel::python {
@@ -45,26 +51,124 @@ py::object to_python(const nlohmann::ordered_json& value) {
   return py::none();
 }
 
-py::object fit_scene_material(const std::string& text, double tolerance, double acceptance, double time_limit) {
-  scene::scene_spec spec;
+/// The message of the scene layer's input_error without the command's "solve: " prefix (the
+/// command line prints "rhabel: solve: " before it; Python raises it as it is).
+std::string without_command(const char* what) {
+  const std::string_view text(what), prefix("solve: ");
+  return std::string(text.substr(0, prefix.size()) == prefix ? text.substr(prefix.size()) : text);
+}
+
+/// A scene parsed by the scene layer; its refusal a ValueError. Relative files (a profile's CSV,
+/// a master curve) are relative to `directory`.
+scene::scene_spec parse(const std::string& text, const std::string& directory) {
   try {
-    // A relative master_curve is relative to the working directory (rhabel.load_scene makes it
-    // absolute against the scene file's directory, as the command line does).
-    spec = scene::parse_scene(text, "scene", "");
+    return scene::parse_scene(text, "(dict)", directory);
   } catch (const scene::input_error& e) {
-    throw py::value_error(e.what());
+    throw py::value_error(without_command(e.what()));
   }
+}
+
+/// rhabel._record.Record, the result's dict type with attribute access.
+py::object record_type() {
+  static const py::object* type = nullptr;  // the GIL serialises the first call
+  if (type == nullptr) type = new py::object(py::module_::import("rhabel._record").attr("Record"));
+  return *type;
+}
+
+/// The result document as Python objects: objects as Records, arrays as lists, a contact's
+/// interval (a, b) as a tuple, and the placeholders of sampled fields as the NumPy arrays
+/// themselves (moved out of `outcome`).
+py::object to_records(const nlohmann::ordered_json& value, scene::run_outcome& outcome) {
+  if (value.is_object()) {
+    py::object out = record_type()();
+    for (const auto& [key, item] : value.items()) {
+      if (key == "contact" && item.is_array() && item.size() == 2) {
+        out[py::str(key)] = py::make_tuple(item[0].get<double>(), item[1].get<double>());
+      } else {
+        out[py::str(key)] = to_records(item, outcome);
+      }
+    }
+    return out;
+  }
+  if (value.is_array()) {
+    py::list out;
+    for (const auto& item : value) out.append(to_records(item, outcome));
+    return out;
+  }
+  if (value.is_string()) {
+    const auto& text = value.get_ref<const std::string&>();
+    if (std::vector<double>* array = outcome.array(text)) return to_numpy(std::move(*array));
+    return py::str(text);
+  }
+  return to_python(value);
+}
+
+/// rhabel._record.Contact: the Record of a contact, with pressure_at.
+py::object contact_type() {
+  static const py::object* type = nullptr;  // the GIL serialises the first call
+  if (type == nullptr) type = new py::object(py::module_::import("rhabel._record").attr("Contact"));
+  return *type;
+}
+
+/// The contacts of the document (`key`: "indentors" or "contacts") as Contact records holding
+/// their solved pressure (pressure_at).
+void attach_pressure(py::object& result, const char* key, const std::vector<punch::indentor_result>& solved) {
+  if (!result.contains(key)) return;
+  py::list items = result[key];
+  for (std::size_t i = 0; i < solved.size() && i < items.size(); ++i) {
+    py::object contact = contact_type()(items[i]);
+    contact.attr("_pressure") = py::cast(solved[i].pressure_at);
+    items[i] = contact;
+  }
+}
+
+py::object solve_scene(const std::string& text, const std::string& directory, std::size_t grid, bool displacement,
+                       double tolerance, bool residual, double acceptance, std::size_t threads, double time_limit,
+                       double layered_below, bool graded) {
+  const scene::scene_spec spec = parse(text, directory);
   scene::run_request request;
+  request.grid = grid;
+  request.displacement = displacement;
   request.tolerance = tolerance;
+  request.residual = residual;
   request.acceptance = acceptance;
+  request.threads = threads;
   request.time_limit = time_limit;
-  scene::material_fit_report report;
+  request.layered_below = layered_below;
+  request.spacing = graded ? punch::sample_spacing::graded : punch::sample_spacing::uniform;
+  scene::run_outcome outcome;
   try {
-    report = run_interruptible(request, [&] { return scene::fit_scene_material(spec, request); });
+    outcome = run_interruptible(request, [&] { return scene::run_scene_with_material(spec, request); });
   } catch (const scene::input_error& e) {
-    throw py::value_error(e.what());
+    throw py::value_error(without_command(e.what()));
   }
-  return to_python(scene::material_fit_json(*spec.material.curve, report));
+  py::object result = to_records(outcome.result, outcome);
+  if (const auto* r = std::get_if<punch::scene_result>(&outcome.solved)) attach_pressure(result, "indentors", r->indentors);
+  if (const auto* r = std::get_if<punch::profile_result>(&outcome.solved)) attach_pressure(result, "contacts", r->contacts);
+  return result;
+}
+
+/// punch::trial_interval for the scene's single indentor on [a, b] (checked by the caller: one
+/// indentor, a < b finite); a Record {load, hysteretic_friction, error_estimate}.
+py::object trial_interval(const std::string& text, const std::string& directory, double a, double b, double tolerance) {
+  const punch::scene s = scene::punch_scene(parse(text, directory));
+  punch::solve_options options;
+  options.tolerance = tolerance;
+  punch::trial_result result;
+  {
+    py::gil_scoped_release nogil;
+    result = punch::trial_interval(s.material, s.speed, s.indentors.front(), a, b, options);
+  }
+  py::object out = record_type()();
+  out["load"] = result.load;
+  out["hysteretic_friction"] = result.hysteretic_friction;
+  out["error_estimate"] = result.error_estimate;
+  return out;
+}
+
+py::object validate_scene(const std::string& text, const std::string& directory) {
+  scene::run_outcome none;  // no sampled fields
+  return to_records(scene::scene_json(parse(text, directory), true), none);
 }
 
 /// `rhabel fit-material --json` (the scene layer's fit_material); arguments checked by the caller.
@@ -101,7 +205,7 @@ class sweep_handle {
   std::vector<std::string> columns() const { return scene::row_columns(spec_); }
   std::string row_scene(std::size_t row) const {
     if (row >= spec_.rows) throw py::index_error("row " + std::to_string(row) + " of " + std::to_string(spec_.rows));
-    return scene::row_scene(spec_, row);
+    return scene::row_scene(spec_, row).dump();
   }
 
   /// Solves the rows (those missing from `out` when it is given: resumed as by `rhabel sweep`) on
@@ -197,8 +301,12 @@ void bind_scene(py::module_& m) {
       .def("row_scene", &sweep_handle::row_scene, py::arg("row"))
       .def("run", &sweep_handle::run, py::arg("out"), py::arg("jsonl"), py::arg("threads"), py::arg("tolerance"),
            py::arg("acceptance"), py::arg("time_limit"), py::arg("progress"));
-  m.def("_fit_scene_material", &fit_scene_material, py::arg("text"), py::arg("tolerance"), py::arg("acceptance"),
-        py::arg("time_limit"));
+  m.def("_solve_scene", &solve_scene, py::arg("text"), py::arg("directory"), py::arg("grid"), py::arg("displacement"),
+        py::arg("tolerance"), py::arg("residual"), py::arg("acceptance"), py::arg("threads"), py::arg("time_limit"),
+        py::arg("layered_below"), py::arg("graded"));
+  m.def("_validate_scene", &validate_scene, py::arg("text"), py::arg("directory"));
+  m.def("_trial_interval", &trial_interval, py::arg("text"), py::arg("directory"), py::arg("a"), py::arg("b"),
+        py::arg("tolerance"));
 }
 
 }  // namespace rhabel::python

@@ -100,7 +100,7 @@ nlohmann::ordered_json fitted_material_json(const material_fit_request& request,
   ordered_json doc = {{"alpha", f.alpha}, {"E1", f.E1}, {"omega0", f.omega0},
                       {"alpha_slope", f.alpha_slope}, {"alpha_tan_delta", f.alpha_tan_delta},
                       {"modulus", f.modulus}, {"window", {f.window_lo, f.window_hi}},
-                      {"status", f.status}, {"warning", f.warning},
+                      {"status", materials::to_string(f.status)}, {"warning", f.warning},
                       {"master_curve", request.curve_path}, {"points", fitted.curve.omega.size()}};
   if (fitted.log10_aT) {
     doc["temperature"] = request.temperature;
@@ -124,7 +124,7 @@ nlohmann::ordered_json material_fit_json(const master_curve_spec& spec, const ma
   fit["window"] = {report.fit.window_lo, report.fit.window_hi};
   fit["contact_length"] = report.contact_length;
   fit["iterations"] = report.iterations;
-  fit["status"] = report.status;
+  fit["status"] = materials::to_string(report.status);
   fit["warning"] = report.warning;
   return fit;
 }
@@ -185,7 +185,7 @@ material_fit_report fit_scene_material(const scene_spec& scene, const run_reques
   report.contact_length = fp.contact_length;
   report.iterations = fp.iterations;
   if (spec.shifted) report.log10_aT = materials::wlf_log10_shift({spec.C1, spec.C2, spec.T_ref}, spec.temperature);
-  report.status = fp.converged ? fp.fit.status : "not_converged";
+  report.status = fp.converged ? fp.fit.status : materials::fit_status::not_converged;
   report.warning = fp.converged ? fp.fit.warning
                                 : "the fixed point omega0 = U/L did not converge in " + std::to_string(fp.iterations) +
                                       " solves";
@@ -202,9 +202,9 @@ run_outcome run_scene_with_material(const scene_spec& scene, const run_request& 
   trial.material.E1 = report.fit.E1;
   run_outcome out = run_scene(trial, request);
   out.result["material_fit"] = material_fit_json(spec, report);
-  if (report.status != "ok") {
+  if (report.status != materials::fit_status::ok) {
     out.ok = false;
-    if (warning) *warning = report.status + ": " + report.warning;
+    if (warning) *warning = std::string(materials::to_string(report.status)) + ": " + report.warning;
   }
   out.fit = std::move(report);
   return out;

@@ -72,6 +72,17 @@ void check_bytes(std::string_view text, const std::string& source) {
   }
 }
 
+// A value (at nesting level `level`, the top-level being 1) nested deeper than max_scene_depth;
+// the recursion stops there, so it is bounded whatever the value.
+bool nested_deeper(const json& value, std::size_t level) {
+  if (!value.is_structured()) return false;
+  if (level > max_scene_depth) return true;
+  for (const auto& item : value) {
+    if (nested_deeper(item, level + 1)) return true;
+  }
+  return false;
+}
+
 // The scene's syntax is checked by nlohmann-json; this callback adds what it does not check:
 // duplicate keys. It tracks the path of the value being parsed so that the message can name it.
 class duplicate_key_guard {
@@ -423,6 +434,13 @@ scene_spec parse_scene(std::string_view text, const std::string& source, const s
     if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
     fail_scene(guard.path() + " is out of range: " + what + " (numbers must be finite doubles)");
   }
+  return parse_scene_value(root, source, base_dir);
+}
+
+scene_spec parse_scene_value(const nlohmann::json& root, const std::string& source, const std::string& base_dir) {
+  if (nested_deeper(root, 1))
+    fail_scene("scene " + source + " nests arrays and objects deeper than the limit of " + std::to_string(max_scene_depth) +
+               " levels");
   if (!root.is_object()) fail_scene("scene " + source + ": the top level must be a JSON object {...}, got " + type_of(root));
   only_keys(root, "", {"description", "material", "speed", "body", "indentors", "profile"});
 

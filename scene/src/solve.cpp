@@ -39,27 +39,7 @@ punch::material to_punch(const material_spec& m) {
   return out;
 }
 
-punch::scene to_punch(const scene_spec& spec) {
-  punch::scene s;
-  s.material = to_punch(spec.material);
-  s.speed = spec.speed;
-  if (spec.body_load) s.body = punch::rigid_body{*spec.body_load};
-  for (const auto& d : spec.indentors) {
-    punch::indentor ind;
-    if (!spec.body_load) ind.load = d.load;
-    ind.apex = d.apex;
-    ind.height = d.height;
-    switch (d.shape) {
-      case shape_kind::parabolic: ind.shape = punch::parabolic{d.radius}; break;
-      case shape_kind::wedge: ind.shape = punch::wedge{d.slope_leading, d.slope_trailing}; break;
-      case shape_kind::flat: ind.shape = punch::flat{d.width}; break;
-    }
-    s.indentors.push_back(std::move(ind));
-  }
-  return s;
-}
-
-ordered_json echo_scene(const scene_spec& spec) {
+ordered_json echo_scene(const scene_spec& spec, bool samples) {
   ordered_json material = {{"alpha", spec.material.alpha},
                            {"E1", spec.material.E1},
                            {"nu", spec.material.nu},
@@ -95,8 +75,13 @@ ordered_json echo_scene(const scene_spec& spec) {
     // range and file stand for them.
     ordered_json profile;
     if (!spec.profile->file.empty()) profile["file"] = spec.profile->file;
-    profile["samples"] = spec.profile->x.size();
-    if (!spec.profile->x.empty()) profile["x_range"] = {spec.profile->x.front(), spec.profile->x.back()};
+    if (samples) {
+      profile["x"] = spec.profile->x;
+      profile["z"] = spec.profile->z;
+    } else {
+      profile["samples"] = spec.profile->x.size();
+      if (!spec.profile->x.empty()) profile["x_range"] = {spec.profile->x.front(), spec.profile->x.back()};
+    }
     profile["corners"] = spec.profile->corners;
     if (spec.profile->period > 0) profile["period"] = spec.profile->period;
     profile["solver"] = spec.profile->boundary_element ? "boundary_element" : "spectral";
@@ -157,13 +142,24 @@ auto solve_or_refuse(Solve&& solve) {
   }
 }
 
+// The surface of several contacts on one grid, when sampled: "surface": {"x", "w"} and the table.
+void add_surface(run_outcome& out, std::vector<double>&& x, std::vector<double>&& w) {
+  if (x.empty()) return;
+  if (x.size() != w.size()) throw std::runtime_error("solve: the solver returned a surface grid of mismatched sizes");
+  require_finite(x, "result.surface.x");
+  require_finite(w, "result.surface.w");
+  out.result["surface"] = {{"x", out.grid_token + "s0x"}, {"w", out.grid_token + "s0v"}};
+  out.surface.columns = {"x", "displacement"};
+  out.surface.fields.push_back({0, std::move(x), std::move(w)});
+}
+
 // The head of a result document: the material's regime and the effective modulus.
 template <class Result>
 void begin_document(run_outcome& out, const run_request& request, const Result& r, double effective_modulus) {
   if (request.grid > 0) out.grid_token = make_grid_token();
   out.result["beta"] = r.beta;
   out.result["kappa"] = r.kappa;
-  out.result["regime"] = r.regime;
+  out.result["regime"] = punch::to_string(r.regime);
   out.result["effective_modulus"] = effective_modulus;
 }
 
@@ -171,15 +167,16 @@ void begin_document(run_outcome& out, const run_request& request, const Result& 
 // scene; every number checked finite.
 void finish_document(run_outcome& out, const scene_spec& spec, punch::status_code code) {
   out.ok = code == punch::status_code::ok;
-  out.result["scene"] = echo_scene(spec);
+  out.result["scene"] = echo_scene(spec, false);
   require_finite(out.result, "result");
 }
 
 // The tail of a result document: the diagnostics (with `rounds` and `load_fraction` for a
 // profile's search: the fields its diagnostics have), then finish_document.
 template <class Diagnostics>
-void end_document(run_outcome& out, const scene_spec& spec, const Diagnostics& d) {
-  ordered_json diagnostics = {{"residual", d.residual}, {"seconds", d.seconds}};
+void end_document(run_outcome& out, const scene_spec& spec, const run_request& request, const Diagnostics& d) {
+  ordered_json diagnostics = {{"residual", request.residual ? ordered_json(d.residual) : ordered_json(nullptr)},
+                              {"seconds", d.seconds}};
   if constexpr (requires { d.rounds; }) diagnostics["rounds"] = d.rounds;
   diagnostics["iterations"] = d.iterations;
   diagnostics["status"] = punch::to_string(d.code);
@@ -190,10 +187,13 @@ void end_document(run_outcome& out, const scene_spec& spec, const Diagnostics& d
 }
 
 // The fields of one contact's result (an indentor's, or a contact of a profile); its sampled
-// arrays go to out's tables as field `index`, with placeholders numbered by `arrays`.
+// arrays go to out's tables as field `index`, the document holding their placeholders
+// (run_outcome::array).
 ordered_json contact_item(punch::indentor_result& ir, std::size_t index, const std::string& where, const run_request& request,
-                          run_outcome& out, std::size_t& arrays) {
-  auto placeholder = [&] { return out.grid_token + std::to_string(arrays++); };
+                          run_outcome& out) {
+  auto placeholder = [&](char table, char part) {
+    return out.grid_token + table + std::to_string(index) + part;
+  };
   ordered_json item;
   item["contact"] = {ir.a, ir.b};
   item["contact_length"] = ir.contact_length;
@@ -211,7 +211,8 @@ ordered_json contact_item(punch::indentor_result& ir, std::size_t index, const s
   ordered_json edges = ordered_json::array();
   for (const auto& e : ir.edges) edges.push_back(edge_json(e));
   item["edges"] = std::move(edges);
-  item["residual"] = ir.residual;
+  // Not computed (run_request::residual false): null, as JSON has no NaN.
+  item["residual"] = request.residual ? ordered_json(ir.residual) : ordered_json(nullptr);
   item["error_estimate"] = ir.error_estimate;
   item["degree"] = ir.degree;
   item["status"] = punch::to_string(ir.code);
@@ -223,16 +224,17 @@ ordered_json contact_item(punch::indentor_result& ir, std::size_t index, const s
     const std::string prefix = "result." + where + ".";
     require_finite(ir.grid_x, prefix + "pressure.x");
     require_finite(ir.pressure, prefix + "pressure.p");
-    require_finite(ir.displacement_x, prefix + "displacement.x");
-    require_finite(ir.displacement, prefix + "displacement.w");
-    item["pressure"] = {{"x", placeholder()}, {"p", placeholder()}};
-    item["displacement"] = {{"x", placeholder()}, {"w", placeholder()}};
+    item["pressure"] = {{"x", placeholder('p', 'x')}, {"p", placeholder('p', 'v')}};
     out.pressure.fields.push_back({index, std::move(ir.grid_x), std::move(ir.pressure)});
-    out.displacement.fields.push_back({index, std::move(ir.displacement_x), std::move(ir.displacement)});
+    if (request.displacement) {
+      require_finite(ir.displacement_x, prefix + "displacement.x");
+      require_finite(ir.displacement, prefix + "displacement.w");
+      item["displacement"] = {{"x", placeholder('d', 'x')}, {"w", placeholder('d', 'v')}};
+      out.displacement.fields.push_back({index, std::move(ir.displacement_x), std::move(ir.displacement)});
+    }
   }
   return item;
 }
-
 
 punch::profile_scene profile_scene_of(const scene_spec& spec) {
   punch::profile_scene ps;
@@ -292,7 +294,6 @@ run_outcome run_profile(const scene_spec& spec, const run_request& request, cons
   run_outcome out;
   auto& doc = out.result;
   begin_document(out, request, r, ps.material.effective_modulus(spec.speed));
-  std::size_t arrays = 0;
   if (!std::isnan(r.body_approach)) doc["body_approach"] = r.body_approach;
   out.pressure.columns = {"contact", "x", "pressure"};
   out.displacement.columns = {"contact", "x", "displacement"};
@@ -300,13 +301,14 @@ run_outcome run_profile(const scene_spec& spec, const run_request& request, cons
   for (std::size_t i = 0; i < r.contacts.size(); ++i) {
     ordered_json item;
     item["tip"] = r.tips[i];
-    item.update(contact_item(r.contacts[i], i, "contacts[" + std::to_string(i) + "]", request, out, arrays));
+    item.update(contact_item(r.contacts[i], i, "contacts[" + std::to_string(i) + "]", request, out));
     contacts.push_back(std::move(item));
   }
   doc["contacts"] = std::move(contacts);
+  add_surface(out, std::move(r.surface_x), std::move(r.surface));
   if (!std::isnan(r.clearance)) doc["clearance"] = {{"min", r.clearance}, {"at", r.clearance_at}};
   doc["penetrations"] = r.penetrations;
-  end_document(out, spec, r.diagnostics);
+  end_document(out, spec, request, r.diagnostics);
   out.solved = std::move(r);
   return out;
 }
@@ -317,6 +319,52 @@ double default_acceptance(const scene_spec& scene) {
   return scene.profile && scene.profile->boundary_element ? 1e-4 : 1e-9;
 }
 
+punch::scene punch_scene(const scene_spec& spec) {
+  punch::scene s;
+  s.material = to_punch(spec.material);
+  s.speed = spec.speed;
+  if (spec.body_load) s.body = punch::rigid_body{*spec.body_load};
+  for (const auto& d : spec.indentors) {
+    punch::indentor ind;
+    if (!spec.body_load) ind.load = d.load;
+    ind.apex = d.apex;
+    ind.height = d.height;
+    switch (d.shape) {
+      case shape_kind::parabolic: ind.shape = punch::parabolic{d.radius}; break;
+      case shape_kind::wedge: ind.shape = punch::wedge{d.slope_leading, d.slope_trailing}; break;
+      case shape_kind::flat: ind.shape = punch::flat{d.width}; break;
+    }
+    s.indentors.push_back(std::move(ind));
+  }
+  return s;
+}
+
+ordered_json scene_json(const scene_spec& scene, bool samples) { return echo_scene(scene, samples); }
+
+const std::vector<double>* run_outcome::array(std::string_view text) const {
+  if (grid_token.empty() || text.size() < grid_token.size() + 3 || text.substr(0, grid_token.size()) != grid_token)
+    return nullptr;
+  const std::string_view rest = text.substr(grid_token.size());
+  const sampled_table* table = rest.front() == 'p'   ? &pressure
+                               : rest.front() == 'd' ? &displacement
+                               : rest.front() == 's' ? &surface
+                                                     : nullptr;
+  const char part = rest.back();
+  if (!table || (part != 'x' && part != 'v')) return nullptr;
+  std::size_t index = 0;
+  for (const char c : rest.substr(1, rest.size() - 2)) {
+    if (c < '0' || c > '9') return nullptr;
+    index = 10 * index + static_cast<std::size_t>(c - '0');
+  }
+  for (const auto& field : table->fields)
+    if (field.indentor == index) return part == 'x' ? &field.x : &field.value;
+  return nullptr;
+}
+
+std::vector<double>* run_outcome::array(std::string_view text) {
+  return const_cast<std::vector<double>*>(std::as_const(*this).array(text));
+}
+
 run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   punch::solve_options options;
   options.grid_points = request.grid;
@@ -324,15 +372,17 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   options.threads = request.threads;
   options.time_limit = request.time_limit;
   options.tolerance = request.tolerance;
+  options.displacement = request.displacement;
+  options.spacing = request.spacing;
+  options.residual = request.residual;
+  options.layered_below = request.layered_below;
   if (request.interrupt) options.interrupt = request.interrupt;
   if (spec.profile)
     return spec.profile->boundary_element ? run_profile_bem(spec, request, options) : run_profile(spec, request, options);
-  punch::scene_result r = solve_or_refuse([&] { return punch::solve(to_punch(spec), options); });
+  punch::scene_result r = solve_or_refuse([&] { return punch::solve(punch_scene(spec), options); });
   run_outcome out;
   auto& doc = out.result;
   begin_document(out, request, r, to_punch(spec.material).effective_modulus(spec.speed));
-  // Placeholder k of the run: pressure x, p, displacement x, w of each indentor in turn.
-  std::size_t arrays = 0;
   if (r.body_approach) doc["body_approach"] = *r.body_approach;
   ordered_json indentors = ordered_json::array();
   out.pressure.columns = {"indentor", "x", "pressure"};
@@ -342,11 +392,12 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
     ordered_json item;
     item["shape"] = shape_name(spec_i.shape);
     if (!spec_i.name.empty()) item["name"] = spec_i.name;
-    item.update(contact_item(r.indentors[i], i, "indentors[" + std::to_string(i) + "]", request, out, arrays));
+    item.update(contact_item(r.indentors[i], i, "indentors[" + std::to_string(i) + "]", request, out));
     indentors.push_back(std::move(item));
   }
   doc["indentors"] = std::move(indentors);
-  end_document(out, spec, r.diagnostics);
+  add_surface(out, std::move(r.surface_x), std::move(r.surface));
+  end_document(out, spec, request, r.diagnostics);
   out.solved = std::move(r);
   return out;
 }
@@ -357,28 +408,22 @@ void write_document(const run_outcome& outcome, bool compact, const std::functio
     write(text);
     return;
   }
-  // The arrays in the order of their placeholders (run_scene numbers them in this order).
-  std::vector<const std::vector<double>*> arrays;
-  for (std::size_t f = 0; f < outcome.pressure.fields.size(); ++f) {
-    arrays.push_back(&outcome.pressure.fields[f].x);
-    arrays.push_back(&outcome.pressure.fields[f].value);
-    arrays.push_back(&outcome.displacement.fields[f].x);
-    arrays.push_back(&outcome.displacement.fields[f].value);
-  }
   const std::string dumped = ordered_json(outcome.grid_token).dump();  // "\u001frhabel-grid-...:"
   const std::string marker = dumped.substr(0, dumped.size() - 1);      // without the closing quote
   std::string buffer;
   std::size_t done = 0;
   for (std::size_t at = text.find(marker); at != std::string::npos; at = text.find(marker, done)) {
     const std::size_t close = text.find('"', at + marker.size());
-    const std::size_t index = std::stoul(text.substr(at + marker.size(), close - at - marker.size()));
+    const std::vector<double>* array =
+        outcome.array(outcome.grid_token + text.substr(at + marker.size(), close - at - marker.size()));
+    if (!array) throw std::logic_error("write_document: a placeholder without its array");
     buffer.assign(text, done, at - done);
     // nlohmann's layout of a non-empty array: "[" then, indented, one element a line ("\n" +
     // indent + 2 spaces before each), "\n" + indent + "]"; compact: "[a,b,...]".
     const std::size_t line = text.rfind('\n', at) + 1;
     const std::size_t indent = text.find_first_not_of(' ', line) - line;
     const std::string separator = compact ? "," : ",\n" + std::string(indent + 2, ' ');
-    const std::vector<double>& values = *arrays.at(index);
+    const std::vector<double>& values = *array;
     buffer += '[';
     if (!compact && !values.empty()) buffer += "\n" + std::string(indent + 2, ' ');
     char number[64];

@@ -194,7 +194,7 @@ sweep_spec parse_sweep(const std::string& text, const std::string& source, const
   absolutize_paths(sweep.base, scene_dir);
   // The base scene must be valid by itself (its errors name the field: "sweep: scene: ...").
   try {
-    const auto spec = parse_scene(sweep.base.dump(), "(base scene)");
+    const auto spec = parse_scene_value(sweep.base, "(base scene)");
     sweep.indentors = spec.indentors.size();
     sweep.profile = spec.profile.has_value();
     // A bad master curve is bad input of the whole sweep (exit 2), not a failed row each time.
@@ -262,7 +262,7 @@ sweep_spec parse_sweep(const std::string& text, const std::string& source, const
       json trial = sweep.base;
       trial[axis.pointer] = axis.values.front();
       try {
-        (void)parse_scene(trial.dump(), "(base scene with " + axis.path + ")");
+        (void)parse_scene_value(trial, "(base scene with " + axis.path + ")");
       } catch (const input_error& e) {
         const std::string what = e.what();
         if (what.find(" " + axis.path + " is not a known field") != std::string::npos) {
@@ -306,11 +306,11 @@ std::vector<json> row_values(const sweep_spec& sweep, std::size_t row) {
   return out;
 }
 
-std::string row_scene(const sweep_spec& sweep, std::size_t row) {
+json row_scene(const sweep_spec& sweep, std::size_t row) {
   json scene = sweep.base;
   const auto values = row_values(sweep, row);
   for (std::size_t k = 0; k < values.size(); ++k) scene[sweep.axes[k].pointer] = values[k];
-  return scene.dump();
+  return scene;
 }
 
 std::vector<std::string> row_columns(const sweep_spec& sweep) {
@@ -397,7 +397,7 @@ std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format forma
   try {
     scene_spec scene;
     try {
-      scene = parse_scene(row_scene(sweep, row), "(row " + std::to_string(row) + ")");
+      scene = parse_scene_value(row_scene(sweep, row), "(row " + std::to_string(row) + ")");
     } catch (const input_error& e) {
       status = "invalid_scene";
       throw;
@@ -415,8 +415,8 @@ std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format forma
     if (outcome.fit) {
       set("omega0", number_text(outcome.fit->fit.omega0));
       set("alpha_tan_delta", number_text(outcome.fit->fit.alpha_tan_delta));
-      if (status == "ok" && outcome.fit->status != "ok") {
-        status = outcome.fit->status;
+      if (status == "ok" && outcome.fit->status != materials::fit_status::ok) {
+        status = materials::to_string(outcome.fit->status);
         message = outcome.fit->warning;
       }
     }

@@ -165,7 +165,7 @@ inline std::vector<exponent_row> measure_exponents(const std::string& shape, dou
   o.displacement = false;
   const scene_result res = solve(s, o);
   const indentor_result& r = res.indentors.at(0);
-  const theory_exponents th = theoretical(shape, alpha, beta, res.regime);
+  const theory_exponents th = theoretical(shape, alpha, beta, rhabel::punch::to_string(res.regime));
 
   std::vector<exponent_row> rows;
   auto row = [&](const std::string& point, double position, double theory) {
@@ -173,7 +173,7 @@ inline std::vector<exponent_row> measure_exponents(const std::string& shape, dou
     e.shape = shape;
     e.alpha = alpha;
     e.beta = beta;
-    e.regime = res.regime;
+    e.regime = rhabel::punch::to_string(res.regime);
     e.point = point;
     e.position = position;
     e.theory = theory;
@@ -284,7 +284,7 @@ inline wedge_row wedge_values(double alpha, double beta) {
   wedge_row w;
   w.alpha = alpha;
   w.beta = beta;
-  w.regime = res.regime;
+  w.regime = rhabel::punch::to_string(res.regime);
   w.eps = r.epsilon.value_or(nan);
   w.L = r.contact_length;
   w.Cf = r.hysteretic_friction;
@@ -325,7 +325,7 @@ inline parabola_row parabola_values(double alpha, double beta) {
   parabola_row p;
   p.alpha = alpha;
   p.beta = beta;
-  p.regime = res.regime;
+  p.regime = rhabel::punch::to_string(res.regime);
   p.L = r.contact_length;
   p.b_over_L = r.b / r.contact_length;
   p.CfR_over_L = r.hysteretic_friction / r.contact_length;

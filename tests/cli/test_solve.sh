@@ -103,6 +103,26 @@ for i, ind in enumerate(r["indentors"]):
 PY
 ls "$tmp"/*.partial > /dev/null 2>&1 && fail "--csv left temporary files"
 
+# several indentors: PREFIX_surface.csv (x,displacement) equal to the document's "surface"
+"$py" - "$tmp/grid.json" "$tmp/run_surface.csv" <<'PY' || fail "--csv surface"
+import csv, json, sys
+r = json.load(open(sys.argv[1]))
+rows = list(csv.DictReader(open(sys.argv[2])))
+assert list(rows[0]) == ["x", "displacement"], list(rows[0])
+assert [float(row["x"]) for row in rows] == r["surface"]["x"] and len(rows) == 2 * 17
+assert [float(row["displacement"]) for row in rows] == r["surface"]["w"]
+PY
+# --grid-spacing graded: Chebyshev points, the first at L sin^2(pi/(4N)) from the leading edge
+"$rhabel" solve "$tmp/scene.json" --grid 17 --grid-spacing graded --compact > "$tmp/graded.json" || fail "--grid-spacing graded"
+"$py" - "$tmp/graded.json" <<'PY' || fail "--grid-spacing graded: abscissae"
+import json, math, sys
+for ind in json.load(open(sys.argv[1]))["indentors"]:
+    a, b = ind["contact"]
+    x = ind["pressure"]["x"]
+    assert abs(x[0] - a - (b - a) * math.sin(math.pi / 68) ** 2) < 1e-12 * (b - a), (x[0], a, b)
+    assert abs(b - x[-1] - (b - a) * math.sin(math.pi / 68) ** 2) < 1e-12 * (b - a)
+PY
+
 # --csv alone implies --grid 201
 "$rhabel" solve "$tmp/scene.json" --csv "$tmp/implied" > /dev/null || fail "--csv without --grid"
 [ "$(wc -l < "$tmp/implied_pressure.csv")" -eq $((2 * 201 + 1)) ] || fail "--csv alone: expected 201 rows per indentor"

@@ -253,5 +253,10 @@ done
 "$rhabel" solve "$tmp/good.json" --csv "" > "$tmp/stdout" 2> "$tmp/stderr"; rc=$?
 [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && grep -q -- "--csv" "$tmp/stderr" || fail "empty --csv: rc $rc, $(cat "$tmp/stderr")"
 
+# --grid-spacing takes uniform or graded only
+"$rhabel" solve "$tmp/good.json" --grid 5 --grid-spacing chebyshev > "$tmp/stdout" 2> "$tmp/stderr"; rc=$?
+[ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && grep -q -- "--grid-spacing" "$tmp/stderr" \
+  || fail "--grid-spacing chebyshev: rc $rc, $(cat "$tmp/stderr")"
+
 [ "$failures" -eq 0 ] && echo "test_solve_errors: all passed"
 exit "$failures"

@@ -27,7 +27,7 @@ namespace {
 void check_row(const rhabel::cli::sweep_spec& sweep, std::size_t row) {
   using namespace rhabel::cli;
   try {
-    (void)parse_scene(row_scene(sweep, row), "(fuzz row)");
+    (void)parse_scene_value(row_scene(sweep, row), "(fuzz row)");
   } catch (const input_error&) {  // the row's status would be invalid_scene
   }
   for (const auto format : {row_format::csv, row_format::jsonl}) {

@@ -84,13 +84,13 @@ TEST_CASE("exact power-law curve: alpha and E1 to 1e-12 anywhere in its range") 
         CHECK(std::fabs(f.E1 / E1 - 1) <= exact_fit_tolerance);
         worst_alpha = std::max({worst_alpha, std::fabs(f.alpha - alpha), std::fabs(f.alpha_tan_delta - alpha)});
         worst_E1 = std::max(worst_E1, std::fabs(f.E1 / E1 - 1));
-        CHECK(f.status == "ok");
+        CHECK(f.status == fit_status::ok);
         CHECK(f.window_lo == doctest::Approx(omega0 / std::sqrt(10.0)).epsilon(1e-13));
         CHECK(f.window_hi == doctest::Approx(omega0 * std::sqrt(10.0)).epsilon(1e-13));
       }
       // Next to the end of the range the window is clipped: still exact, but said so.
       const auto f = fit_at(curve, 5e9);
-      CHECK(f.status == "window_clipped");
+      CHECK(f.status == fit_status::window_clipped);
       CHECK(!f.warning.empty());
       CHECK(std::fabs(f.alpha - alpha) <= exact_fit_tolerance);
       CHECK(std::fabs(f.E1 / E1 - 1) <= exact_fit_tolerance);
@@ -105,7 +105,7 @@ TEST_CASE("a knee (two power laws) is flagged next to it and fitted on its right
   for (const double decades : {-0.3, -0.2, -0.1, 0.1, 0.25}) {  // the window straddles the knee
     CAPTURE(decades);
     const auto f = fit_at(curve, knee_omega * std::pow(10.0, decades));
-    CHECK(f.status == "poor_power_law");
+    CHECK(f.status == fit_status::poor_power_law);
     CHECK(f.warning.find("power law is poor") != std::string::npos);
     CHECK(std::fabs(f.alpha_slope - f.alpha_tan_delta) > fit_options{}.warning_threshold);
   }
@@ -113,14 +113,14 @@ TEST_CASE("a knee (two power laws) is flagged next to it and fitted on its right
     CAPTURE(decades);
     const double omega0 = knee_omega * std::pow(10.0, decades);
     const auto f = fit_at(curve, omega0);
-    CHECK(f.status == "ok");
+    CHECK(f.status == fit_status::ok);
     CHECK(std::fabs(f.alpha - knee_a2) <= exact_fit_tolerance);
     // Right branch: |E*| = B omega^a2, B = A omega_k^(a1 - a2), so E1 = B / Gamma(1 - a2).
     const double E1 = knee_A * std::pow(knee_omega, knee_a1 - knee_a2) / std::tgamma(1 - knee_a2);
     CHECK(std::fabs(f.E1 / E1 - 1) <= exact_fit_tolerance);
   }
   const auto left = fit_at(curve, knee_omega * 1e-2);
-  CHECK(left.status == "ok");
+  CHECK(left.status == fit_status::ok);
   CHECK(std::fabs(left.alpha - knee_a1) <= exact_fit_tolerance);
 }
 
@@ -260,5 +260,5 @@ TEST_CASE("regression: fixed point at the lowest measured frequency (exp(ln omeg
   const auto r = fit_fixed_point(curve, speed, [&](const local_fit&) { return speed / low; }, {}, speed / low);
   CHECK(r.converged);
   CHECK(r.fit.omega0 == low);
-  CHECK(r.fit.status == "window_clipped");
+  CHECK(r.fit.status == fit_status::window_clipped);
 }

@@ -275,7 +275,7 @@ TEST_CASE("two indentors: far apart they behave as single ones; kappa = 0 coupli
   const auto alone = solve_single(boundary, 1.0, indentor{parabolic{1.0}, 1.0, 3.0});
   scene s{boundary, 1.0, {indentor{parabolic{1.0}, 1.0, 0.0}, indentor{parabolic{1.0}, 1.0, 3.0}}};
   const auto r = solve(s);
-  CHECK(r.regime == "boundary");
+  CHECK(r.regime == regime_kind::boundary);
   CHECK(r.kappa == 0.0);
   CHECK(std::abs(r.indentors[1].a - alone.a) < 1e-14);
   CHECK(std::abs(r.indentors[1].b - alone.b) < 1e-14);

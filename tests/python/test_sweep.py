@@ -96,7 +96,7 @@ def test_refusals_name_the_field(edit, words):
 def test_a_value_json_has_not_is_refused():
     bad = json.loads(json.dumps(TWO))
     bad["scene"]["speed"] = object()
-    with pytest.raises(ValueError, match="sweep: object .* is not a JSON value"):
+    with pytest.raises(ValueError, match=r"sweep: scene.speed = <object .* is not a JSON value \(type object\)"):
         rhabel.sweep(bad, progress=False)
 
 

@@ -104,6 +104,17 @@ struct fit_options {
   double warning_threshold = 0.05;   ///< |alpha_slope - alpha_tan_delta| above it: "poor_power_law"
 };
 
+/// What the evidence of a local power-law fit says (the pattern of punch::status_code).
+enum class fit_status {
+  ok,              ///< the two estimates of alpha agree within fit_options::warning_threshold
+  poor_power_law,  ///< they do not: the curve is not a power law over the window
+  window_clipped,  ///< the window had to be clipped at an end of the measured range
+  not_converged,   ///< a scene's fixed point omega0 = U/L did not converge (scene layer)
+};
+
+/// "ok", "poor_power_law", "window_clipped", "not_converged".
+const char* to_string(fit_status status);
+
 /// The local power law at omega0.
 struct local_fit {
   double alpha = 0;            ///< = alpha_slope, in [0, 1)
@@ -114,9 +125,9 @@ struct local_fit {
   double modulus = 0;          ///< |E*(omega0)| [Pa]
   double window_lo = 0;        ///< frequency window actually used [rad/s]
   double window_hi = 0;
-  std::string status = "ok";   ///< "ok", "poor_power_law" or "window_clipped"
+  fit_status status = fit_status::ok;  ///< ok, poor_power_law or window_clipped
   std::string warning;         ///< empty when ok, otherwise one line with the numbers
-  bool ok() const { return status == "ok"; }
+  bool ok() const { return status == fit_status::ok; }
 };
 
 /// Fits the local power law at omega0 (inside the curve's range). Throws std::domain_error for

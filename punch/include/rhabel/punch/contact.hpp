@@ -194,6 +194,7 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -271,9 +272,21 @@ struct scene {
   std::optional<rigid_body> body{};  ///< all indentors on one rigid body (their `load` fields unused)
 };
 
+/// Where the pressure samples of solve_options::grid_points lie in a contact [a, b] of length L.
+enum class sample_spacing {
+  /// Midpoints of n equal cells, a + L (k + 1/2)/n: a table of equal steps.
+  uniform,
+  /// Chebyshev points of the first kind, a + L (1 - cos(pi (k + 1/2)/n))/2: spaced like
+  /// (pi/n)^2 L/16 next to the edges, where the pressure vanishes or blows up like a power of the
+  /// distance, so that plots show the edge behaviour (the first sample of 400 lies 4e-6 L from
+  /// the edge, against 1.25e-3 L on the uniform grid).
+  graded
+};
+
 struct solve_options {
   std::size_t grid_points = 0;  ///< pressure and displacement samples per indentor (0 = none)
   bool displacement = true;     ///< with grid_points > 0: also the displacement grid (the costlier one)
+  sample_spacing spacing = sample_spacing::uniform;  ///< where the pressure samples lie (the displacement's are uniform)
   double tolerance = 1e-12;     ///< relative tolerance of the root finders and of the expansions
   std::size_t max_degree = 128; ///< largest Jacobi degree of a density expansion (cost ~ degree^2);
                                 ///< the wedge's enriched solve may use up to max(2 max_degree + 1, 585) points
@@ -355,6 +368,16 @@ enum class status_code {
 /// "ok", "not_converged", "tension", "load_mismatch", "contacts_merge", "penetration", "contact_lost".
 const char* to_string(status_code code);
 
+/// Where a material lies with respect to alpha + beta/2 = 1/2 (REGIMES at the top).
+enum class regime_kind {
+  below,     ///< alpha + beta/2 < 1/2 (kappa > 0)
+  boundary,  ///< alpha + beta/2 = 1/2 within 1e-12 (kappa = 0)
+  above,     ///< alpha + beta/2 > 1/2 (kappa < 0)
+};
+
+/// "below", "boundary", "above".
+const char* to_string(regime_kind regime);
+
 enum class edge_side { leading, trailing };
 
 /// Behaviour of the pressure at one edge of a contact interval: p ~ K (distance)^exponent.
@@ -370,6 +393,31 @@ struct edge_report {
   double intensity_factor = 0;
 };
 
+/// The solved pressure of a contact as a function: p(x) [Pa] at any abscissae, evaluated from the
+/// density itself (its Jacobi series, apex enrichment and boundary-layer part; an isolated wedge
+/// with its apex near an edge from its Riemann-Hilbert solution, interpolated as the samples are).
+/// At the abscissae of indentor_result::grid_x it gives indentor_result::pressure to rounding (the
+/// shift of a scene far from the origin). 0 outside the open contact (a, b) and for a line load;
+/// +inf at a singular point inside (a wedge's apex below the boundary). Accuracy: the density's,
+/// indentor_result::error_estimate relative to the peak (an estimate, not a bound). Cost: O(degree)
+/// a point, plus a Riemann-Hilbert interpolant (~3 ms) per call for such a wedge. Thread-safe;
+/// copies share the density.
+class pressure_field {
+ public:
+  struct source;  ///< the density and its scale (defined in punch/src)
+  pressure_field() = default;
+  pressure_field(std::shared_ptr<const source> s, double origin) : source_(std::move(s)), origin_(origin) {}
+  /// p(x) at every x. Throws std::invalid_argument for a non-finite x, std::logic_error when
+  /// empty (a default-constructed field).
+  std::vector<double> operator()(const std::vector<double>& x) const;
+  /// False for a default-constructed field (not from a solve).
+  explicit operator bool() const noexcept { return source_ != nullptr; }
+
+ private:
+  std::shared_ptr<const source> source_;
+  double origin_ = 0;  // the solve's coordinates are x - origin (scenes far from 0)
+};
+
 struct indentor_result {
   shape_kind shape = shape_kind::parabolic;  ///< the indentor's shape (a profile's contact: general)
   double a = 0;                     ///< leading edge [m]
@@ -382,8 +430,9 @@ struct indentor_result {
   double peak_pressure = 0;         ///< max p [Pa]; +inf if some point is singular
   double peak_pressure_at = 0;      ///< where the max is attained (the singular point if infinite) [m]
   std::vector<edge_report> edges;   ///< leading then trailing
-  std::vector<double> grid_x;       ///< pressure abscissae, inside [a, b] (empty unless asked)
+  std::vector<double> grid_x;       ///< pressure abscissae, inside [a, b] (empty unless asked; solve_options::spacing)
   std::vector<double> pressure;     ///< p(grid_x) [Pa]
+  pressure_field pressure_at;       ///< p(x) at any x: `r.pressure_at(xs)` (pressure_field)
   std::vector<double> displacement_x;  ///< displacement abscissae, [a - L, b + L] (empty unless asked)
   std::vector<double> displacement;    ///< downward surface displacement relative to its value at
                                        ///< the leading edge a: equals f(x) - f(a) in contact [m]
@@ -407,8 +456,14 @@ struct scene_result {
   std::optional<double> body_approach;
   double beta = 0;
   double kappa = 0;
-  std::string regime;  ///< "below", "boundary" or "above": sign of alpha + beta/2 - 1/2 (see top)
+  regime_kind regime = regime_kind::below;  ///< the sign of alpha + beta/2 - 1/2 (see the top)
   std::vector<indentor_result> indentors;
+  /// Several indentors, with grid_points > 0 and displacement: the downward surface displacement
+  /// w(x) [m] of the whole scene on one grid (grid_points points a contact, uniform over the
+  /// contacts' span widened by the longest contact on either side), in the datum of
+  /// indentor_result::approach: w = f_i(x) + approach_i on contact i (f_i(apex_i) = 0), so that
+  /// the indentors' displacements join into one curve. Empty otherwise.
+  std::vector<double> surface_x, surface;
   struct diagnostics_t {
     double residual = 0;  ///< max over indentors of indentor_result::residual (NaN if not computed)
     double seconds = 0;   ///< wall-clock solve time [s]
@@ -444,8 +499,8 @@ struct trial_result {
 trial_result trial_interval(const material& m, double speed, const indentor& ind, double a, double b,
                             const solve_options& options = {});
 
-/// Regime string of a material: "below", "boundary" or "above" (see the top of this header).
-std::string regime(const material& m);
+/// The regime of a material (see the top of this header).
+regime_kind regime(const material& m);
 
 /// Library version "major.minor.patch".
 const char* version();

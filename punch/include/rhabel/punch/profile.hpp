@@ -143,11 +143,14 @@ struct profile_scene {
 struct profile_result {
   double beta = 0;
   double kappa = 0;
-  std::string regime;
+  regime_kind regime = regime_kind::below;
   /// The contacts found, in the order of x. Each reports contact.hpp's fields; its `approach` is
   /// the rigid approach of the profile's point at its tip.
   std::vector<indentor_result> contacts;
   std::vector<double> tips;  ///< abscissa of the highest tip inside each contact [m]
+  /// Several contacts, with grid_points > 0 and displacement: the surface displacement on one
+  /// grid, as scene_result::surface (its datum that of the contacts' `approach`).
+  std::vector<double> surface_x, surface;
   /// The body's approach: the rigid approach of the profile's highest sample (approach of a
   /// contact + max z - z(tip)); in the Psi datum of contact.hpp (differences are meaningful).
   double body_approach = 0;

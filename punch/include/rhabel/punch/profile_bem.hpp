@@ -95,7 +95,7 @@ struct bem_options {
 struct profile_bem_result {
   double beta = 0;
   double kappa = 0;
-  std::string regime;
+  regime_kind regime = regime_kind::below;
   double period = 0;  ///< the profile's period (0: finite window)
   std::vector<bem_patch> patches;    ///< in the order of a
   bem_estimate hysteretic_friction;  ///< C_f of the body (per period): int z' p / int p

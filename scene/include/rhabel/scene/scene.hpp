@@ -58,6 +58,8 @@
 //   (`indentors[0].radius`), the offending value and the valid range.
 #pragma once
 
+#include <nlohmann/json.hpp>
+
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -143,5 +145,10 @@ struct scene_spec {
 /// syntax, type, range, missing-field, unknown-field or duplicate-key error. Never partial.
 /// `base_dir` is the directory that a relative "master_curve" path is resolved against.
 scene_spec parse_scene(std::string_view text, const std::string& source, const std::string& base_dir = {});
+
+/// parse_scene for a scene already parsed (a sweep's row: its base scene with the axes' values set),
+/// with the same checks and messages, but those of the text itself (NUL bytes, syntax, duplicate
+/// keys), which a value cannot have.
+scene_spec parse_scene_value(const nlohmann::json& scene, const std::string& source, const std::string& base_dir = {});
 
 }  // namespace rhabel::scene

@@ -32,6 +32,10 @@ struct run_request {
   std::size_t threads = 1;   ///< punch::solve_options::threads (rhabel sweep keeps 1: it runs rows in parallel)
   double time_limit = 0;     ///< punch::solve_options::time_limit (seconds; 0 = none)
   double tolerance = 1e-12;  ///< punch::solve_options::tolerance (--tolerance of the command line)
+  bool displacement = true;  ///< punch::solve_options::displacement: with grid > 0, also the displacement samples
+  punch::sample_spacing spacing = punch::sample_spacing::uniform;  ///< punch::solve_options::spacing
+  bool residual = true;      ///< punch::solve_options::residual (false: not computed; the document has null)
+  double layered_below = punch::solve_options{}.layered_below;  ///< punch::solve_options::layered_below
   /// punch::solve_options::interrupt: polled during a solve; returning true stops it with
   /// punch::interrupted (the Python package's Ctrl-C). Empty: never.
   std::function<bool()> interrupt;
@@ -56,7 +60,7 @@ struct material_fit_report {
   double contact_length = 0;     ///< the L of omega0 = U/L at the fixed point
   std::size_t iterations = 0;    ///< solves of the fixed point
   std::optional<double> log10_aT;  ///< the WLF shift, when a temperature was given
-  std::string status;            ///< "ok", "poor_power_law", "window_clipped" or "not_converged"
+  materials::fit_status status = materials::fit_status::ok;  ///< the fit's, or not_converged
   std::string warning;           ///< why, when status is not "ok"
 };
 
@@ -74,8 +78,18 @@ struct run_outcome {
   nlohmann::ordered_json result;  ///< the result document (finite numbers only)
   sampled_table pressure;         ///< indentor,x,pressure (empty unless grid > 0)
   sampled_table displacement;     ///< indentor,x,displacement (empty unless grid > 0)
+  /// x,displacement: the surface of several contacts on one grid (punch::scene_result::surface;
+  /// one field, empty unless grid > 0 and the scene has several contacts)
+  sampled_table surface;
   std::string grid_token;         ///< placeholder prefix of the arrays in `result`
   bool ok = true;                 ///< the result's status is "ok" (else `rhabel solve` exits 3)
+
+  /// The sampled array that a string of `result` stands for (grid_token, then "p", "d" or "s"
+  /// for the pressure, displacement or surface table, the field's index, and "x" or "v" for abscissae or values),
+  /// or nullptr when `text` is no placeholder of this outcome. write_document and the Python
+  /// package put the arrays in their places with it.
+  const std::vector<double>* array(std::string_view text) const;
+  std::vector<double>* array(std::string_view text);
 };
 
 /// The result document as text (indented by 2, or compact), the sampled arrays in their places:
@@ -86,6 +100,13 @@ void write_document(const run_outcome& outcome, bool compact, const std::functio
 /// The bar of status "ok" when none is given: 1e-9, or 1e-4 for a profile solved by the
 /// boundary-element method (first order: 1e-9 would refine to its panel limit and never be ok).
 double default_acceptance(const scene_spec& scene);
+
+/// The punch layer's scene of a validated scene of indentors (not a profile), as run_scene solves it.
+punch::scene punch_scene(const scene_spec& scene);
+
+/// The validated scene as the result document's "scene" echoes it (defaults filled in); a
+/// profile's samples stand as their count and range, or with `samples` as the arrays "x" and "z".
+nlohmann::ordered_json scene_json(const scene_spec& scene, bool samples = false);
 
 /// Solves `scene`. Throws input_error if the solver rejects the scene (e.g. indentors whose
 /// contact intervals would overlap), std::runtime_error if it fails or produces a non-finite

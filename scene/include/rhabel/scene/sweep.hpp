@@ -67,8 +67,8 @@ sweep_spec parse_sweep(const std::string& text, const std::string& source, const
 /// Values of the axes for row i (one per axis).
 std::vector<nlohmann::json> row_values(const sweep_spec& sweep, std::size_t row);
 
-/// The scene of row i as JSON text (compact): the base with the row's values set.
-std::string row_scene(const sweep_spec& sweep, std::size_t row);
+/// The scene of row i: the base with the row's values set (parse_scene takes it as it is).
+nlohmann::json row_scene(const sweep_spec& sweep, std::size_t row);
 
 /// Output format of the rows.
 enum class row_format { csv, jsonl };
