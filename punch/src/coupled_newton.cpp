@@ -5,7 +5,7 @@
 #include "parallel.hpp"
 #include "surface.hpp"
 
-#include "rhabel/abel/detail/broyden_matrix.hpp"
+#include "rhabel/abel/broyden_matrix.hpp"
 
 #include <Eigen/Dense>
 
@@ -284,9 +284,9 @@ class body_far_model {
     for (std::size_t m = 0; m < points; ++m) {
       const double s = grid_.one_plus_x[m] <= grid_.one_minus_x[m] ? a + (b - a) / 2 * grid_.one_plus_x[m]
                                                                   : b - (b - a) / 2 * grid_.one_minus_x[m];
-      values[m] = -abel::detail::cross_kernel(cx.par, c - s);
+      values[m] = -abel::cross_kernel(cx.par, c - s);
     }
-    const auto coefficients = abel::detail::chebyshev_coefficients(values);
+    const auto coefficients = abel::chebyshev_coefficients(values);
     double sum = 0;
     for (std::size_t k = 0; k < points; ++k) sum += coefficients[k] * ell_[j][k];
     return defect_scale_[j] * sum;
@@ -303,7 +303,7 @@ class body_far_model {
  private:
   const problem* pb_;
   const edges* x_;
-  abel::detail::chebyshev_grid<double> grid_;
+  abel::chebyshev_grid<double> grid_;
   std::vector<std::array<double, points>> ell_;
   std::vector<double> defect_scale_, level_scale_;
 };
@@ -472,7 +472,7 @@ struct newton_state {
 
 /// Broyden's matrix with the bookkeeping of its refreshes by a finite-difference Jacobian.
 struct jacobian_state {
-  abel::detail::broyden_matrix<double> J;
+  abel::broyden_matrix<double> J;
   bool fresh = true;
   std::size_t since_fresh = 0;  // accepted steps since the last finite-difference Jacobian
   std::size_t flat = 0;         // accepted steps of the current flat run
@@ -625,7 +625,7 @@ void broyden_steps(newton_state& s) {
   const problem& pb = s.pb;
   const unknowns& u = s.u;
   newton_result& out = s.out;
-  jacobian_state js{abel::detail::broyden_matrix<double>(jacobian(pb, u, out.x, s.ev))};
+  jacobian_state js{abel::broyden_matrix<double>(jacobian(pb, u, out.x, s.ev))};
   const bool colouring = pb.roles.size() > full_width && (!pb.body_load || body_colouring(pb));
   for (std::size_t it = 0; it < 60; ++it) {
     if (pb.cx->out_of_time()) {

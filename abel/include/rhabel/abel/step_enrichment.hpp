@@ -552,10 +552,14 @@ enum class apex_placement {
   centred
 };
 
-namespace detail {
-
-/// Composite quadrature of int_{-1}^{1} over pieces split at the sorted points, with the
-/// end exponent of each piece taken as Gauss-Jacobi weight (see header).
+/// Composite quadrature of int_{-1}^{1} over pieces split at sorted points (the apex x0 of an
+/// enriched density and the points next to it), each piece with its end exponents as Gauss-Jacobi
+/// weight and graded geometrically toward the neighbouring cuts (panel_integrator, numerics.hpp,
+/// `nodes` nodes per panel; the rules are cached per exponent pair, so one integrator serves many
+/// integrals). For integrands analytic on each piece up to singularities at the cuts it converges
+/// like panel_integrator's panels, (3 + sqrt 8)^(-2 nodes): the step enrichment takes
+/// enriched_density::quadrature_nodes() - 4 nodes, which reaches double rounding (the measured
+/// errors of int g in this header's accuracy table include it). Real: as abel_operator.
 template <class Real>
 class split_integrator {
  public:
@@ -600,6 +604,8 @@ class split_integrator {
   std::size_t nodes_;
   mutable std::map<std::pair<double, double>, std::shared_ptr<panel_integrator<Real>>> cache_;
 };
+
+namespace detail {
 
 /// Number of first-kind Chebyshev points, m or m + 1, such that no node lies within `margin` of
 /// the breakpoint x0. Why: the remainder F~ - C A[phi] is continuous at x0, but its two terms are
@@ -950,7 +956,7 @@ Real enriched_density<Real>::integrate_between(Fn&& f, const Real& from, const R
     std::vector<std::size_t> piece_starts;
     for (std::size_t k = 0; k + 1 < all.size(); ++k) {
       const bool first = k == 0, last = k + 2 == all.size();
-      const detail::panel_integrator<Real> rule(last ? smooth.del : Real(0), first ? smooth.gam : Real(0), nodes);
+      const panel_integrator<Real> rule(last ? smooth.del : Real(0), first ? smooth.gam : Real(0), nodes);
       const Real a = all[k], b = all[k + 1], start = a + 1, end = 1 - b;
       if (!inside(a, b)) continue;
       auto factor = factor_on(a, b);
@@ -1050,14 +1056,23 @@ Real enrichment_image_uniform(const enriched_density<Real>& d, const abel_parame
   return total;
 }
 
-/// A~[phi](y) in either mode.
+}  // namespace detail
+
+/// A~[phi](y): the image under the Abel operator of the enrichment phi = w q E of the density d
+/// at the reference point y in (-1, 1), y != x0, on the reference interval [-1, 1] (the physical
+/// image is (L/2)^alpha times it, L the interval's length). By composite quadrature with si
+/// (split at x0 and next to y) for alpha >= normalized_enrichment_threshold, and by the
+/// normalized form (E - 1)/alpha, uniform down to alpha = 0, below it (d.normalized). Accuracy:
+/// that of the quadrature, near double rounding with si of d.quadrature_nodes() - 4 nodes,
+/// except for the cancellation of the two one-sided integrals next to x0, ~eps/(4 alpha)^2
+/// relative on the plain path (solve_step's rounding_floor). Any abel_parameters (alpha in
+/// [0, 1), kappa).
 template <class Real>
 Real enrichment_image_any(const enriched_density<Real>& d, const abel_parameters<Real>& par,
                           const split_integrator<Real>& si, const Real& y) {
-  return d.normalized ? enrichment_image_uniform(d, par, y) : enrichment_image(d, par, si, y);
+  return d.normalized ? detail::enrichment_image_uniform(d, par, y) : detail::enrichment_image(d, par, si, y);
 }
 
-}  // namespace detail
 
 /// A g at any s (inside: spectral part + direct quadrature of A[phi]; outside [lo, hi]: the
 /// surface-slope formula, paper 27-28, by graded quadrature). s != t0, lo, hi. Mapped densities:
@@ -1073,9 +1088,9 @@ Real apply(const abel_operator<Real>& op, const enriched_density<Real>& g, const
     if (inside) {
       const auto d = g.sigma_of((s - op.lo()) / h, (op.hi() - s) / h);
       const Real y = d[0] <= d[1] ? d[0] - 1 : 1 - d[1];
-      const detail::split_integrator<Real> si(g.quadrature_nodes() - 4);
+      const split_integrator<Real> si(g.quadrature_nodes() - 4);
       const Real t = d[0] <= d[1] ? op.lo() + h * d[0] : op.hi() - h * d[1];
-      const Real mapped = op.apply(g.smooth, t) + pow(h, alpha) * g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, y);
+      const Real mapped = op.apply(g.smooth, t) + pow(h, alpha) * g.enrichment * enrichment_image_any(g, op.parameters(), si, y);
       return g.covariance_factor(d[2]) * mapped;
     }
     // t - s from the distances to the facing end (no cancellation).
@@ -1086,10 +1101,10 @@ Real apply(const abel_operator<Real>& op, const enriched_density<Real>& g, const
         {}, below ? gap / h : inf, below ? inf : gap / h);
   }
   Real value = op.apply(g.smooth, s);
-  const detail::split_integrator<Real> si(g.quadrature_nodes() - 4);
+  const split_integrator<Real> si(g.quadrature_nodes() - 4);
   if (inside) {
     const Real y = -1 + (s - op.lo()) / h;
-    return value + pow(h, alpha) * g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, y);
+    return value + pow(h, alpha) * g.enrichment * enrichment_image_any(g, op.parameters(), si, y);
   }
   const Real d = below ? (op.lo() - s) / h : (s - op.hi()) / h;  // distance of y from the interval
   const Real inf = std::numeric_limits<Real>::infinity();
@@ -1449,7 +1464,7 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   g.one_minus_kappa_over_alpha = op.parameters().one_minus_kappa_over_alpha();
   g.enrichment = scale_F * jump / (w0 * detail::enrichment_jump(g, alpha, kappa));
 
-  const detail::split_integrator<Real> si(g.quadrature_nodes() - 4);
+  const split_integrator<Real> si(g.quadrature_nodes() - 4);
   const Real p = e.gam + Real(e.nu), qI = e.del + Real(e.nu);
   const Real margin = detail::step_sampling_margin(op, g, t0, one_plus_x0, one_minus_x0);
   auto remainder = detail::sample_step_remainder(op, g, si, data_at, scale_F, margin, sol.rounding_floor, options);

@@ -7,8 +7,9 @@
 
 #include "rhabel/abel/abel_solver.hpp"
 #include "rhabel/abel/detail/block_gmres.hpp"
-#include "rhabel/abel/detail/far_field.hpp"
+#include "rhabel/abel/far_field.hpp"
 #include "rhabel/abel/detail/union_assembly.hpp"
+#include "rhabel/abel/union_memory.hpp"
 
 #include <Eigen/Dense>
 
@@ -46,7 +47,7 @@ struct multi_solve_options {
   std::vector<std::optional<Real>> loads;  ///< per interval, used for nu = +1 intervals only
   /// status = not_converged when the independent residual exceeds this (only if it is computed).
   Real residual_tolerance = Real(1e-10);
-  /// Bound on the estimated peak memory of one dense solve (detail::union_memory_bytes, bytes):
+  /// Bound on the estimated peak memory of one dense solve (union_memory_bytes, bytes):
   /// solve_union throws std::domain_error, before allocating, when max(degree, max_degree)
   /// would exceed it. Default 2 GiB (two intervals: degree <= 5181).
   std::size_t max_memory_bytes = std::size_t(1) << 31;
@@ -57,10 +58,10 @@ struct multi_solve_options {
   /// block-diagonal preconditioner (detail/block_gmres.hpp; LU if it does not reach its tolerance)
   /// instead of LU; multi_solution::condition is then NaN. Floating-point Real only.
   std::size_t iterative_from = 0;
-  /// The far field of exactly these intervals for that route (detail/far_field.hpp), when the
+  /// The far field of exactly these intervals for that route (far_field.hpp), when the
   /// caller has one (the punch layer builds it for its data anyway); null: solve_union builds it
   /// with order_for(residual_tolerance / 1000) points per box.
-  std::shared_ptr<const detail::far_field<Real>> far_field;
+  std::shared_ptr<const rhabel::abel::far_field<Real>> far_field;
 };
 
 /// The boundary-layer part of a density on [lo, hi] (solve_union_layered):
@@ -100,7 +101,7 @@ struct layer_density {
   /// int_lo^hi g by Gauss-Jacobi panels graded toward the nearest poles (~ eps relative).
   Real integral() const {
     if (empty()) return Real(0);
-    const detail::panel_integrator<Real> rule(del, gam, 24);
+    const panel_integrator<Real> rule(del, gam, 24);
     return half_length() * rule.integrate(Real(2), nearest_lo(), nearest_hi(),
                                           [&](const Real& u, const Real& v) { return factor_at_distance(u, v); });
   }
@@ -130,31 +131,6 @@ struct multi_solution {
   /// see the header); converged otherwise, or when no residual was computed.
   solve_status status = solve_status::converged;
 };
-
-namespace detail {
-
-/// Nodes of I_i (physical t, weight including w_i and dt = (L/2) dx, reference x) graded toward
-/// the end of I_i facing the point set at distance `gap` (left if facing_left); `nodes` per
-/// panel (cross_nodes: detail/union_assembly.hpp). The independent route of the residual (the
-/// assembly uses degree_graded_cross_nodes).
-template <class Real>
-cross_nodes<Real> make_cross_nodes(const jacobi_density<Real>& g, const Real& gap, bool facing_left, std::size_t nodes) {
-  const Real h = g.half_length();
-  const panel_integrator<Real> rule(g.del, g.gam, nodes);
-  const Real inf = std::numeric_limits<Real>::infinity();
-  const Real d = gap / h;
-  cross_nodes<Real> out;
-  rule.for_each_node(Real(2), facing_left ? d : inf, facing_left ? inf : d,
-                     [&](const Real& u, const Real& v, const Real& weight) {
-                       out.x.push_back(u <= v ? u - 1 : 1 - v);
-                       out.weight.push_back(h * weight);
-                       out.t_minus_lo.push_back(h * u);
-                       out.hi_minus_t.push_back(h * v);
-                     });
-  return out;
-}
-
-}  // namespace detail
 
 /// A g at s for densities on a union of disjoint intervals (each with its own class). Own
 /// interval: spectral relation; others: graded quadrature. Any s (also outside every interval).
@@ -197,64 +173,10 @@ std::vector<union_point<Real>> union_points(const interval_spec<Real>& iv, const
   return out;
 }
 
-/// Estimated peak memory (bytes, as a double: no overflow for any size_t arguments) of
-/// solve_union_at_degree for K intervals at M collocation points each, T = K M unknowns: the
-/// larger of the assembly phase, T^2 + 6 M^2 numbers (the matrix plus one cross block's kernel
-/// values M x Q, basis values Q x M and their M x M product; Q ~ 2M nodes at gaps down to 1e-4,
-/// 2.5M at 1e-12), and the factorisation phase, T^2 numbers (LU in place) or 2 T^2 for non-IEEE
-/// types (the inverse, see `condition`). Measured peaks: the header's "Memory" paragraph.
-template <class Real>
-double union_memory_bytes(std::size_t K, std::size_t M) {
-  const double T = double(K) * double(M), m = double(M);
-  const double assembly = T * T + (K > 1 ? 6 * m * m : 0);
-  const double factorisation = (std::is_floating_point_v<Real> ? 1 : 2) * T * T;
-  return double(sizeof(Real)) * std::max(assembly, factorisation);
-}
-
-/// The largest M with union_memory_bytes<Real>(K, M) <= bytes (K >= 1; bisection, the estimate
-/// is increasing in M and >= sizeof(Real) (K M)^2).
-template <class Real>
-std::size_t union_degree_limit(std::size_t K, std::size_t bytes) {
-  using std::sqrt;
-  std::size_t lo = 0;  // union_memory_bytes(K, lo) <= bytes
-  std::size_t hi = static_cast<std::size_t>(sqrt(double(bytes) / (double(sizeof(Real)) * double(K) * double(K)))) + 1;
-  while (hi - lo > 1) {
-    const std::size_t mid = lo + (hi - lo) / 2;
-    (union_memory_bytes<Real>(K, mid) <= double(bytes) ? lo : hi) = mid;
-  }
-  return lo;
-}
-
 /// Gap between intervals i and j (i != j), sorted and disjoint.
 template <class Real>
 Real union_gap(const std::vector<interval_spec<Real>>& intervals, std::size_t i, std::size_t j) {
   return i > j ? intervals[i].lo - intervals[j].hi : intervals[j].lo - intervals[i].hi;
-}
-
-/// Estimated peak memory (bytes) of the matrix-free route (far field, far_field.hpp) for K
-/// intervals at M points each with `near` near pairs in all: the own and near blocks and the
-/// diagonal blocks' LUs ((2 K + near) M^2), the Krylov basis and work vectors (64 K M), the
-/// moment matrices (K p M) and the pairs' kernel matrices (pairs p^2).
-template <class Real>
-double union_far_memory_bytes(const far_field<Real>& far, std::size_t M) {
-  const double K = double(far.leaves()), m = double(M), p = double(far.order());
-  double near = 0;
-  for (std::size_t j = 0; j < far.leaves(); ++j) near += double(far.near_leaves(j).size());
-  return double(sizeof(Real)) * ((2 * K + near) * m * m + 64 * K * m + K * p * m + double(far.pairs()) * p * p);
-}
-
-/// The largest M (>= 1) with union_far_memory_bytes(far, M) <= bytes (0 if none: the estimate is
-/// increasing in M).
-template <class Real>
-std::size_t union_far_degree_limit(const far_field<Real>& far, std::size_t bytes) {
-  if (union_far_memory_bytes(far, 1) > double(bytes)) return 0;
-  std::size_t lo = 1, hi = 2;
-  while (union_far_memory_bytes(far, hi) <= double(bytes)) lo = hi, hi *= 2;
-  while (hi - lo > 1) {
-    const std::size_t mid = lo + (hi - lo) / 2;
-    (union_far_memory_bytes(far, mid) <= double(bytes) ? lo : hi) = mid;
-  }
-  return lo;
 }
 
 /// The coupled system of solve_union_at_degree at M collocation points per interval: the
