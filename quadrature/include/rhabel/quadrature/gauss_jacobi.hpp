@@ -736,7 +736,7 @@ class gauss_jacobi_asymptotic_half_rule {
   // a last term not below eps/16, a bound sum above hahn.max_total(), or a Newton step above the
   // finishing threshold after the batch's sweeps.
   void batch(std::size_t k0, std::size_t size) {
-    batch_points p;
+    batch_points p{};  // value-initialised: else GCC 12 at -O3 warns -Wmaybe-uninitialized
     guesser_.guess_angles(k0, size, p.K, p.residual, p.sin_K, p.cos_K, p.sign);
     for (std::size_t i = 0; i < size; ++i) {
       guesser_.complete(p.sin_K[i], p.cos_K[i], p.residual[i], p.sign[i], p.correction[i], p.s0[i], p.c0[i],
