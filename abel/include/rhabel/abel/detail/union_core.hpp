@@ -278,6 +278,7 @@ class union_degree_system {
   }
 
  private:
+  // The intervals' operators, classes, basis sizes, block offsets and zero densities.
   // Unknowns of interval i: the coefficients c^i_n (n_basis[i] of them; for nu = +1 c^i_0 is
   // fixed by the load and not an unknown) and, for nu = -1, the defect d_i. Rows: the M
   // collocation equations of interval i. Both number M per interval: the system is square.
