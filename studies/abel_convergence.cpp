@@ -149,7 +149,7 @@ int main(int argc, char** argv) {
       for (double x : {-0.9, -0.5, -0.1, 0.2, 0.5, 0.8, 0.95}) error = std::max(error, std::abs(sol.density.series(x) / S(x) - 1));
       // Time the solve alone on tabulated data (F through the quadrature would dominate).
       std::vector<double> table;
-      const detail::chebyshev_grid<double> grid(n);
+      const chebyshev_grid<double> grid(n);
       for (std::size_t j = 0; j < n; ++j) table.push_back(F(lo + op.half_length() * grid.one_plus_x[j]));
       options.residual_points = 0;
       std::size_t calls = 0;

@@ -1,7 +1,7 @@
 // punch/src/active_solve.cpp: the linear solve of one active set (active_solve.hpp).
 #include "active_solve.hpp"
 
-#include "rhabel/abel/detail/block_gmres.hpp"
+#include "rhabel/abel/gmres.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -225,7 +225,7 @@ bool solve_active(panel_grid& gr, const std::vector<std::size_t>& idx, double lo
     };
     const two_level precondition(gr, idx, blocks_of(idx), sigma);
     y = first_guess(ws, idx, gr.n);
-    if (!abel::detail::gmres(product, precondition, rhs, y, rtol, max_products)) return false;
+    if (!abel::gmres(product, precondition, rhs, y, rtol, max_products)) return false;
   }
   g = y.head(m);
   D = y[m];

@@ -7,7 +7,7 @@
 // The load row is scaled by sigma (the displacements' norm over the load) so that GMRES's residual
 // weighs both; the unknowns are solved together as the bordered system
 // [A, -1; sigma h 1^T, 0] (g, D) = (z, sigma load).
-// HOW. Up to `dense_limit` active panels: one LU. Above: GMRES (abel/detail/block_gmres.hpp's
+// HOW. Up to `dense_limit` active panels: one LU. Above: GMRES (abel/gmres.hpp's
 // gmres), each product by FFT over the whole grid, or, when the active panels are few against the
 // grid (m^2 below the FFT's cost), as the direct sum from the kernel's table; preconditioned by a
 // two-level method:

@@ -45,13 +45,13 @@ double layer_partial(const abel::layer_density<double>& layer, double s, bool to
   const double h = layer.half_length();
   const double one_plus = (s - layer.lo) / h, one_minus = (layer.hi - s) / h;
   if (toward_lo) {
-    const abel::detail::panel_integrator<double> rule(0.0, layer.gam, 24);
+    const abel::panel_integrator<double> rule(0.0, layer.gam, 24);
     return h * rule.integrate(one_plus, layer.nearest_lo(), one_minus, [&](double u, double rest) {
       const double v = rest + one_minus;  // 1 - x
       return std::pow(v, layer.del) * layer.factor_at_distance(u, v);
     });
   }
-  const abel::detail::panel_integrator<double> rule(0.0, layer.del, 24);
+  const abel::panel_integrator<double> rule(0.0, layer.del, 24);
   return h * rule.integrate(one_minus, layer.nearest_hi(), one_plus, [&](double v, double rest) {
     const double u = rest + one_plus;  // 1 + x
     return std::pow(u, layer.gam) * layer.factor_at_distance(u, v);

@@ -120,25 +120,25 @@ class cross_field {
     const double gap = right_of_ ? g.a() - hi : lo - g.b();
     // abel's cross-term nodes, graded toward the end facing [lo, hi] at the TRUE gap (no floor);
     // [lo, hi] at least a half-length of g away (gap >= h): one panel, whose node count
-    // abel::detail::separated_cross_nodes takes from the separation (the kernel's analyticity
+    // abel::separated_cross_nodes takes from the separation (the kernel's analyticity
     // ellipse; eps/100 relative), n/2 + 20 for neighbours one half-length apart, n/2 + 7 far away.
     const std::size_t n = g.jacobi.coefficients.size();
     std::size_t count = std::max<std::size_t>(n / 2 + 24, 32);
-    if (const std::size_t separated = abel::detail::separated_cross_nodes(gap / g.jacobi.half_length(), n); separated > 0)
+    if (const std::size_t separated = abel::separated_cross_nodes(gap / g.jacobi.half_length(), n); separated > 0)
       count = std::min(count, separated);
-    nodes_ = abel::detail::make_cross_nodes(g.jacobi, gap, right_of_, count);
+    nodes_ = abel::make_cross_nodes(g.jacobi, gap, right_of_, count);
     const auto series = g.jacobi.series_evaluator();
     weighted_.resize(nodes_.x.size());
     for (std::size_t q = 0; q < nodes_.x.size(); ++q) weighted_[q] = nodes_.weight[q] * series(nodes_.x[q]);
     if (g.has_apex) op_ = std::make_unique<abel::abel_operator<double>>(par, g.a(), g.b());
   }
   double operator()(double s) const {
-    if (g_->line_load) return g_->line_weight * abel::detail::cross_kernel(par_, g_->a() - s);
+    if (g_->line_load) return g_->line_weight * abel::cross_kernel(par_, g_->a() - s);
     double sum = 0;
     for (std::size_t q = 0; q < weighted_.size(); ++q) {
       // t - s from the distances to the facing end (no cancellation).
       const double t_minus_s = right_of_ ? nodes_.t_minus_lo[q] + (g_->a() - s) : -(nodes_.hi_minus_t[q] + (s - g_->b()));
-      sum += weighted_[q] * abel::detail::cross_kernel(par_, t_minus_s);
+      sum += weighted_[q] * abel::cross_kernel(par_, t_minus_s);
     }
     if (op_) sum += abel::apply(*op_, g_->apex, s);
     return sum;
@@ -148,7 +148,7 @@ class cross_field {
   const contact_density* g_;
   abel::abel_parameters<double> par_;
   bool right_of_;
-  abel::detail::cross_nodes<double> nodes_;
+  abel::cross_nodes<double> nodes_;
   std::vector<double> weighted_;
   std::unique_ptr<abel::abel_operator<double>> op_;
 };
@@ -165,7 +165,7 @@ class particular_field {
                                                        const std::vector<abel::interval_spec<double>>& intervals,
                                                        const context& cx, far_tree* tree) {
     if (!tree || targets.size() < 2) return nullptr;
-    std::vector<abel::detail::far_field<double>::box> boxes;
+    std::vector<abel::far_field<double>::box> boxes;
     for (const auto& iv : intervals) boxes.push_back({iv.lo, iv.hi});
     auto out = std::make_shared<particular_field>();
     out->field_ = tree->covering(boxes, cx);
@@ -192,10 +192,10 @@ class particular_field {
   /// The far action on target k at reference coordinate x of its interval.
   double at(std::size_t k, double x) const { return field_->interpolate(local_[k], x); }
   /// The field itself (the union solve's far part reuses it).
-  const std::shared_ptr<const abel::detail::far_field<double>>& field() const { return field_; }
+  const std::shared_ptr<const abel::far_field<double>>& field() const { return field_; }
 
  private:
-  std::shared_ptr<const abel::detail::far_field<double>> field_;
+  std::shared_ptr<const abel::far_field<double>> field_;
   std::vector<long> target_of_;
   std::vector<bool> plain_;
   std::vector<Eigen::VectorXd> local_;
@@ -279,7 +279,7 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
     intervals.push_back({a[j], b[j], leading, trailing});
   }
   // From iterative_from contacts on, the particulars' action on the other contacts through the
-  // far field (abel/detail/far_field.hpp), whose relative accuracy 1e-3 of the tolerance keeps
+  // far field (abel/far_field.hpp), whose relative accuracy 1e-3 of the tolerance keeps
   // its error below the correction's residual tolerance; near pairs (and apex enrichments, which
   // the moments of a Jacobi series do not cover) by cross_field.
   const std::shared_ptr<const particular_field> far =
@@ -316,8 +316,8 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
   const std::size_t K = intervals.size();
   // Memory: at most 1 GiB for the union's system (the far route's estimate when it is used).
   o.max_memory_bytes = std::size_t(1) << 30;
-  const std::size_t memory_degree = far ? abel::detail::union_far_degree_limit(*far->field(), o.max_memory_bytes)
-                                        : abel::detail::union_degree_limit<double>(K, o.max_memory_bytes);
+  const std::size_t memory_degree = far ? abel::union_far_degree_limit(*far->field(), o.max_memory_bytes)
+                                        : abel::union_degree_limit<double>(K, o.max_memory_bytes);
   const std::size_t top_degree = std::max(first_degree, std::min<std::size_t>(600, memory_degree));
   if (pb.fixed_degree == 0) o.degree = std::min(o.degree, top_degree);
   o.max_degree = pb.fixed_degree > 0 ? 0 : std::max(o.degree, top_degree);

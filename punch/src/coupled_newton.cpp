@@ -5,7 +5,7 @@
 #include "parallel.hpp"
 #include "surface.hpp"
 
-#include "rhabel/abel/detail/broyden_matrix.hpp"
+#include "rhabel/abel/broyden_matrix.hpp"
 
 #include <Eigen/Dense>
 
@@ -16,6 +16,7 @@
 #include <optional>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rhabel::punch::detail::coupled {
@@ -283,9 +284,9 @@ class body_far_model {
     for (std::size_t m = 0; m < points; ++m) {
       const double s = grid_.one_plus_x[m] <= grid_.one_minus_x[m] ? a + (b - a) / 2 * grid_.one_plus_x[m]
                                                                   : b - (b - a) / 2 * grid_.one_minus_x[m];
-      values[m] = -abel::detail::cross_kernel(cx.par, c - s);
+      values[m] = -abel::cross_kernel(cx.par, c - s);
     }
-    const auto coefficients = abel::detail::chebyshev_coefficients(values);
+    const auto coefficients = abel::chebyshev_coefficients(values);
     double sum = 0;
     for (std::size_t k = 0; k < points; ++k) sum += coefficients[k] * ell_[j][k];
     return defect_scale_[j] * sum;
@@ -302,7 +303,7 @@ class body_far_model {
  private:
   const problem* pb_;
   const edges* x_;
-  abel::detail::chebyshev_grid<double> grid_;
+  abel::chebyshev_grid<double> grid_;
   std::vector<std::array<double, points>> ell_;
   std::vector<double> defect_scale_, level_scale_;
 };
@@ -438,213 +439,272 @@ constexpr double first_accuracy = 1e-5;
 
 constexpr double trust_factor = 10;
 
-newton_result newton_iteration(const problem& pb, const edges& start) {
-  const unknowns u = list_unknowns(pb);
-  const double tol = std::max(pb.cx->options.tolerance, pb.accuracy);
-  const auto accuracy_for = [&](double r) { return std::max(tol, std::min(first_accuracy, inexact_ratio * r)); };
-  problem q = pb;  // the evaluations' problem: pb at the accuracy of the current step
-  q.accuracy = u.state.empty() ? pb.accuracy : accuracy_for(std::numeric_limits<double>::infinity());
+/// One Newton-Broyden iteration on the edges in progress: the problem at the accuracy of the
+/// current step, the result being built and the evaluation of the last accepted point.
+struct newton_state {
+  explicit newton_state(const problem& p)
+      : pb(p), u(list_unknowns(p)), tol(std::max(p.cx->options.tolerance, p.accuracy)), q(p) {}
+
+  const problem& pb;
+  const unknowns u;
+  const double tol;
+  problem q;  // the evaluations' problem: pb at the accuracy of the current step
   newton_result out;
-  out.x = start;
-  for (std::size_t i = 0; i < pb.roles.size(); ++i)
-    if (pb.roles[i] == role::apex_ended) out.x.b[i] = (*pb.st)[i].apex;
-  if (pb.cx->out_of_time()) {  // the callers' loops then end after one cheap call each
-    out.failure = pb.cx->time_limit_message();
-    out.residual = std::numeric_limits<double>::infinity();
-    return out;
-  }
   evaluation ev;
+  double ev_accuracy = 0;  // the accuracy ev was evaluated at
+
+  /// The accuracy of an evaluation from the largest condition r at the last accepted point.
+  double accuracy_for(double r) const { return std::max(tol, std::min(first_accuracy, inexact_ratio * r)); }
+
+  /// Re-evaluates the point x more accurately until its conditions are trusted (below).
   // Conditions evaluated at an accuracy are trusted when they exceed trust_factor times it;
   // below, the point is evaluated again, more accurately, until they do or the accuracy is the
   // tolerance (a superlinear step can land far below the accuracy it was evaluated at; compared
   // with that value, the next, accurate evaluation would never show a decrease).
-  double ev_accuracy = q.accuracy;
-  const auto sharpen = [&](const edges& x) {
+  void sharpen(const edges& x) {
     while (ev_accuracy > tol && ev.r.lpNorm<Eigen::Infinity>() < trust_factor * ev_accuracy) {
       q.accuracy = accuracy_for(ev.r.lpNorm<Eigen::Infinity>());  // at most inexact_ratio trust_factor ev_accuracy
       ev = evaluate(q, u, x.a, x.b);
       ev_accuracy = q.accuracy;
     }
-  };
+  }
+};
+
+/// Broyden's matrix with the bookkeeping of its refreshes by a finite-difference Jacobian.
+struct jacobian_state {
+  abel::broyden_matrix<double> J;
+  bool fresh = true;
+  std::size_t since_fresh = 0;  // accepted steps since the last finite-difference Jacobian
+  std::size_t flat = 0;         // accepted steps of the current flat run
+  bool refreshed_in_flat = false;
+
+  /// A new finite-difference Jacobian at the accepted point of s.
+  void refresh(const newton_state& s) {
+    J.reset(jacobian(s.pb, s.u, s.out.x, s.ev));
+    fresh = true;
+    since_fresh = 0;
+  }
+};
+
+/// Evaluates the start (edges of apex-ended contacts at their apexes) to a trusted accuracy;
+/// false when the iteration ends there (out then final: failed, or converged without unknowns).
+bool newton_start(newton_state& s, const edges& start) {
+  newton_result& out = s.out;
+  s.q.accuracy = s.u.state.empty() ? s.pb.accuracy : s.accuracy_for(std::numeric_limits<double>::infinity());
+  out.x = start;
+  for (std::size_t i = 0; i < s.pb.roles.size(); ++i)
+    if (s.pb.roles[i] == role::apex_ended) out.x.b[i] = (*s.pb.st)[i].apex;
+  if (s.pb.cx->out_of_time()) {  // the callers' loops then end after one cheap call each
+    out.failure = s.pb.cx->time_limit_message();
+    out.residual = std::numeric_limits<double>::infinity();
+    return false;
+  }
+  s.ev_accuracy = s.q.accuracy;
   try {
-    ev = evaluate(q, u, out.x.a, out.x.b);
-    ev_accuracy = q.accuracy;
-    if (!u.state.empty()) sharpen(out.x);
+    s.ev = evaluate(s.q, s.u, out.x.a, out.x.b);
+    s.ev_accuracy = s.q.accuracy;
+    if (!s.u.state.empty()) s.sharpen(out.x);
   } catch (const merge_error& m) {
     out.failure = m.what();
     out.merged = std::make_pair(m.first, m.second);
-    return out;
+    return false;
   } catch (const std::domain_error& e) {  // a contact's own solve failed at the start
     out.failure = e.what();
-    return out;
+    return false;
   } catch (const time_limit_reached& e) {
     out.failure = e.what();
     out.residual = std::numeric_limits<double>::infinity();
-    return out;
+    return false;
   }
-  if (u.state.empty()) {
+  if (s.u.state.empty()) {
     out.converged = true;
-    out.sol = std::move(ev.sol);
-    return out;
+    out.sol = std::move(s.ev.sol);
+    return false;
   }
-  // Up to 64 unknowns the updated matrix is factorised with full pivoting at every step (robust
-  // when it is nearly singular, e.g. contacts about to merge); above, J0's LU with Broyden's
-  // updates by the Woodbury identity (rows of 1000 parabolas: the factorisations were 32 % of the
-  // time).
+  return true;
+}
+
+/// Backtracking along dx from the accepted point: the first of t, t/2, ... (12 tries) whose
+/// conditions decrease (Armijo, 1e-4 t), evaluated into next at y; false if none does.
+bool backtrack(newton_state& s, const Eigen::VectorXd& dx, double& t, evaluation& next, edges& y) {
+  bool accepted = false;
+  for (int tries = 0; tries < 12; ++tries) {
+    y = moved(s.pb, s.u, s.out.x, t * dx);
+    try {
+      next = evaluate(s.q, s.u, y.a, y.b);
+      accepted = next.r.allFinite() &&
+                 next.r.lpNorm<Eigen::Infinity>() < (1 - 1e-4 * t) * s.ev.r.lpNorm<Eigen::Infinity>() + 1e-14;
+    } catch (const merge_error& m) {
+      s.out.merged = std::make_pair(m.first, m.second);
+      s.out.failure = m.what();
+    } catch (const std::domain_error& e) {  // e.g. a wedge's apex left its contact: a shorter step
+      s.out.failure = e.what();
+    }
+    if (accepted) break;
+    t /= 2;
+  }
+  return accepted;
+}
+
+/// What a run of flat steps (reduction > flat_gain) leads to.
+enum class flat_verdict { go_on, refreshed, stop };
+
+/// The flat run after an accepted step from `before` (reduction of the largest condition, relative
+/// step): a new Jacobian at the first run of flat_steps, a stop (stalled, or merging) at the second.
+flat_verdict flat_run(newton_state& s, jacobian_state& js, const edges& before, double reduction, double step) {
+  if (!(reduction > flat_gain && step > 10 * s.tol)) {
+    js.flat = 0;
+    js.refreshed_in_flat = false;
+    return flat_verdict::go_on;
+  }
+  if (++js.flat == flat_steps && !js.refreshed_in_flat) {
+    js.refresh(s);
+    js.flat = 0;
+    js.refreshed_in_flat = true;
+    return flat_verdict::refreshed;
+  }
+  if (js.flat != flat_steps) return flat_verdict::go_on;
+  const auto pair = narrowing_pair(before, s.out.x);
+  if (pair && pair->gap_ratio < flat_merge_gap) {
+    std::ostringstream os;
+    os.precision(3);
+    os << " where the edge iteration stalls (largest edge condition " << s.ev.r.lpNorm<Eigen::Infinity>()
+       << "): they merge";
+    s.out.failure = closing_message(s.pb, *pair, os.str());
+    s.out.merged = std::make_pair(pair->first, pair->second);
+  } else {
+    s.out.failure = "the edge iteration stalled";
+  }
+  return flat_verdict::stop;
+}
+
+/// After an accepted step (t dx, the condition's reduction, the relative step): true when the
+/// iteration ends (stalled far from the solution, a contact vanishes, or converged); may refresh J.
+bool newton_step_ends(newton_state& s, jacobian_state& js, bool colouring, bool step_was_fresh, double t,
+                      double reduction, double step) {
+  const problem& pb = s.pb;
+  // Many contacts (coloured Jacobian): when even a new Jacobian's step gains less than a
+  // quarter, this start is too far from the solution (rows of 300 parabolas from the isolated
+  // contacts: 27 steps from 3.8 to 0.95, each gaining 1 ... 11 %): the caller's continuation in
+  // the load takes over. A rigid body's steps are often shortened by step_limit far from the
+  // solution (a contact about to vanish): only a full step that gains little gives up there.
+  if (colouring && step_was_fresh && reduction > 0.75 && step > 10 * s.tol && (!pb.body_load || t == 1)) {
+    s.out.failure = "the edge iteration stalled";
+    return true;
+  }
+  // Otherwise Broyden's updates from a start far from the solution crawl (rows of 100
+  // parabolas: the condition fell by less than half per step for 12 steps, then converged in 2
+  // after a new Jacobian; two parabolas 1e-3 L apart, the Jacobian taken at the continuation's
+  // last gap of 1e-2 L: 12 steps each gaining ~ a factor 1.5); a new one when a step gains less
+  // than a factor 2 two steps after the last. Its columns are differenced at a fixed degree
+  // without a residual: 2 full_width evaluations when coloured, else one per unknown.
+  if (reduction > 0.5 && (colouring || t == 1) && js.since_fresh >= 2 && step > 10 * s.tol) js.refresh(s);
+  if (pb.body_load) {
+    const edges& y = s.out.x;
+    for (std::size_t i = 0; i < pb.roles.size(); ++i)
+      if (pb.roles[i] == role::smooth_both && y.b[i] - y.a[i] < vanishing_length * pb.start_length[i]) s.out.lost = i;
+    if (s.out.lost) {
+      s.out.failure = "a contact vanishes";
+      return true;
+    }
+  }
+  // Converged when the step is within the tolerance and the point was evaluated to it.
+  if (step <= 10 * s.tol && s.ev_accuracy <= s.tol) {
+    s.out.converged = true;
+    return true;
+  }
+  return false;
+}
+
+/// The Newton-Broyden steps from the evaluated start of s, at most 60.
+// Up to 64 unknowns the updated matrix is factorised with full pivoting at every step (robust
+// when it is nearly singular, e.g. contacts about to merge); above, J0's LU with Broyden's
+// updates by the Woodbury identity (rows of 1000 parabolas: the factorisations were 32 % of the
+// time).
+void broyden_steps(newton_state& s) {
+  const problem& pb = s.pb;
+  const unknowns& u = s.u;
+  newton_result& out = s.out;
+  jacobian_state js{abel::broyden_matrix<double>(jacobian(pb, u, out.x, s.ev))};
+  const bool colouring = pb.roles.size() > full_width && (!pb.body_load || body_colouring(pb));
+  for (std::size_t it = 0; it < 60; ++it) {
+    if (pb.cx->out_of_time()) {
+      out.failure = pb.cx->time_limit_message();
+      break;
+    }
+    out.iterations = it + 1;
+    const auto solved = js.J.solve(s.ev.r);
+    if (!solved) {  // Broyden's updates made the matrix singular (a fresh one has none): a new Jacobian
+      js.refresh(s);
+      continue;
+    }
+    const Eigen::VectorXd dx = -*solved;
+    if (!dx.allFinite()) {
+      out.failure = "singular Jacobian of the edge conditions";
+      break;
+    }
+    std::optional<closing_gap> closing;
+    double t = step_limit(pb, u, out.x, dx, closing);
+    if (closing) {
+      std::ostringstream os;
+      os << (closing->closes ? " (the next step closes the gap: they merge)" : "") << "; gaps below " << resolved_gap
+         << " of the contact length are not resolved";
+      out.failure = closing_message(pb, *closing, os.str());
+      if (closing->closes) out.merged = std::make_pair(closing->first, closing->second);
+      break;
+    }
+    evaluation next;
+    edges y;
+    s.q.accuracy = s.accuracy_for(s.ev.r.lpNorm<Eigen::Infinity>());
+    if (!backtrack(s, dx, t, next, y)) {
+      if (!js.fresh) {  // Broyden's matrix went stale: a new finite-difference Jacobian
+        js.refresh(s);
+        continue;
+      }
+      if (out.failure.empty()) out.failure = "the edge iteration stalled";
+      break;
+    }
+    out.merged.reset();
+    out.failure.clear();
+    // Broyden's (good) update with the step taken.
+    const Eigen::VectorXd step_taken = t * dx;
+    const Eigen::VectorXd dr = next.r - s.ev.r;
+    js.J.update(step_taken, dr);
+    const bool step_was_fresh = js.fresh;
+    js.fresh = false;
+    double step = 0;
+    for (std::size_t k = 0; k < u.state.size(); ++k) {
+      const std::size_t i = u.state[k];
+      step = std::max(step, std::abs(step_taken[static_cast<Eigen::Index>(k)]) / (y.b[i] - y.a[i]));
+    }
+    const edges before = out.x;
+    out.x = y;
+    const double reduction = next.r.lpNorm<Eigen::Infinity>() / s.ev.r.lpNorm<Eigen::Infinity>();
+    s.ev = std::move(next);
+    s.ev_accuracy = s.q.accuracy;
+    s.sharpen(out.x);
+    ++js.since_fresh;
+    const flat_verdict verdict = flat_run(s, js, before, reduction, step);
+    if (verdict == flat_verdict::refreshed) continue;
+    if (verdict == flat_verdict::stop) break;
+    if (newton_step_ends(s, js, colouring, step_was_fresh, t, reduction, step)) break;
+  }
+}
+
+newton_result newton_iteration(const problem& pb, const edges& start) {
+  newton_state s(pb);
+  if (!newton_start(s, start)) return std::move(s.out);
   // The time limit (time_limit_reached from any evaluation) ends the iteration at the last
   // accepted point, whose evaluation ev is reported.
   try {
-    abel::detail::broyden_matrix<double> J(jacobian(pb, u, out.x, ev));
-    bool fresh = true;
-    std::size_t since_fresh = 0;  // accepted steps since the last finite-difference Jacobian
-    std::size_t flat = 0;         // accepted steps of the current flat run
-    bool refreshed_in_flat = false;
-    const bool colouring = pb.roles.size() > full_width && (!pb.body_load || body_colouring(pb));
-    for (std::size_t it = 0; it < 60; ++it) {
-      if (pb.cx->out_of_time()) {
-        out.failure = pb.cx->time_limit_message();
-        break;
-      }
-      out.iterations = it + 1;
-      const auto solved = J.solve(ev.r);
-      if (!solved) {  // Broyden's updates made the matrix singular (a fresh one has none): a new Jacobian
-        J.reset(jacobian(pb, u, out.x, ev));
-        fresh = true;
-        since_fresh = 0;
-        continue;
-      }
-      const Eigen::VectorXd dx = -*solved;
-      if (!dx.allFinite()) {
-        out.failure = "singular Jacobian of the edge conditions";
-        break;
-      }
-      std::optional<closing_gap> closing;
-      double t = step_limit(pb, u, out.x, dx, closing);
-      if (closing) {
-        std::ostringstream os;
-        os << (closing->closes ? " (the next step closes the gap: they merge)" : "") << "; gaps below " << resolved_gap
-           << " of the contact length are not resolved";
-        out.failure = closing_message(pb, *closing, os.str());
-        if (closing->closes) out.merged = std::make_pair(closing->first, closing->second);
-        break;
-      }
-      bool accepted = false;
-      evaluation next;
-      edges y;
-      q.accuracy = accuracy_for(ev.r.lpNorm<Eigen::Infinity>());
-      for (int tries = 0; tries < 12; ++tries) {
-        y = moved(pb, u, out.x, t * dx);
-        try {
-          next = evaluate(q, u, y.a, y.b);
-          accepted = next.r.allFinite() &&
-                     next.r.lpNorm<Eigen::Infinity>() < (1 - 1e-4 * t) * ev.r.lpNorm<Eigen::Infinity>() + 1e-14;
-        } catch (const merge_error& m) {
-          out.merged = std::make_pair(m.first, m.second);
-          out.failure = m.what();
-        } catch (const std::domain_error& e) {  // e.g. a wedge's apex left its contact: a shorter step
-          out.failure = e.what();
-        }
-        if (accepted) break;
-        t /= 2;
-      }
-      if (!accepted) {
-        if (!fresh) {  // Broyden's matrix went stale: a new finite-difference Jacobian
-          J.reset(jacobian(pb, u, out.x, ev));
-          fresh = true;
-          since_fresh = 0;
-          continue;
-        }
-        if (out.failure.empty()) out.failure = "the edge iteration stalled";
-        break;
-      }
-      out.merged.reset();
-      out.failure.clear();
-      // Broyden's (good) update with the step taken.
-      const Eigen::VectorXd s = t * dx;
-      const Eigen::VectorXd dr = next.r - ev.r;
-      J.update(s, dr);
-      const bool step_was_fresh = fresh;
-      fresh = false;
-      double step = 0;
-      for (std::size_t k = 0; k < u.state.size(); ++k) {
-        const std::size_t i = u.state[k];
-        step = std::max(step, std::abs(s[static_cast<Eigen::Index>(k)]) / (y.b[i] - y.a[i]));
-      }
-      const edges before = out.x;
-      out.x = y;
-      const double reduction = next.r.lpNorm<Eigen::Infinity>() / ev.r.lpNorm<Eigen::Infinity>();
-      ev = std::move(next);
-      ev_accuracy = q.accuracy;
-      sharpen(out.x);
-      ++since_fresh;
-      if (reduction > flat_gain && step > 10 * tol) {
-        if (++flat == flat_steps && !refreshed_in_flat) {
-          J.reset(jacobian(pb, u, out.x, ev));
-          fresh = true;
-          since_fresh = 0;
-          flat = 0;
-          refreshed_in_flat = true;
-          continue;
-        }
-        if (flat == flat_steps) {
-          const auto pair = narrowing_pair(before, out.x);
-          if (pair && pair->gap_ratio < flat_merge_gap) {
-            std::ostringstream os;
-            os.precision(3);
-            os << " where the edge iteration stalls (largest edge condition " << ev.r.lpNorm<Eigen::Infinity>()
-               << "): they merge";
-            out.failure = closing_message(pb, *pair, os.str());
-            out.merged = std::make_pair(pair->first, pair->second);
-          } else {
-            out.failure = "the edge iteration stalled";
-          }
-          break;
-        }
-      } else {
-        flat = 0;
-        refreshed_in_flat = false;
-      }
-      // Many contacts (coloured Jacobian): when even a new Jacobian's step gains less than a
-      // quarter, this start is too far from the solution (rows of 300 parabolas from the isolated
-      // contacts: 27 steps from 3.8 to 0.95, each gaining 1 ... 11 %): the caller's continuation in
-      // the load takes over. A rigid body's steps are often shortened by step_limit far from the
-      // solution (a contact about to vanish): only a full step that gains little gives up there.
-      if (colouring && step_was_fresh && reduction > 0.75 && step > 10 * tol && (!pb.body_load || t == 1)) {
-        out.failure = "the edge iteration stalled";
-        break;
-      }
-      // Otherwise Broyden's updates from a start far from the solution crawl (rows of 100
-      // parabolas: the condition fell by less than half per step for 12 steps, then converged in 2
-      // after a new Jacobian; two parabolas 1e-3 L apart, the Jacobian taken at the continuation's
-      // last gap of 1e-2 L: 12 steps each gaining ~ a factor 1.5); a new one when a step gains less
-      // than a factor 2 two steps after the last. Its columns are differenced at a fixed degree
-      // without a residual: 2 full_width evaluations when coloured, else one per unknown.
-      if (reduction > 0.5 && (colouring || t == 1) && since_fresh >= 2 && step > 10 * tol) {
-        J.reset(jacobian(pb, u, out.x, ev));
-        fresh = true;
-        since_fresh = 0;
-      }
-      if (pb.body_load) {
-        for (std::size_t i = 0; i < pb.roles.size(); ++i)
-          if (pb.roles[i] == role::smooth_both && y.b[i] - y.a[i] < vanishing_length * pb.start_length[i]) out.lost = i;
-        if (out.lost) {
-          out.failure = "a contact vanishes";
-          break;
-        }
-      }
-      // Converged when the step is within the tolerance and the point was evaluated to it.
-      if (step <= 10 * tol && ev_accuracy <= tol) {
-        out.converged = true;
-        break;
-      }
-    }
+    broyden_steps(s);
   } catch (const time_limit_reached& e) {
-    out.failure = e.what();
-    out.merged.reset();
+    s.out.failure = e.what();
+    s.out.merged.reset();
   }
-  out.residual = ev.r.lpNorm<Eigen::Infinity>();
-  out.sol = std::move(ev.sol);
-  return out;
+  s.out.residual = s.ev.r.lpNorm<Eigen::Infinity>();
+  s.out.sol = std::move(s.ev.sol);
+  return std::move(s.out);
 }
 
 }  // namespace

@@ -68,7 +68,7 @@ struct merge_error : std::runtime_error {
 
 /// From this many contacts on: the union's collocation system by block-preconditioned GMRES
 /// (abel/detail/block_gmres.hpp) with its far part and the particulars' far action through the far
-/// field (abel/detail/far_field.hpp).
+/// field (abel/far_field.hpp).
 constexpr std::size_t iterative_from = 6;
 
 /// The far field's tree (its boxes, admissible pairs and their kernel matrices, which are most of a
@@ -83,20 +83,20 @@ class far_tree {
  public:
   static constexpr double box_margin = 0.05;
 
-  std::shared_ptr<const abel::detail::far_field<double>> covering(
-      const std::vector<abel::detail::far_field<double>::box>& intervals, const context& cx) {
-    std::shared_ptr<const abel::detail::far_field<double>> boxes;
+  std::shared_ptr<const abel::far_field<double>> covering(
+      const std::vector<abel::far_field<double>::box>& intervals, const context& cx) {
+    std::shared_ptr<const abel::far_field<double>> boxes;
     {
       const std::lock_guard<std::mutex> lock(mutex_);
       if (!boxes_ || !boxes_->covers(intervals)) boxes_ = build(intervals, cx);
       boxes = boxes_;
     }
-    return std::make_shared<const abel::detail::far_field<double>>(*boxes, intervals);
+    return std::make_shared<const abel::far_field<double>>(*boxes, intervals);
   }
 
  private:
-  static std::shared_ptr<const abel::detail::far_field<double>> build(
-      const std::vector<abel::detail::far_field<double>::box>& intervals, const context& cx) {
+  static std::shared_ptr<const abel::far_field<double>> build(
+      const std::vector<abel::far_field<double>::box>& intervals, const context& cx) {
     const double inf = std::numeric_limits<double>::infinity();
     auto boxes = intervals;
     for (std::size_t k = 0; k < intervals.size(); ++k) {
@@ -105,12 +105,12 @@ class far_tree {
       const double right = k + 1 < intervals.size() ? (intervals[k + 1].lo - intervals[k].hi) / 4 : inf;
       boxes[k] = {intervals[k].lo - std::min(margin, left), intervals[k].hi + std::min(margin, right)};
     }
-    return std::make_shared<const abel::detail::far_field<double>>(
-        cx.par, boxes, abel::detail::far_field<double>::order_for(1e-3 * cx.options.tolerance));
+    return std::make_shared<const abel::far_field<double>>(
+        cx.par, boxes, abel::far_field<double>::order_for(1e-3 * cx.options.tolerance));
   }
 
   std::mutex mutex_;
-  std::shared_ptr<const abel::detail::far_field<double>> boxes_;
+  std::shared_ptr<const abel::far_field<double>> boxes_;
 };
 
 struct fixed_solution {

@@ -20,7 +20,7 @@
 //     quadrature (diagonal blocks diagonal in the Jacobi bases), adaptive in the degree until its
 //     independent residual is within the tolerance (relative to the original data's scale).
 //     From iterative_from (6) contacts on: GMRES with the block-diagonal preconditioner, and
-//     separated contacts act on one another through abel's far field (abel/detail/far_field.hpp,
+//     separated contacts act on one another through abel's far field (abel/far_field.hpp,
 //     a tree with Chebyshev moments and local values): both in the union's products and in D_j,
 //     where the particulars' moments give every contact's far data at once (particular_field);
 //     only near pairs (on a row, the two neighbours) are summed pair by pair. An evaluation of
@@ -62,7 +62,7 @@
 // gains less than a quarter is given up for the continuation in the load (rows of 300 parabolas:
 // the isolated contacts are too far from the coupled ones). The linear system of a Newton step is
 // solved with full pivoting up to 64 unknowns; above, each finite-difference Jacobian is factorised
-// once and Broyden's updates enter by the Woodbury identity (abel/detail/broyden_matrix.hpp).
+// once and Broyden's updates enter by the Woodbury identity (abel/broyden_matrix.hpp).
 //
 // A RIGID BODY (scene::body). The loads are unknowns and the heights of the indentors are given:
 // every contact keeps its first condition (d_j = 0 or its split-form intensity), and its second

@@ -2,7 +2,7 @@
 // in O(p log N) kernel values per point instead of one quadrature per contact, for scenes of many
 // contacts (internal to punch/src: the report's residual of (8) and the surface displacement).
 //
-// The contacts' Jacobi series enter abel::detail::far_field's treecode (far_field::at_point)
+// The contacts' Jacobi series enter abel::far_field's treecode (far_field::at_point)
 // through their moments (exact Gauss-Jacobi quadrature); every contact the tree finds near x, a
 // contact with an apex enrichment (whose moments the series does not carry) and a line load are
 // summed by the caller's own quadrature (`direct`). The far part is accurate to ~eps/100 of the
@@ -37,13 +37,13 @@ class far_action {
     for (std::size_t o = 0; o < st.size(); ++o)
       if (!st[o].g.line_load && st[o].g.length() > 0) order.push_back(o);
     std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return st[i].g.a() < st[j].g.a(); });
-    std::vector<abel::detail::far_field<double>::box> boxes;
+    std::vector<abel::far_field<double>::box> boxes;
     for (std::size_t k = 0; k < order.size(); ++k) {
       if (k > 0 && !(st[order[k]].g.a() > st[order[k - 1]].g.b())) return;  // not disjoint: all direct
       boxes.push_back({st[order[k]].g.a(), st[order[k]].g.b()});
     }
     if (boxes.size() < 2) return;
-    field_ = std::make_unique<abel::detail::far_field<double>>(std::move(kernel), boxes, 26, false);
+    field_ = std::make_unique<abel::far_field<double>>(std::move(kernel), boxes, 26, false);
     state_of_ = order;
     always_direct_.assign(st.size(), true);
     std::vector<Eigen::VectorXd> W;
@@ -76,7 +76,7 @@ class far_action {
 
  private:
   std::size_t count_;
-  std::unique_ptr<abel::detail::far_field<double>> field_;
+  std::unique_ptr<abel::far_field<double>> field_;
   std::vector<std::size_t> state_of_;  // leaf -> contact
   std::vector<bool> always_direct_;    // per contact: not in the tree's moments
   std::vector<Eigen::VectorXd> moments_;

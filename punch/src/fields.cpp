@@ -121,7 +121,7 @@ double rh_pressure(const rh_wedge& wedge, double gam, double del, double L, cons
   if (interpolate_right) panels.insert(panels.end(), right.begin(), right.end());
   // Nodes of every panel (abel's first-kind grid, offsets from the nearer end), then the samples
   // outside the panels, in one densities call.
-  const abel::detail::chebyshev_grid<double> grid(points);
+  const abel::chebyshev_grid<double> grid(points);
   std::vector<double> nodes;
   for (const auto& p : panels) {
     const double half = (p.v - p.u) / 2;
@@ -149,7 +149,7 @@ double rh_pressure(const rh_wedge& wedge, double gam, double del, double L, cons
   std::vector<double> values(points);
   for (std::size_t i = 0; i < panels.size(); ++i) {
     for (std::size_t j = 0; j < points; ++j) values[j] = g[i * points + j].value / weight(panels[i], nodes[i * points + j]);
-    panels[i].c = abel::detail::chebyshev_coefficients(values);
+    panels[i].c = abel::chebyshev_coefficients(values);
   }
   for (std::size_t j = 0; j < direct.size(); ++j) p[direct[j]] = scale * g[panels.size() * points + j].value;
   for (std::size_t k = 0; k < u.size(); ++k) {

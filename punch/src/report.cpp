@@ -35,11 +35,11 @@ double layer_outside(const abel::layer_density<double>& layer, double s, const a
   const double inf = std::numeric_limits<double>::infinity(), h = layer.half_length();
   const bool before = s < layer.lo;  // s before the interval: t - s > 0
   const double d = before ? layer.lo - s : s - layer.hi;
-  const abel::detail::panel_integrator<double> rule(layer.del, layer.gam, 20);
+  const abel::panel_integrator<double> rule(layer.del, layer.gam, 20);
   return h * rule.integrate(2.0, std::min(layer.nearest_lo(), before ? d / h : inf),
                             std::min(layer.nearest_hi(), before ? inf : d / h), [&](double u, double v) {
                               const double t_minus_s = before ? d + h * u : -(d + h * v);
-                              return layer.factor_at_distance(u, v) * abel::detail::cross_kernel(par, t_minus_s);
+                              return layer.factor_at_distance(u, v) * abel::cross_kernel(par, t_minus_s);
                             });
 }
 
@@ -104,7 +104,7 @@ class inside_action {
     const auto& apex = g_.apex;
     if (apex.mobius == 0) {
       const double y = map_to_reference(s, g_.a(), g_.b()).x;
-      return result + std::pow(h, alpha) * apex.enrichment * abel::detail::enrichment_image_any(apex, op_.parameters(), split_, y);
+      return result + std::pow(h, alpha) * apex.enrichment * abel::enrichment_image_any(apex, op_.parameters(), split_, y);
     }
     // Mapped: the covariance A[g](M(sigma)) = (1 - s^2)^alpha (1 + s sigma)^(1 - alpha) A[g~](sigma)
     // (abel/step_enrichment.hpp), with the series part of g~ by the same independent quadrature.
@@ -112,7 +112,7 @@ class inside_action {
     const double y = d[0] <= d[1] ? d[0] - 1 : 1 - d[1];
     const double t = d[0] <= d[1] ? g_.a() + h * d[0] : g_.b() - h * d[1];
     const double mapped = series_sum(evaluate_mapped_, mapped_series_, t) +
-                          std::pow(h, alpha) * apex.enrichment * abel::detail::enrichment_image_any(apex, op_.parameters(), split_, y);
+                          std::pow(h, alpha) * apex.enrichment * abel::enrichment_image_any(apex, op_.parameters(), split_, y);
     return result + apex.covariance_factor(d[2]) * mapped;
   }
 
@@ -130,7 +130,7 @@ class inside_action {
   const contact_density& g_;
   abel::abel_operator<double> op_;
   abel::abel_operator<double>::quadrature_evaluator evaluate_, evaluate_layer_, evaluate_mapped_;
-  abel::detail::split_integrator<double> split_;  // node count as in abel::apply
+  abel::split_integrator<double> split_;  // node count as in abel::apply
   rhabel::quadrature::jacobi_series<double> series_;  // g.jacobi's series, coefficients precomputed
   rhabel::quadrature::jacobi_series<double> mapped_series_;  // g.apex.smooth's (mapped only; else empty)
 };

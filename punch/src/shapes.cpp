@@ -29,10 +29,10 @@ namespace rhabel::punch::detail {
 
 // ---------------------------------------------------------------------------------------------
 // Jacobi polynomials for exponents that may be <= -1 (the image family of the nu = -1 class above
-// the boundary has p = gam - 1 < -1): abel::detail::plain_jacobi_values, the plain three-term
+// the boundary has p = gam - 1 < -1): abel::plain_jacobi_values, the plain three-term
 // recurrence, valid as long as no denominator vanishes, which docs/theory.md section 4's families
 // guarantee for alpha not an integer >= 1.
-using abel::detail::plain_jacobi_values;
+using abel::plain_jacobi_values;
 
 // Position s of [a, b] -> (x, 1 + x, 1 - x) with both distances computed directly.
 mapped map_to_reference(double s, double a, double b) {
@@ -63,7 +63,7 @@ image_expansion image_coefficients(double a, double b, const edge_exponents& e, 
     // coefficients below are exact).
     std::vector<double> smooth(M + 1, 0.0);
     if (F.smooth) {
-      const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(M + 8, p, q);
+      const auto rule_ptr = abel::cached_gauss_jacobi_rule<double>(M + 8, p, q);
       const auto& rule = *rule_ptr;
       for (std::size_t i = 0; i < rule.size(); ++i) {
         const double s = rule.x_minus_lo[i] <= rule.hi_minus_x[i] ? a + (b - a) * rule.x_minus_lo[i] / 2

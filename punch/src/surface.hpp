@@ -57,7 +57,7 @@ class surface {
       case kind::general: {
         // Piecewise between the corners inside (f' jumps there: one rule across a jump would be
         // first-order accurate, measured 1e-2 of the span on a sampled profile's valley).
-        const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(32, 0.0, 0.0);
+        const auto rule_ptr = abel::cached_gauss_jacobi_rule<double>(32, 0.0, 0.0);
         const auto& rule = *rule_ptr;
         std::vector<double> cuts{from};
         for (const double c : std::get<general_profile>(s.source->shape).corners)
@@ -106,7 +106,7 @@ class surface {
   /// through far_action's tree (many contacts).
   double others_action(std::size_t i, double s) const {
     if (!cross_)
-      cross_ = std::make_unique<far_action>(st_, [par = cx_.par](const double& d) { return abel::detail::cross_kernel(par, d); });
+      cross_ = std::make_unique<far_action>(st_, [par = cx_.par](const double& d) { return abel::cross_kernel(par, d); });
     return cross_->sum(s, [&](std::size_t j) { return j == i ? 0.0 : apply_outside(st_[j].g, s, cx_.par); });
   }
 
@@ -157,7 +157,7 @@ class surface {
   const weighted_nodes& regular_nodes(std::size_t o) const {
     if (!nodes_[o].t.empty() || st_[o].g.line_load) return nodes_[o];
     const contact_density& d = st_[o].g;
-    const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(
+    const auto rule_ptr = abel::cached_gauss_jacobi_rule<double>(
         std::max<std::size_t>(d.jacobi.coefficients.size() + 64, 96), d.jacobi.del, d.jacobi.gam);
     const auto& rule = *rule_ptr;
     weighted_nodes& out = nodes_[o];
@@ -201,7 +201,7 @@ class surface {
       for (std::size_t k = 0; k < xs.size(); ++k) out[k] = moment(o, xs[k]);
       return;
     }
-    const abel::detail::chebyshev_grid<double> grid(points);
+    const abel::chebyshev_grid<double> grid(points);
     std::vector<double> values(points), coefficients;
     for (const int side : {-1, 1}) {
       // distances from the near edge of the samples on this side (index, r), r > 0
@@ -224,7 +224,7 @@ class surface {
           const double r = grid.one_plus_x[j] <= grid.one_minus_x[j] ? bottom + half * grid.one_plus_x[j] : top - half * grid.one_minus_x[j];
           values[j] = moment(o, side < 0 ? d.jacobi.lo - r : d.jacobi.hi + r);
         }
-        coefficients = abel::detail::chebyshev_coefficients(values);
+        coefficients = abel::chebyshev_coefficients(values);
         for (std::size_t m = begin; m < end; ++m) {
           const double r = near[m].first;
           out[near[m].second] = riemann::detail::chebyshev_fit<double>::clenshaw(coefficients, ((r - bottom) - (top - r)) / (top - bottom));
@@ -272,7 +272,7 @@ class surface {
         // int (1-x)^del (1+x)^(gam + alpha) S(x) dx, exact by Gauss-Jacobi with that weight for the
         // series S of degree M - 1 (M/2 + 1 nodes). Relative error ~ eps/alpha from the difference.
         const auto& j = g.jacobi;
-        const auto rule_ptr = abel::detail::cached_gauss_jacobi_rule<double>(j.coefficients.size() / 2 + 2, j.del, j.gam + cx_.alpha);
+        const auto rule_ptr = abel::cached_gauss_jacobi_rule<double>(j.coefficients.size() / 2 + 2, j.del, j.gam + cx_.alpha);
         double sum = 0;
         const auto series = j.series_evaluator();
         for (std::size_t q = 0; q < rule_ptr->size(); ++q) sum += rule_ptr->weight[q] * series(rule_ptr->x[q]);

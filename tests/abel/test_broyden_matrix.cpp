@@ -1,11 +1,11 @@
-// Tests of rhabel/abel/detail/broyden_matrix.hpp (a factorised Jacobian plus Broyden's rank-one
+// Tests of rhabel/abel/broyden_matrix.hpp (a factorised Jacobian plus Broyden's rank-one
 // updates, solved by the Woodbury identity): against a direct dense solve of the updated matrix
 // (the oracle forms J0 + sum u_i s_i^T itself and factorises it with full pivoting), the secant
 // condition J s = dr of every update, and the singular update a step that no longer changes the
 // residual makes.
 #include <doctest/doctest.h>
 
-#include "rhabel/abel/detail/broyden_matrix.hpp"
+#include "rhabel/abel/broyden_matrix.hpp"
 #include "support.hpp"
 
 #include <Eigen/Dense>
@@ -13,7 +13,7 @@
 #include <random>
 
 using namespace abel_test;
-using bm = rhabel::abel::detail::broyden_matrix<double>;
+using bm = rhabel::abel::broyden_matrix<double>;
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Tests of rhabel/abel/detail/far_field.hpp (the interpolative far field of many intervals):
+// Tests of rhabel/abel/far_field.hpp (the interpolative far field of many intervals):
 // against the direct sum by a fine Gauss-Jacobi rule of each density (shares no code with the
 // tree, the moments or the interpolation), on rows of equal intervals and on irregular layouts
 // (widths over three decades, gaps from 1e-3 to 10 widths, a layout far from the origin); and
@@ -19,7 +19,7 @@
 
 using namespace rhabel::abel;
 using namespace abel_test;
-using ff = detail::far_field<double>;
+using ff = far_field<double>;
 
 namespace {
 
@@ -63,7 +63,7 @@ std::pair<double, double> direct(const abel_parameters<double>& par, const layou
     for (std::size_t q = 0; q < rule.size(); ++q) {
       const double t_minus_s = i > j ? h * rule.x_minus_lo[q] + (g.lo - L.g[j].lo) - s_off
                                      : -(h * rule.hi_minus_x[q] + (L.g[j].lo - g.hi) + s_off);
-      const double v = h * rule.weight[q] * g.series(rule.x[q]) * detail::cross_kernel(par, t_minus_s);
+      const double v = h * rule.weight[q] * g.series(rule.x[q]) * cross_kernel(par, t_minus_s);
       sum += v, scale += std::abs(v);
     }
   }
@@ -198,7 +198,7 @@ namespace {
 /// int_{I_i} k(t - x) g_i(t) dt by the 100-point rule of g_i's weight (x outside I_i), and the
 /// same with |.| for the scale.
 std::pair<double, double> leaf_direct(const std::function<double(double)>& k, const jacobi_density<double>& g, double x) {
-  const auto rule = detail::cached_gauss_jacobi_rule<double>(100, g.del, g.gam);
+  const auto rule = cached_gauss_jacobi_rule<double>(100, g.del, g.gam);
   const double h = g.half_length();
   double sum = 0, scale = 0;
   for (std::size_t q = 0; q < rule->size(); ++q) {
@@ -216,7 +216,7 @@ TEST_CASE("far field: at_point (the treecode) matches the direct sum inside leav
   const double tol = 64 * eps;
   const abel_parameters<double> par(0.3, 0.4);
   const std::vector<std::function<double(double)>> kernels{
-      [&](double d) { return detail::cross_kernel(par, d); },
+      [&](double d) { return cross_kernel(par, d); },
       [](double d) { return d > 0 ? -std::log(d) : 0.7 - 0.4 * std::log(-d); }};
   const auto L = densities(par, irregular(60, 7, 1e3), 7);
   for (const auto& k : kernels) {

@@ -1,11 +1,11 @@
-// GMRES as a free function (rhabel/abel/detail/block_gmres.hpp: gmres), the algorithm behind
+// GMRES as a free function (rhabel/abel/gmres.hpp), the algorithm behind
 // block_gmres and punch's active-set solves, against Eigen's LU of the same matrix (no shared
 // code): the residual it reports is reached, a first guess is used (the exact solution costs one
 // product, a near one fewer products than zero), and a preconditioner that is the exact inverse
 // converges in one step.
 #include <doctest/doctest.h>
 
-#include "rhabel/abel/detail/block_gmres.hpp"
+#include "rhabel/abel/gmres.hpp"
 
 #include <Eigen/Dense>
 
@@ -15,7 +15,7 @@
 #include <random>
 
 namespace {
-using rhabel::abel::detail::gmres;
+using rhabel::abel::gmres;
 using vec = Eigen::VectorXd;
 
 // A nonsymmetric, well conditioned system (dominant diagonal, random rest), n = 120.

@@ -382,8 +382,8 @@ TEST_CASE("union: memory guard refuses a degree beyond options.max_memory_bytes"
   // refuses 25 (one solve of 48 unknowns, no residual).
   options.degree = 24;
   options.residual_points = 0;
-  options.max_memory_bytes = static_cast<std::size_t>(detail::union_memory_bytes<double>(2, 24));
-  CHECK(detail::union_degree_limit<double>(2, options.max_memory_bytes) == 24);
+  options.max_memory_bytes = static_cast<std::size_t>(union_memory_bytes<double>(2, 24));
+  CHECK(union_degree_limit<double>(2, options.max_memory_bytes) == 24);
   CHECK(solve_union(par, two, F, options).degree == 24);
   options.degree = 25;
   CHECK_THROWS_AS(solve_union(par, two, F, options), std::domain_error);
@@ -406,12 +406,12 @@ TEST_CASE("cross nodes: degree_graded_cross_nodes at degree 0 == panel_integrato
       for (bool facing_left : {true, false}) {
         const auto g = class_density(par, 2.0, 3.0, leading, trailing);
         auto graded = detail::degree_graded_cross_nodes(g, gap, facing_left, 0);
-        auto fixed = detail::make_cross_nodes(g, gap, facing_left, 24);
+        auto fixed = make_cross_nodes(g, gap, facing_left, 24);
         INFO("gap " << gap << " facing_left " << facing_left << " gam " << g.gam);
         REQUIRE(graded.x.size() == fixed.x.size());
         CHECK(graded.x.size() % 24 == 0);
         // order by x (the two walk the panels in opposite directions when facing right)
-        auto order = [](const detail::cross_nodes<double>& c) {
+        auto order = [](const cross_nodes<double>& c) {
           std::vector<std::size_t> idx(c.x.size());
           for (std::size_t i = 0; i < idx.size(); ++i) idx[i] = i;
           std::sort(idx.begin(), idx.end(), [&](std::size_t a, std::size_t b) { return c.x[a] < c.x[b]; });
@@ -515,7 +515,7 @@ TEST_CASE("iterative_from: block-preconditioned GMRES gives the LU's coefficient
 }
 
 // Many intervals with separated pairs: the far-field route (only own and near blocks assembled,
-// the rest applied through detail/far_field.hpp inside GMRES) solves the same collocation system
+// the rest applied through far_field.hpp inside GMRES) solves the same collocation system
 // as the LU on the assembled matrix: a row of 40 intervals of the three classes with loads on the
 // nu = +1 ones, gaps of 0.4 ... 2.5 lengths (near pairs and far ones).
 TEST_CASE("iterative_from with separated intervals: the far-field route gives the LU's coefficients and defects") {
@@ -561,12 +561,12 @@ TEST_CASE("iterative_from with separated intervals: the far-field route gives th
     CHECK(std::abs(a.solvability_defects[j] - b.solvability_defects[j]) <= coefficient_tolerance * size);
   // Memory: the far route's estimate at 1000 such intervals is tens of megabytes (measured 39 MB,
   // mostly the pairs' 20 x 20 kernel matrices), the dense matrix's gigabytes.
-  std::vector<detail::far_field<double>::box> boxes;
+  std::vector<far_field<double>::box> boxes;
   for (std::size_t k = 0; k < 1000; ++k) boxes.push_back({1.5 * double(k), 1.5 * double(k) + 1});
-  const detail::far_field<double> row(par, boxes, 20);
-  CHECK(detail::union_far_memory_bytes(row, 16) < 50e6);
-  CHECK(detail::union_memory_bytes<double>(1000, 16) > 2e9);
-  CHECK(detail::union_far_degree_limit(row, std::size_t(1) << 30) > 100);
+  const far_field<double> row(par, boxes, 20);
+  CHECK(union_far_memory_bytes(row, 16) < 50e6);
+  CHECK(union_memory_bytes<double>(1000, 16) > 2e9);
+  CHECK(union_far_degree_limit(row, std::size_t(1) << 30) > 100);
 }
 
 // multi_solve_options::homogeneous = false leaves the homogeneous solutions out and changes
@@ -589,7 +589,7 @@ TEST_CASE("homogeneous = false: no homogeneous solutions, the same densities") {
 }
 
 // Separated pairs (gap >= the source's half-length h): the cross block's single-panel rule of
-// detail::separated_cross_nodes (n/2 + ~20 nodes at gap = h, fewer farther away) against the
+// separated_cross_nodes (n/2 + ~20 nodes at gap = h, fewer farther away) against the
 // graded rule at 4x the resolution (make_cross_nodes, 4 degree + 64 nodes per panel), for both
 // classes of the source, both sides, gaps 1, 2.5 and 40 half-lengths.
 TEST_CASE("cross nodes: separated pairs reach rounding with separated_cross_nodes") {
@@ -603,12 +603,12 @@ TEST_CASE("cross nodes: separated pairs reach rounding with separated_cross_node
       for (bool right : {true, false}) {
         const auto g = class_density(par, 2.0, 3.0, leading, trailing);  // h = 0.5
         const double gap = gap_over_h * g.half_length();
-        CHECK(detail::separated_cross_nodes(gap_over_h, degree) < detail::cross_panel_nodes(0.0, 2.0, degree));
+        CHECK(separated_cross_nodes(gap_over_h, degree) < detail::cross_panel_nodes(0.0, 2.0, degree));
         std::vector<double> dist;
         for (int k = 0; k < 12; ++k) dist.push_back(0.1 * k * k);  // target points 0 .. 12 from the facing end
-        auto kernel = [&](double t_minus_s) { return detail::cross_kernel(par, t_minus_s); };
+        auto kernel = [&](double t_minus_s) { return cross_kernel(par, t_minus_s); };
         const auto B = detail::cross_block(g, gap, right, dist, degree, 1.0, kernel);
-        const auto fine = detail::make_cross_nodes(g, gap, right, 4 * degree + 64);
+        const auto fine = make_cross_nodes(g, gap, right, 4 * degree + 64);
         double size = 0, worst = 0;
         for (std::size_t k = 0; k < dist.size(); ++k) {
           std::vector<double> reference(degree, 0.0);

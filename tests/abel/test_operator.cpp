@@ -292,9 +292,9 @@ TEST_CASE("exterior value is continuous at the leading edge for a bounded densit
 // session-2 report). The cache must hand out the
 // same immutable rule for the same (n, p, q) and exactly what quadrature::gauss_jacobi computes.
 TEST_CASE("cached Gauss-Jacobi rules: shared per (n, p, q), identical to a fresh rule") {
-  const auto first = detail::cached_gauss_jacobi_rule<double>(24, -0.3, 0.45);
-  const auto again = detail::cached_gauss_jacobi_rule<double>(24, -0.3, 0.45);
-  const auto other = detail::cached_gauss_jacobi_rule<double>(24, -0.3, 0.46);
+  const auto first = cached_gauss_jacobi_rule<double>(24, -0.3, 0.45);
+  const auto again = cached_gauss_jacobi_rule<double>(24, -0.3, 0.45);
+  const auto other = cached_gauss_jacobi_rule<double>(24, -0.3, 0.46);
   CHECK(first.get() == again.get());
   CHECK(first.get() != other.get());
   const auto fresh = rhabel::quadrature::gauss_jacobi<double>(24, -0.3, 0.45);

@@ -35,7 +35,7 @@ TEST_CASE("jump of A[phi] at x0 equals w(x0) J_E (local Mellin analysis)") {
       d.kappa = op.parameters().kappa();
       d.alpha = alpha;
       d.q = detail::inverse_weight_taylor(e.gam, e.del, d.x0, 12);
-      const detail::split_integrator<double> si(18);
+      const split_integrator<double> si(18);
       const double w0 = std::pow(1.2, e.del) * std::pow(0.8, e.gam);
       const double kappa = d.kappa;
       const double J = pi / std::sin(pi * alpha) * (1 - 2 * kappa * std::cos(pi * alpha) + kappa * kappa);
@@ -531,7 +531,7 @@ TEST_CASE("power_product: exp of summed logs within its documented bound") {
 TEST_CASE("for_each_node_deferred: the nodes of for_each_node, the interior panels' powers left to the visitor") {
   constexpr double reassociation_tolerance = 4 * eps;  // (s w) u^q v^p against s (w u^q v^p): <= 3 roundings
   for (const auto& [p, q] : std::vector<std::pair<double, double>>{{-0.3, 0.7}, {0.0, -0.5}, {0.25, 0.0}}) {
-    const detail::panel_integrator<double> rule(p, q, 12);
+    const panel_integrator<double> rule(p, q, 12);
     struct visited {
       double u, v, weight, q_here, p_here;
     };

@@ -165,7 +165,7 @@ TEST_CASE("rows of parabolas: mirror symmetry of an elastic row, few Newton iter
 
 TEST_CASE("a row of 40 contacts (80 edges: Broyden's updates by the Woodbury identity) converges to its tolerance") {
   // Above 64 unknowns a Newton step solves with the last finite-difference Jacobian's factors and
-  // Broyden's updates by the Woodbury identity (abel/detail/broyden_matrix.hpp; its singular
+  // Broyden's updates by the Woodbury identity (abel/broyden_matrix.hpp; its singular
   // updates are tested in tests/abel/test_broyden_matrix.cpp): a wrong step would stall the
   // iteration or stop it early. The residual of (8) of a converged row is at the tolerance's
   // level (measured 2.8e-13 at 1e-12); 100 times it is the bar.

@@ -185,7 +185,7 @@ TEST_CASE("three indentors of each shape against the boundary-element oracle") {
   }
 }
 
-TEST_CASE("seven contacts (the far-field route: abel/detail/far_field.hpp) against the boundary-element oracle") {
+TEST_CASE("seven contacts (the far-field route: abel/far_field.hpp) against the boundary-element oracle") {
   // From six contacts on, separated contacts act on one another through the far field (the data
   // of the coupling correction, the union's products, the report's residual and displacement).
   // Parabolas of four radii and a wedge (its apex enrichment acts directly on every contact) at

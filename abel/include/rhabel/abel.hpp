@@ -31,6 +31,16 @@
 //     -> multi_solution{densities, exponents, solvability_defects, homogeneous, homogeneous_defects,
 //                       residual, condition, degree, status};  apply_union(parameters, densities, s)
 //   solve_elementary_abel(alpha, side, lo, hi, F), elementary_abel_primitive(alpha, side, lo, hi, F, x)
+// The building blocks that the punch layer uses as well (each header documents accuracy and range):
+//   numerics.hpp        plain_jacobi_values, cached_gauss_jacobi_rule, chebyshev_grid,
+//                       chebyshev_coefficients, panel_integrator
+//   far_field.hpp       cross_kernel, far_field (interpolative far field of many intervals)
+//   cross_nodes.hpp     cross_nodes, make_cross_nodes, separated_cross_nodes
+//   union_memory.hpp    union_memory_bytes, union_degree_limit, union_far_memory_bytes,
+//                       union_far_degree_limit
+//   gmres.hpp           gmres (restarted, right preconditioned)
+//   broyden_matrix.hpp  broyden_matrix (factorised Jacobian plus Broyden's updates)
+//   step_enrichment.hpp split_integrator, enrichment_image_any
 #pragma once
 
 #include "rhabel/quadrature.hpp"
@@ -39,3 +49,9 @@
 #include "rhabel/abel/multi_interval.hpp"
 #include "rhabel/abel/elementary.hpp"
 #include "rhabel/abel/step_enrichment.hpp"
+#include "rhabel/abel/broyden_matrix.hpp"
+#include "rhabel/abel/cross_nodes.hpp"
+#include "rhabel/abel/far_field.hpp"
+#include "rhabel/abel/gmres.hpp"
+#include "rhabel/abel/numerics.hpp"
+#include "rhabel/abel/union_memory.hpp"

@@ -265,7 +265,7 @@ struct jacobi_density {
       const bool first = k == 0, last = k + 2 == cuts.size();
       // Pieces that do not touch an end see that end's weight singularity at a distance:
       // graded panels toward it (a breakpoint 1e-12 from an end costs ~ 40 panels, stays exact).
-      const detail::panel_integrator<Real> rule(last ? del : Real(0), first ? gam : Real(0), nodes);
+      const panel_integrator<Real> rule(last ? del : Real(0), first ? gam : Real(0), nodes);
       const Real start = cuts[k] + 1, end = 1 - cuts[k + 1];  // distances of the piece ends from -1, +1
       sum += rule.integrate(cuts[k + 1] - cuts[k], first ? inf : start, last ? inf : end,
                             [&](const Real& u, const Real& v) {
@@ -456,7 +456,7 @@ class abel_operator {
     }
     /// panel_integrator::integrate for a value type V (Real: the same sum, in the same order).
     template <class V, class F>
-    static V integrate(const detail::panel_integrator<Real>& rule, const Real& len, const Real& d_left,
+    static V integrate(const panel_integrator<Real>& rule, const Real& len, const Real& d_left,
                        const Real& d_right, const V& zero, F&& f) {
       V sum = zero;
       rule.for_each_node(len, d_left, d_right, [&](const Real& u, const Real& v, const Real& weight) { sum += weight * f(u, v); });
@@ -519,7 +519,7 @@ class abel_operator {
     Real gam_, del_;
     std::size_t degree_hint_, nodes_;
     bool subtract_;
-    detail::panel_integrator<Real> right_, left_;
+    panel_integrator<Real> right_, left_;
     Real E_del_, E_gam_, r_gam_;
   };
 
@@ -547,7 +547,7 @@ class abel_operator {
     const Real alpha = par_.alpha(), kappa = par_.kappa();
     const Real h = half_length();
     const std::size_t nodes = std::max<std::size_t>(16, degree_hint / 2 + 12);
-    const detail::panel_integrator<Real> rule(del, gam, nodes);
+    const panel_integrator<Real> rule(del, gam, nodes);
     const Real inf = std::numeric_limits<Real>::infinity();
     if (s < lo_) {
       const Real d = (lo_ - s) / h;  // distance of y below -1

@@ -228,7 +228,7 @@ abel_solution<Real> solve(const abel_operator<Real>& op, edge leading, edge trai
   Real tail = 0, previous_tail = std::numeric_limits<Real>::infinity();
   solve_status status = solve_status::converged;
   for (;;) {
-    const detail::chebyshev_grid<Real> grid(m);
+    const chebyshev_grid<Real> grid(m);
     std::vector<Real> values(m);
     for (std::size_t j = 0; j < m; ++j) {
       const Real s = grid.one_plus_x[j] <= grid.one_minus_x[j] ? op.lo() + h * grid.one_plus_x[j]
@@ -237,7 +237,7 @@ abel_solution<Real> solve(const abel_operator<Real>& op, edge leading, edge trai
       detail::check_finite_value("rhabel::abel::solve", v, s);
       values[j] = scale_F * v;
     }
-    a = detail::chebyshev_coefficients(values);
+    a = chebyshev_coefficients(values);
     Real biggest = 0;
     for (const Real& v : values) biggest = max(biggest, abs(v));
     const std::size_t tail_start = m - std::max<std::size_t>(2, m / 8);
@@ -318,7 +318,7 @@ abel_solution<Real> solve_piecewise(const abel_operator<Real>& op, edge leading,
   const Real inf = std::numeric_limits<Real>::infinity();
   for (std::size_t k = 0; k + 1 < cuts.size(); ++k) {
     const bool first = k == 0, last = k + 2 == cuts.size();
-    const detail::panel_integrator<Real> rule(last ? p : Real(0), first ? q : Real(0), nodes);
+    const panel_integrator<Real> rule(last ? p : Real(0), first ? q : Real(0), nodes);
     const Real start = cuts[k] + 1, end = 1 - cuts[k + 1];
     rule.for_each_node(cuts[k + 1] - cuts[k], first ? inf : start, last ? inf : end,
                        [&](const Real& u, const Real& v, const Real& w) {

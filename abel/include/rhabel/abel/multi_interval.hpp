@@ -20,7 +20,7 @@
 //               panel node counts that follow the resolution P_n needs (detail/union_assembly.hpp),
 //               evaluated as ONE matrix product (kernel values x basis values) per block; a
 //               separated pair (gap >= the half-length of I_i) by one Gauss-Jacobi panel of
-//               n/2 + O(log(1/eps)/log rho(gap)) nodes (detail::separated_cross_nodes), whose basis
+//               n/2 + O(log(1/eps)/log rho(gap)) nodes (separated_cross_nodes), whose basis
 //               values are shared by all separated blocks of the solve.
 // Collocation at M points of a degree-(M-1) image is the same linear system as interpolating
 // the data at those points and re-expanding it in the image basis (the method of the
@@ -42,7 +42,7 @@
 // separated intervals (rows of 10-300 contacts 1.5 lengths apart: 11-19 iterations to a relative
 // residual of 1e-14).
 // Many intervals: on that route, when some pairs of intervals are well separated (gap >= the
-// larger extent of two groups of consecutive intervals: detail/far_field.hpp), the system is
+// larger extent of two groups of consecutive intervals: far_field.hpp), the system is
 // never assembled. Only the own blocks and the blocks of NEAR pairs (on a row at any pitch: the
 // two neighbours) are, and the rest of A x is applied through the far field: the coefficients'
 // moments on every interval, a binary tree of the intervals, p x p kernel matrices between
@@ -111,7 +111,7 @@
 // numbers); for non-IEEE types also the inverse (for `condition`); the iterative route
 // (iterative_from) keeps the matrix unfactorised and adds its Krylov basis and the diagonal
 // blocks' LUs, 61 K M + K M^2 numbers beyond the estimate (a fraction 61/(K M) + 1/K of
-// (K M)^2: 5 % at K = 100, M = 16). detail::union_memory_bytes
+// (K M)^2: 5 % at K = 100, M = 16). union_memory_bytes
 // estimates the peak as sizeof(Real) max((K M)^2 + 6 M^2 [K > 1], (1 or 2) (K M)^2). Measured
 // peak resident set of a whole double solve without residual (F = -s, gap 1e-4, this machine)
 // against the estimate: K = 2, M = 1024: 81 MB (84); K = 3, M = 1024: 123 MB (126);
@@ -158,25 +158,25 @@ multi_solution<Real> solve_union(const abel_parameters<Real>& par, const std::ve
   std::size_t M = std::max<std::size_t>(options.degree, 2);
   const std::size_t M_max = std::max(M, options.max_degree);
   // Many intervals: the far field (header, "Many intervals"), for the solves and the residual.
-  std::shared_ptr<const detail::far_field<Real>> far;
+  std::shared_ptr<const far_field<Real>> far;
   if (std::is_floating_point_v<Real> && K > 1 && options.iterative_from > 1 && K >= options.iterative_from) {
     far = options.far_field;
     if (far && far->leaves() != K)
       detail::throw_bad_parameter("rhabel::abel::solve_union", "options.far_field leaves", far->leaves(),
                                   "the number of intervals");
     if (!far) {
-      std::vector<typename detail::far_field<Real>::box> boxes;
+      std::vector<typename far_field<Real>::box> boxes;
       for (const auto& iv : intervals) boxes.push_back({iv.lo, iv.hi});
-      far = std::make_shared<const detail::far_field<Real>>(
-          par, boxes, detail::far_field<Real>::order_for(double(options.residual_tolerance) * 1e-3));
+      far = std::make_shared<const far_field<Real>>(
+          par, boxes, far_field<Real>::order_for(double(options.residual_tolerance) * 1e-3));
     }
     if (far->pairs() == 0) far.reset();  // nothing far: the assembled matrix
   }
   // Memory guard (header, "Memory"): refuse before allocating the system.
-  const double bytes = far ? detail::union_far_memory_bytes(*far, M_max) : detail::union_memory_bytes<Real>(K, M_max);
+  const double bytes = far ? union_far_memory_bytes(*far, M_max) : union_memory_bytes<Real>(K, M_max);
   if (bytes > double(options.max_memory_bytes)) {
     std::ostringstream range;
-    range << "[2, " << detail::union_degree_limit<Real>(K, options.max_memory_bytes) << "] for " << K
+    range << "[2, " << union_degree_limit<Real>(K, options.max_memory_bytes) << "] for " << K
           << " interval(s): the solve would need ~" << bytes
           << " bytes > options.max_memory_bytes = " << options.max_memory_bytes
           << " (raise it deliberately for a larger system)";
@@ -187,7 +187,7 @@ multi_solution<Real> solve_union(const abel_parameters<Real>& par, const std::ve
     std::optional<multi_solution<Real>> attempt;
     if (far) attempt = detail::solve_union_at_degree(par, intervals, F, options, M, far.get());
     // The matrix-free GMRES did not converge: the assembled system, if it fits.
-    if (!attempt && far && detail::union_memory_bytes<Real>(K, M) > double(options.max_memory_bytes))
+    if (!attempt && far && union_memory_bytes<Real>(K, M) > double(options.max_memory_bytes))
       throw std::domain_error("rhabel::abel::solve_union: GMRES on the far-field system did not converge and the dense "
                               "system exceeds options.max_memory_bytes");
     if (!attempt) attempt = detail::solve_union_at_degree(par, intervals, F, options, M);

@@ -552,10 +552,14 @@ enum class apex_placement {
   centred
 };
 
-namespace detail {
-
-/// Composite quadrature of int_{-1}^{1} over pieces split at the sorted points, with the
-/// end exponent of each piece taken as Gauss-Jacobi weight (see header).
+/// Composite quadrature of int_{-1}^{1} over pieces split at sorted points (the apex x0 of an
+/// enriched density and the points next to it), each piece with its end exponents as Gauss-Jacobi
+/// weight and graded geometrically toward the neighbouring cuts (panel_integrator, numerics.hpp,
+/// `nodes` nodes per panel; the rules are cached per exponent pair, so one integrator serves many
+/// integrals). For integrands analytic on each piece up to singularities at the cuts it converges
+/// like panel_integrator's panels, (3 + sqrt 8)^(-2 nodes): the step enrichment takes
+/// enriched_density::quadrature_nodes() - 4 nodes, which reaches double rounding (the measured
+/// errors of int g in this header's accuracy table include it). Real: as abel_operator.
 template <class Real>
 class split_integrator {
  public:
@@ -600,6 +604,8 @@ class split_integrator {
   std::size_t nodes_;
   mutable std::map<std::pair<double, double>, std::shared_ptr<panel_integrator<Real>>> cache_;
 };
+
+namespace detail {
 
 /// Number of first-kind Chebyshev points, m or m + 1, such that no node lies within `margin` of
 /// the breakpoint x0. Why: the remainder F~ - C A[phi] is continuous at x0, but its two terms are
@@ -950,7 +956,7 @@ Real enriched_density<Real>::integrate_between(Fn&& f, const Real& from, const R
     std::vector<std::size_t> piece_starts;
     for (std::size_t k = 0; k + 1 < all.size(); ++k) {
       const bool first = k == 0, last = k + 2 == all.size();
-      const detail::panel_integrator<Real> rule(last ? smooth.del : Real(0), first ? smooth.gam : Real(0), nodes);
+      const panel_integrator<Real> rule(last ? smooth.del : Real(0), first ? smooth.gam : Real(0), nodes);
       const Real a = all[k], b = all[k + 1], start = a + 1, end = 1 - b;
       if (!inside(a, b)) continue;
       auto factor = factor_on(a, b);
@@ -1050,14 +1056,23 @@ Real enrichment_image_uniform(const enriched_density<Real>& d, const abel_parame
   return total;
 }
 
-/// A~[phi](y) in either mode.
+}  // namespace detail
+
+/// A~[phi](y): the image under the Abel operator of the enrichment phi = w q E of the density d
+/// at the reference point y in (-1, 1), y != x0, on the reference interval [-1, 1] (the physical
+/// image is (L/2)^alpha times it, L the interval's length). By composite quadrature with si
+/// (split at x0 and next to y) for alpha >= normalized_enrichment_threshold, and by the
+/// normalized form (E - 1)/alpha, uniform down to alpha = 0, below it (d.normalized). Accuracy:
+/// that of the quadrature, near double rounding with si of d.quadrature_nodes() - 4 nodes,
+/// except for the cancellation of the two one-sided integrals next to x0, ~eps/(4 alpha)^2
+/// relative on the plain path (solve_step's rounding_floor). Any abel_parameters (alpha in
+/// [0, 1), kappa).
 template <class Real>
 Real enrichment_image_any(const enriched_density<Real>& d, const abel_parameters<Real>& par,
                           const split_integrator<Real>& si, const Real& y) {
-  return d.normalized ? enrichment_image_uniform(d, par, y) : enrichment_image(d, par, si, y);
+  return d.normalized ? detail::enrichment_image_uniform(d, par, y) : detail::enrichment_image(d, par, si, y);
 }
 
-}  // namespace detail
 
 /// A g at any s (inside: spectral part + direct quadrature of A[phi]; outside [lo, hi]: the
 /// surface-slope formula, paper 27-28, by graded quadrature). s != t0, lo, hi. Mapped densities:
@@ -1073,9 +1088,9 @@ Real apply(const abel_operator<Real>& op, const enriched_density<Real>& g, const
     if (inside) {
       const auto d = g.sigma_of((s - op.lo()) / h, (op.hi() - s) / h);
       const Real y = d[0] <= d[1] ? d[0] - 1 : 1 - d[1];
-      const detail::split_integrator<Real> si(g.quadrature_nodes() - 4);
+      const split_integrator<Real> si(g.quadrature_nodes() - 4);
       const Real t = d[0] <= d[1] ? op.lo() + h * d[0] : op.hi() - h * d[1];
-      const Real mapped = op.apply(g.smooth, t) + pow(h, alpha) * g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, y);
+      const Real mapped = op.apply(g.smooth, t) + pow(h, alpha) * g.enrichment * enrichment_image_any(g, op.parameters(), si, y);
       return g.covariance_factor(d[2]) * mapped;
     }
     // t - s from the distances to the facing end (no cancellation).
@@ -1086,10 +1101,10 @@ Real apply(const abel_operator<Real>& op, const enriched_density<Real>& g, const
         {}, below ? gap / h : inf, below ? inf : gap / h);
   }
   Real value = op.apply(g.smooth, s);
-  const detail::split_integrator<Real> si(g.quadrature_nodes() - 4);
+  const split_integrator<Real> si(g.quadrature_nodes() - 4);
   if (inside) {
     const Real y = -1 + (s - op.lo()) / h;
-    return value + pow(h, alpha) * g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, y);
+    return value + pow(h, alpha) * g.enrichment * enrichment_image_any(g, op.parameters(), si, y);
   }
   const Real d = below ? (op.lo() - s) / h : (s - op.hi()) / h;  // distance of y from the interval
   const Real inf = std::numeric_limits<Real>::infinity();
@@ -1101,6 +1116,279 @@ Real apply(const abel_operator<Real>& op, const enriched_density<Real>& g, const
   sum += detail::enrichment_piece(g, g.x0, Real(1), at_x0, piece_end::interval_end, g.x0 + 1, below ? inf : d, kernel);
   return value + pow(h, alpha) * g.enrichment * sum;
 }
+
+namespace detail {
+
+// Taylor degree of q for the apex `apex` (mapped by `mobius`): the largest K <= max_taylor_degree
+// with max|q| <= max_taylor_amplification, at least 1.
+// q has radius of convergence 1 - |x0| and grows like ((1 + |x0|)/(1 - |x0|))^K on the far
+// side, which sets a rounding floor ~ max|q| eps (taylor_amplification). Automatic K: the largest
+// K <= max_taylor_degree() with max|q| <= max_taylor_amplification (1e4: floor ~ 1e-12), at least 1.
+// q is built once at the largest degree: each Taylor coefficient is summed in the same order
+// whatever K is, so q of degree K is its first K + 1 coefficients, to the last bit.
+template <class Real>
+std::size_t automatic_taylor_degree(const edge_exponents<Real>& e, const Real& apex, const Real& mobius) {
+  const auto q_max = mapped_weight_taylor(e.gam, e.del, apex, max_taylor_degree(), mobius);
+  for (std::size_t K = max_taylor_degree(); K > 1; --K)
+    if (taylor_amplification(q_max, apex, K) <= max_taylor_amplification<Real>()) return K;
+  return std::size_t(1);
+}
+
+// Sets g's Moebius map and apex g.x0 (reference variable) for an apex at reference distances
+// (1 + x0, 1 - x0) from the ends, and returns the Taylor degree of q (taylor_degree if nonzero).
+template <class Real>
+std::size_t place_step_apex(enriched_density<Real>& g, const edge_exponents<Real>& e, const Real& x0,
+                            const Real& one_plus_x0, const Real& one_minus_x0, bool centred, std::size_t taylor_degree) {
+  using std::abs;
+  if (centred) {
+    // M(0) = s: the map with s = x0 puts the apex at the centre (header, "Data vanishing on the long side").
+    g.set_mobius(std::min(one_plus_x0, one_minus_x0), one_plus_x0 < one_minus_x0);
+    g.x0 = 0;
+    if (taylor_degree == 0) taylor_degree = automatic_taylor_degree(e, g.x0, g.mobius);
+  } else if (taylor_degree == 0) {
+    if (!(abs(x0) > moebius_threshold<Real>())) taylor_degree = automatic_taylor_degree(e, x0, Real(0));
+    if (abs(x0) > moebius_threshold<Real>()) {
+      // Apex near an edge: the Moebius map that splits r = (1 - x0)/(1 + x0) (see header).
+      using std::pow;
+      const Real r = one_minus_x0 / one_plus_x0, r_map = pow(r, 1 - moebius_apex_exponent<Real>());
+      // s = (1 - r_map)/(1 + r_map): 1 - |s| = 2 min(r_map, 1)/(1 + r_map).
+      g.set_mobius(2 * std::min(r_map, Real(1)) / (1 + r_map), r_map > 1);
+      const auto apex = g.sigma_of(one_plus_x0, one_minus_x0);
+      g.x0 = apex[0] <= apex[1] ? apex[0] - 1 : 1 - apex[1];
+      taylor_degree = automatic_taylor_degree(e, g.x0, g.mobius);
+    }
+  }
+  return taylor_degree;
+}
+
+// Rounding floor of the remainder's Chebyshev tail for the density g (q and the apex set).
+// max|q| eps (the smooth part cancels C phi far from the apex) and, on the plain path
+// (alpha >= 0.01), the cancellation of the two one-sided integrals of A[E] near x0,
+// ~ eps/(4 alpha)^2 (normalized_enrichment_threshold: ~eps/alpha^2).
+template <class Real>
+Real step_rounding_floor(const enriched_density<Real>& g, const Real& alpha, bool centred) {
+  using std::max;
+  Real floor = taylor_amplification(g.q, g.x0) * std::numeric_limits<Real>::epsilon();
+  // With the apex centred (apex_placement::centred) the tails at 65 points measured 5-20 times
+  // eps/(4 alpha)^2 (alpha 0.01 .. 0.05, 1 - eps = 1e-2 and 1e-4; the data vanish on the long
+  // side, so max|F~| is the short side's step alone): the floor is eps/alpha^2 there. (With
+  // eps/(4 alpha)^2 alpha = 0.01 went to 585 points, 9 ms, without gaining accuracy.)
+  if (!(alpha < normalized_enrichment_threshold<Real>()))
+    floor = max(floor, std::numeric_limits<Real>::epsilon() / ((centred ? 1 : 16) * alpha * alpha));
+  return floor;
+}
+
+// The physical solvability defect of nu = -1 data F (f_at: F at reference distances
+// (1 + x, 1 - x)), the image-P_0 coefficient <F, w'>/<1, w'>.
+// nu = -1 solves A g = F - defect with a CONSTANT defect (F projected on the range: the image-P_0
+// coefficient <F, w'>/<1, w'>, w' = (1 - x)^(gam-1) (1 + x)^(del-1), the weight of the image
+// family P^(gam+nu, del+nu) (docs/theory.md section 4: the orthogonality condition); A[phi] has none). Mapped, a
+// constant is not constant in sigma, so the physical defect is removed from F before the map:
+// by Gauss-Jacobi on [-1, x0] and [x0, 1] (F smooth on each), graded toward the far end.
+template <class Real, class FAt>
+Real step_physical_defect(const edge_exponents<Real>& e, const Real& one_plus_x0, const Real& one_minus_x0,
+                          const FAt& f_at) {
+  using std::pow;
+  const Real inf = std::numeric_limits<Real>::infinity();
+  const panel_integrator<Real> left_piece(Real(0), e.del - 1, 32), right_piece(e.gam - 1, Real(0), 32);
+  const Real moment = left_piece.integrate(one_plus_x0, inf, one_minus_x0, [&](const Real& u, const Real& v) {
+    return pow(one_minus_x0 + v, e.gam - 1) * f_at(u, one_minus_x0 + v);
+  }) + right_piece.integrate(one_minus_x0, one_plus_x0, inf, [&](const Real& u, const Real& v) {
+    return pow(one_plus_x0 + u, e.del - 1) * f_at(one_plus_x0 + u, v);
+  });
+  return moment / (pow(Real(2), e.gam + e.del - 1) * boost::math::beta(e.gam, e.del));
+}
+
+// J_E, the jump of A[E] at the apex (of A[(E - 1)/alpha] times alpha when g.normalized).
+template <class Real>
+Real enrichment_jump(const enriched_density<Real>& g, const Real& alpha, const Real& kappa) {
+  using std::cos;
+  using std::sin;
+  const Real pi = boost::math::constants::pi<Real>();
+  if (!g.normalized) return pi / sin(pi * alpha) * (1 - 2 * kappa * cos(pi * alpha) + kappa * kappa);
+  // Jump of A[(E - 1)/alpha] = J_E / alpha, with 1 - 2 kappa cos + kappa^2 =
+  // alpha^2 [((1-kappa)/alpha)^2 + 4 kappa (sin(pi alpha/2)/alpha)^2]: uniform, pi^2/cos^2(beta pi/2) at 0.
+  const Real m = g.one_minus_kappa_over_alpha;
+  const Real sh = alpha == 0 ? pi / 2 : sin(pi * alpha / 2) / alpha;
+  const Real ratio = alpha == 0 ? Real(1) : pi * alpha / sin(pi * alpha);
+  return ratio * (m * m + 4 * kappa * sh * sh);
+}
+
+// The least distance (reference variable, mapped when g is) of a sampling point from the apex.
+// Sampling points stay at least `margin` away from x0 (reference variable): far enough that the
+// side on which F is evaluated (s < t0 or s > t0 in the physical variable, rounded) is the
+// side on which A[phi] is evaluated, however large |t0| is compared with the length.
+// A point next to the apex gets its abscissa from its distance to the nearer end, with an absolute
+// rounding ~ eps (|that end| + |t0|); sqrt(eps) times that (reference units) leaves a wide berth.
+// (Before: sqrt(eps) (1 + max(|lo|, |hi|)/h), which the map below turned into more than a node
+// spacing for an apex 1e-9 from the end at 0 of [-1, 1e-9]: the residual's search for a grid
+// avoiding x0 never ended.)
+// Mapped: distances at the apex shrink by M'(sigma0) = (1 - s^2)/(1 + s sigma0)^2 on the x axis.
+template <class Real>
+Real step_sampling_margin(const abel_operator<Real>& op, const enriched_density<Real>& g, const Real& t0,
+                          const Real& one_plus_x0, const Real& one_minus_x0) {
+  using std::abs;
+  using std::max;
+  using std::sqrt;
+  const Real nearer_end = one_plus_x0 <= one_minus_x0 ? abs(op.lo()) : abs(op.hi());
+  Real margin = sqrt(std::numeric_limits<Real>::epsilon()) * (nearer_end + abs(t0)) / op.half_length();
+  if (g.mobius != 0) {
+    const Real one_plus_s_sigma0 = g.apex_in_x()[2];
+    margin *= max(Real(1), one_plus_s_sigma0 * one_plus_s_sigma0 / (g.one_minus_s() * g.one_plus_s()));
+  }
+  return margin;
+}
+
+// The remainder F - C A[E] sampled on the last grid: its Chebyshev coefficients a, their relative
+// tail, the grid size, max |scaled data| on the grid, and whether the tail converged.
+template <class Real>
+struct step_remainder {
+  std::vector<Real> a;
+  Real tail = 0;
+  std::size_t used = 0;
+  Real biggest_data = 0;
+  bool converged = true;
+};
+
+// Chebyshev coefficients of the scaled remainder scale_F F - C A[E] on nested first-kind grids
+// avoiding the apex by `margin` (data_at: F at reference distances (1 + sigma, 1 - sigma)),
+// refined 3m at a time until the tail meets options.tolerance, its rounding floor or a plateau.
+template <class Real, class DataAt>
+step_remainder<Real> sample_step_remainder(const abel_operator<Real>& op, const enriched_density<Real>& g,
+                                           const split_integrator<Real>& si, const DataAt& data_at, const Real& scale_F,
+                                           const Real& margin, const Real& rounding_floor,
+                                           const solve_options<Real>& options) {
+  using std::abs;
+  using std::max;
+  step_remainder<Real> out;
+  std::vector<Real>& a = out.a;
+  Real& tail = out.tail;
+  std::size_t m = options.degree != 0 ? options.degree : std::min(initial_step_sampling_size(), std::max<std::size_t>(options.max_degree, 2));
+  Real previous_tail = std::numeric_limits<Real>::infinity();
+  std::size_t used = m;
+  // Nested grids: the first-kind grid of size 3m contains the grid of size m (node j is node
+  // 3j + 1), so a level reuses the remainder values of the previous one and computes 2m new ones.
+  std::vector<Real> values, abs_data;
+  for (;;) {
+    const std::size_t previous_used = values.size();
+    used = grid_size_avoiding(m, g.x0, margin);
+    const bool nested = previous_used != 0 && used == 3 * previous_used;
+    const chebyshev_grid<Real> grid(used);
+    std::vector<Real> next_values(used), next_abs(used);
+    for (std::size_t j = 0; j < used; ++j) {
+      if (nested && j % 3 == 1) {
+        next_values[j] = values[j / 3];
+        next_abs[j] = abs_data[j / 3];
+        continue;
+      }
+      const Real v = data_at(grid.one_plus_x[j], grid.one_minus_x[j]);
+      next_abs[j] = abs(scale_F * v);
+      next_values[j] = scale_F * v - g.enrichment * enrichment_image_any(g, op.parameters(), si, grid.x[j]);
+    }
+    values = std::move(next_values);
+    abs_data = std::move(next_abs);
+    Real biggest = 0;
+    for (const Real& v : abs_data) biggest = max(biggest, v);
+    a = chebyshev_coefficients(values);
+    const std::size_t tail_start = used - std::max<std::size_t>(2, used / 8);
+    tail = 0;
+    for (std::size_t k = tail_start; k < used; ++k) tail = max(tail, abs(a[k]));
+    if (biggest > 0) tail /= biggest;
+    if (options.degree != 0 || tail <= options.tolerance) break;
+    // At the rounding floor of the enrichment (4 max|q| eps; measured 1-5 max|q| eps) more points
+    // cannot help: converged to that floor (reported in rounding_floor). (Also requiring the
+    // tail to stagnate was measured with the former doubling levels: it took 65 -> 513 points at
+    // eps = 0.1 without improving int g.)
+    if (tail <= 4 * rounding_floor) break;
+    // Plateau: a tail below 1024 eps that no longer decays, against the previous level or within
+    // this one (the coefficients of the second half before the tail), is rounding noise.
+    Real middle = 0;
+    for (std::size_t k = used / 2; k < tail_start; ++k) middle = max(middle, abs(a[k]));
+    if (biggest > 0) middle /= biggest;
+    if (tail <= 1024 * std::numeric_limits<Real>::epsilon() && std::min(previous_tail, middle) <= 10 * tail) break;
+    previous_tail = tail;
+    // Next level: 3m (nested) up to options.max_degree points; a last level of exactly
+    // max_degree points (not nested) when 3m would exceed it.
+    if (used >= options.max_degree) {
+      out.converged = false;
+      break;
+    }
+    m = std::min<std::size_t>(3 * used, options.max_degree);
+  }
+  out.used = used;
+  for (const Real& v : abs_data) out.biggest_data = max(out.biggest_data, v);
+  return out;
+}
+
+// The points (1 + y, 1 - y) of solve_step's residual: a Chebyshev grid of about
+// residual_points points avoiding the sampling grid (`used` points) and the apex, the same grid
+// in x when g is mapped, and four points that see an apex close to an edge.
+template <class Real>
+std::vector<std::pair<Real, Real>> step_residual_points(const enriched_density<Real>& g, const Real& margin,
+                                                        std::size_t residual_points, std::size_t used) {
+  using std::abs;
+  // Residual points: no node of the sampling grid (residual_grid_size) and none within margin of x0.
+  std::size_t r = residual_grid_size(residual_points, used);
+  while (grid_size_avoiding(r, g.x0, margin) != r || same_power_of_two(r, used)) ++r;
+  const chebyshev_grid<Real> grid(r);
+  // Points as (1 + y, 1 - y): the interior Chebyshev points, plus four points that see an apex
+  // close to an edge (where the Chebyshev points are sparse relative to the apex's distance d
+  // to the nearer edge): y = x0 -+ d/2 and the points d/4, 3 d/4 of the way from x0 to that edge.
+  std::vector<std::pair<Real, Real>> points;
+  for (std::size_t j = 0; j < grid.x.size(); ++j) points.emplace_back(grid.one_plus_x[j], grid.one_minus_x[j]);
+  if (g.mobius != 0) {
+    // Mapped: the sigma grid crowds toward the apex and leaves the far side of the physical
+    // interval (squeezed next to the pole-side end) with few points; add the same grid in x.
+    for (std::size_t j = 0; j < grid.x.size(); ++j) {
+      const auto d = g.sigma_of(grid.one_plus_x[j], grid.one_minus_x[j]);
+      const Real y = d[0] <= d[1] ? d[0] - 1 : 1 - d[1];
+      if (abs(y - g.x0) > margin) points.emplace_back(d[0], d[1]);
+    }
+  }
+  const Real to_lo = 1 + g.x0, to_hi = 1 - g.x0, d = std::min(to_lo, to_hi);
+  for (const Real& shift : {-d / 2, d / 2}) points.emplace_back(to_lo + shift, to_hi - shift);
+  for (const Real& fraction : {Real(1) / 4, Real(3) / 4}) {
+    if (to_lo <= to_hi) points.emplace_back(to_lo * (1 - fraction), to_hi + to_lo * fraction);
+    else points.emplace_back(to_lo + to_hi * fraction, to_hi * (1 - fraction));
+  }
+  return points;
+}
+
+// solve_step's independent residual max |A g - (F - defect)| / max |F| at step_residual_points,
+// by direct quadrature of the one-sided integrals of both parts of g (sol.density).
+template <class Real, class DataAt>
+Real step_residual(const abel_operator<Real>& op, const enriched_solution<Real>& sol, const split_integrator<Real>& si,
+                   const DataAt& data_at, const Real& margin, std::size_t residual_points, std::size_t used) {
+  using std::abs;
+  using std::max;
+  using std::pow;
+  const enriched_density<Real>& g = sol.density;
+  const edge_exponents<Real>& e = sol.exponents;
+  const Real h = op.half_length(), alpha = op.parameters().alpha();
+  const typename abel_operator<Real>::quadrature_evaluator direct(op, e.gam, e.del, g.smooth.coefficients.size());
+  const auto points = step_residual_points(g, margin, residual_points, used);
+  // (Mapped: the defect is already out of the data.)
+  const Real defect = e.nu == -1 && g.mobius == 0 ? pow(h, alpha) * sol.solvability_defect : Real(0);
+  // g.smooth.series with the recurrence coefficients computed once (quadrature::jacobi_series).
+  const auto series = g.smooth.series_evaluator();
+  Real worst = 0, scale = 0;
+  for (const auto& [one_plus_y, one_minus_y] : points) {
+    // s: the point of the solved problem (sigma, in the units of [lo, hi], when mapped).
+    const Real s = one_plus_y <= one_minus_y ? op.lo() + h * one_plus_y : op.hi() - h * one_minus_y;
+    const Real y = one_plus_y <= one_minus_y ? one_plus_y - 1 : 1 - one_minus_y;
+    const Real Ag = direct([&](const Real& x) { return series(x); }, s) +
+                    pow(h, alpha) * g.enrichment * enrichment_image_any(g, op.parameters(), si, y);
+    const Real Fs = data_at(one_plus_y, one_minus_y);
+    // Mapped: the residual of the physical equation A g = F - defect is that of the mapped one
+    // times F/F~ here.
+    const Real back = g.covariance_factor(g.x_of(one_plus_y, one_minus_y)[2]);  // 1 without a map
+    worst = max(worst, abs(Ag - (Fs - defect)) * back);
+    scale = max(scale, abs(Fs) * back);
+  }
+  return scale > 0 ? worst / scale : worst;
+}
+
+}  // namespace detail
 
 /// Solves A g = F on [lo, hi] for F smooth except for a jump at t0 in (lo, hi) (see header).
 /// taylor_degree = 0 (default): automatic factor q (Taylor polynomial of the largest K <= 12 with
@@ -1115,10 +1403,8 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
                                    const solve_options<Real>& options = {}, std::size_t taylor_degree = 0,
                                    apex_placement placement = apex_placement::balanced) {
   using std::abs;
-  using std::cos;
   using std::max;
   using std::pow;
-  using std::sin;
   const Real alpha = op.parameters().alpha(), kappa = op.parameters().kappa();
   if (!(t0 > op.lo() && t0 < op.hi()))
     detail::throw_bad_parameter("rhabel::abel::solve_step", "t0", t0, "(lo, hi)");
@@ -1128,7 +1414,6 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
     detail::throw_bad_parameter("rhabel::abel::solve_step", "nu (apex_placement::centred)", Real(e.nu), "{0, +1}");
   const Real h = op.half_length();
   const Real scale_F = pow(h, -alpha);
-  const Real pi = boost::math::constants::pi<Real>();
   const Real x0 = -1 + (t0 - op.lo()) / h;
 
   enriched_solution<Real> sol;
@@ -1141,57 +1426,15 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   g.x0 = x0;
   g.kappa = kappa;
   g.alpha = alpha;
-  // q has radius of convergence 1 - |x0| and grows like ((1 + |x0|)/(1 - |x0|))^K on the far
-  // side, which sets a rounding floor ~ max|q| eps (taylor_amplification). Automatic K: the largest
-  // K <= max_taylor_degree with max|q| <= max_taylor_amplification (1e4: floor ~ 1e-12), at least 1.
-  // q is built once at the largest degree: each Taylor coefficient is summed in the same order
-  // whatever K is, so q of degree K is its first K + 1 coefficients, to the last bit.
-  auto automatic_degree = [&](const Real& apex, const Real& mobius) {
-    const auto q_max = detail::mapped_weight_taylor(e.gam, e.del, apex, max_taylor_degree(), mobius);
-    for (std::size_t K = max_taylor_degree(); K > 1; --K)
-      if (detail::taylor_amplification(q_max, apex, K) <= max_taylor_amplification<Real>()) return K;
-    return std::size_t(1);
-  };
   const Real one_plus_x0 = (t0 - op.lo()) / h, one_minus_x0 = (op.hi() - t0) / h;
-  if (centred) {
-    // M(0) = s: the map with s = x0 puts the apex at the centre (header, "Data vanishing on the long side").
-    g.set_mobius(std::min(one_plus_x0, one_minus_x0), one_plus_x0 < one_minus_x0);
-    g.x0 = 0;
-    if (taylor_degree == 0) taylor_degree = automatic_degree(g.x0, g.mobius);
-  } else if (taylor_degree == 0) {
-    if (!(abs(x0) > moebius_threshold<Real>())) taylor_degree = automatic_degree(x0, Real(0));
-    if (abs(x0) > moebius_threshold<Real>()) {
-      // Apex near an edge: the Moebius map that splits r = (1 - x0)/(1 + x0) (see header).
-      using std::pow;
-      const Real r = one_minus_x0 / one_plus_x0, r_map = pow(r, 1 - moebius_apex_exponent<Real>());
-      // s = (1 - r_map)/(1 + r_map): 1 - |s| = 2 min(r_map, 1)/(1 + r_map).
-      g.set_mobius(2 * std::min(r_map, Real(1)) / (1 + r_map), r_map > 1);
-      const auto apex = g.sigma_of(one_plus_x0, one_minus_x0);
-      g.x0 = apex[0] <= apex[1] ? apex[0] - 1 : 1 - apex[1];
-      taylor_degree = automatic_degree(g.x0, g.mobius);
-    }
-  }
+  taylor_degree = detail::place_step_apex(g, e, x0, one_plus_x0, one_minus_x0, centred, taylor_degree);
   g.q = detail::mapped_weight_taylor(e.gam, e.del, g.x0, taylor_degree, g.mobius);
   sol.taylor_degree = taylor_degree;
-  // Rounding floor of the remainder's Chebyshev tail: max|q| eps (the smooth part cancels C phi far
-  // from the apex) and, on the plain path (alpha >= 0.01), the cancellation of the two one-sided
-  // integrals of A[E] near x0, ~ eps/(4 alpha)^2 (normalized_enrichment_threshold: ~eps/alpha^2).
-  sol.rounding_floor = detail::taylor_amplification(g.q, g.x0) * std::numeric_limits<Real>::epsilon();
-  // With the apex centred (apex_placement::centred) the tails at 65 points measured 5-20 times
-  // eps/(4 alpha)^2 (alpha 0.01 .. 0.05, 1 - eps = 1e-2 and 1e-4; the data vanish on the long
-  // side, so max|F~| is the short side's step alone): the floor is eps/alpha^2 there. (With
-  // eps/(4 alpha)^2 alpha = 0.01 went to 585 points, 9 ms, without gaining accuracy.)
-  if (!(alpha < normalized_enrichment_threshold<Real>()))
-    sol.rounding_floor = max(sol.rounding_floor, std::numeric_limits<Real>::epsilon() / ((centred ? 1 : 16) * alpha * alpha));
+  sol.rounding_floor = detail::step_rounding_floor(g, alpha, centred);
   // The data of the solved problem at the point with reference distances (1 + sigma, 1 - sigma):
   // F, or with the map F~(sigma) = (1 - s^2)^-alpha (1 + s sigma)^(alpha - 1) F(M(sigma)) (header).
   const Real s_map = g.mobius;
   auto map_factor = [&](const Real& one_plus_s_sigma) { return 1 / g.covariance_factor(one_plus_s_sigma); };  // F~ / F
-  // nu = -1 solves A g = F - defect with a CONSTANT defect (F projected on the range: the image-P_0
-  // coefficient <F, w'>/<1, w'>, w' = (1 - x)^(gam-1) (1 + x)^(del-1), the weight of the image
-  // family P^(gam+nu, del+nu) (docs/theory.md section 4: the orthogonality condition); A[phi] has none). Mapped, a
-  // constant is not constant in sigma, so the physical defect is removed from F before the map:
-  // by Gauss-Jacobi on [-1, x0] and [x0, 1] (F smooth on each), graded toward the far end.
   // F at the point with reference distances 1 + x, 1 - x (x axis), checked finite.
   const bool long_side_below = one_minus_x0 <= one_plus_x0;  // the apex is nearer to hi
   auto f_at = [&](const Real& one_plus, const Real& one_minus) {
@@ -1202,17 +1445,8 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
       detail::throw_bad_parameter("rhabel::abel::solve_step", "f on the long side of t0 (apex_placement::centred)", v, "{0}");
     return v;
   };
-  Real physical_defect = 0;
-  if (s_map != 0 && e.nu == -1) {
-    const Real inf = std::numeric_limits<Real>::infinity();
-    const detail::panel_integrator<Real> left_piece(Real(0), e.del - 1, 32), right_piece(e.gam - 1, Real(0), 32);
-    const Real moment = left_piece.integrate(one_plus_x0, inf, one_minus_x0, [&](const Real& u, const Real& v) {
-      return pow(one_minus_x0 + v, e.gam - 1) * f_at(u, one_minus_x0 + v);
-    }) + right_piece.integrate(one_minus_x0, one_plus_x0, inf, [&](const Real& u, const Real& v) {
-      return pow(one_plus_x0 + u, e.del - 1) * f_at(one_plus_x0 + u, v);
-    });
-    physical_defect = moment / (pow(Real(2), e.gam + e.del - 1) * boost::math::beta(e.gam, e.del));
-  }
+  const Real physical_defect =
+      s_map != 0 && e.nu == -1 ? detail::step_physical_defect(e, one_plus_x0, one_minus_x0, f_at) : Real(0);
   auto data_at = [&](const Real& one_plus_sigma, const Real& one_minus_sigma) {
     if (s_map == 0) return f_at(one_plus_sigma, one_minus_sigma);
     const auto d = g.x_of(one_plus_sigma, one_minus_sigma);
@@ -1228,90 +1462,16 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   const Real w0 = pow(1 - g.x0, e.del) * pow(1 + g.x0, e.gam);
   g.normalized = alpha < normalized_enrichment_threshold<Real>();
   g.one_minus_kappa_over_alpha = op.parameters().one_minus_kappa_over_alpha();
-  Real J_E;
-  if (!g.normalized) {
-    J_E = pi / sin(pi * alpha) * (1 - 2 * kappa * cos(pi * alpha) + kappa * kappa);
-  } else {
-    // Jump of A[(E - 1)/alpha] = J_E / alpha, with 1 - 2 kappa cos + kappa^2 =
-    // alpha^2 [((1-kappa)/alpha)^2 + 4 kappa (sin(pi alpha/2)/alpha)^2]: uniform, pi^2/cos^2(beta pi/2) at 0.
-    const Real m = g.one_minus_kappa_over_alpha;
-    const Real sh = alpha == 0 ? pi / 2 : sin(pi * alpha / 2) / alpha;
-    const Real ratio = alpha == 0 ? Real(1) : pi * alpha / sin(pi * alpha);
-    J_E = ratio * (m * m + 4 * kappa * sh * sh);
-  }
-  g.enrichment = scale_F * jump / (w0 * J_E);
+  g.enrichment = scale_F * jump / (w0 * detail::enrichment_jump(g, alpha, kappa));
 
-  const detail::split_integrator<Real> si(g.quadrature_nodes() - 4);
+  const split_integrator<Real> si(g.quadrature_nodes() - 4);
   const Real p = e.gam + Real(e.nu), qI = e.del + Real(e.nu);
-  std::size_t m = options.degree != 0 ? options.degree : std::min(initial_step_sampling_size(), std::max<std::size_t>(options.max_degree, 2));
-  std::vector<Real> a;
-  Real tail = 0, previous_tail = std::numeric_limits<Real>::infinity();
-  // Sampling points stay at least `margin` away from x0 (reference variable): far enough that the
-  // side on which F is evaluated (s < t0 or s > t0 in the physical variable, rounded) is the
-  // side on which A[phi] is evaluated, however large |t0| is compared with the length.
-  using std::sqrt;
-  // A point next to the apex gets its abscissa from its distance to the nearer end, with an absolute
-  // rounding ~ eps (|that end| + |t0|); sqrt(eps) times that (reference units) leaves a wide berth.
-  // (Before: sqrt(eps) (1 + max(|lo|, |hi|)/h), which the map below turned into more than a node
-  // spacing for an apex 1e-9 from the end at 0 of [-1, 1e-9]: the residual's search for a grid
-  // avoiding x0 never ended.)
-  // Mapped: distances at the apex shrink by M'(sigma0) = (1 - s^2)/(1 + s sigma0)^2 on the x axis.
-  const Real nearer_end = one_plus_x0 <= one_minus_x0 ? abs(op.lo()) : abs(op.hi());
-  Real margin = sqrt(std::numeric_limits<Real>::epsilon()) * (nearer_end + abs(t0)) / h;
-  if (s_map != 0) {
-    const Real one_plus_s_sigma0 = g.apex_in_x()[2];
-    margin *= max(Real(1), one_plus_s_sigma0 * one_plus_s_sigma0 / (g.one_minus_s() * g.one_plus_s()));
-  }
-  std::size_t used = m;
-  // Nested grids: the first-kind grid of size 3m contains the grid of size m (node j is node
-  // 3j + 1), so a level reuses the remainder values of the previous one and computes 2m new ones.
-  std::vector<Real> values, abs_data;
-  for (;;) {
-    const std::size_t previous_used = values.size();
-    used = detail::grid_size_avoiding(m, g.x0, margin);
-    const bool nested = previous_used != 0 && used == 3 * previous_used;
-    const detail::chebyshev_grid<Real> grid(used);
-    std::vector<Real> next_values(used), next_abs(used);
-    for (std::size_t j = 0; j < used; ++j) {
-      if (nested && j % 3 == 1) {
-        next_values[j] = values[j / 3];
-        next_abs[j] = abs_data[j / 3];
-        continue;
-      }
-      const Real v = data_at(grid.one_plus_x[j], grid.one_minus_x[j]);
-      next_abs[j] = abs(scale_F * v);
-      next_values[j] = scale_F * v - g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, grid.x[j]);
-    }
-    values = std::move(next_values);
-    abs_data = std::move(next_abs);
-    Real biggest = 0;
-    for (const Real& v : abs_data) biggest = max(biggest, v);
-    a = detail::chebyshev_coefficients(values);
-    const std::size_t tail_start = used - std::max<std::size_t>(2, used / 8);
-    tail = 0;
-    for (std::size_t k = tail_start; k < used; ++k) tail = max(tail, abs(a[k]));
-    if (biggest > 0) tail /= biggest;
-    if (options.degree != 0 || tail <= options.tolerance) break;
-    // At the rounding floor of the enrichment (4 max|q| eps; measured 1-5 max|q| eps) more points
-    // cannot help: converged to that floor (reported in rounding_floor). (Also requiring the
-    // tail to stagnate was measured with the former doubling levels: it took 65 -> 513 points at
-    // eps = 0.1 without improving int g.)
-    if (tail <= 4 * sol.rounding_floor) break;
-    // Plateau: a tail below 1024 eps that no longer decays, against the previous level or within
-    // this one (the coefficients of the second half before the tail), is rounding noise.
-    Real middle = 0;
-    for (std::size_t k = used / 2; k < tail_start; ++k) middle = max(middle, abs(a[k]));
-    if (biggest > 0) middle /= biggest;
-    if (tail <= 1024 * std::numeric_limits<Real>::epsilon() && std::min(previous_tail, middle) <= 10 * tail) break;
-    previous_tail = tail;
-    // Next level: 3m (nested) up to options.max_degree points; a last level of exactly
-    // max_degree points (not nested) when 3m would exceed it.
-    if (used >= options.max_degree) {
-      sol.status = solve_status::not_converged;
-      break;
-    }
-    m = std::min<std::size_t>(3 * used, options.max_degree);
-  }
+  const Real margin = detail::step_sampling_margin(op, g, t0, one_plus_x0, one_minus_x0);
+  auto remainder = detail::sample_step_remainder(op, g, si, data_at, scale_F, margin, sol.rounding_floor, options);
+  if (!remainder.converged) sol.status = solve_status::not_converged;
+  std::vector<Real>& a = remainder.a;
+  Real tail = remainder.tail;
+  const std::size_t used = remainder.used;
   Real biggest_a = 0;
   for (const Real& v : a) biggest_a = max(biggest_a, abs(v));
   std::size_t keep = a.size();
@@ -1327,61 +1487,12 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
     // The physical defect (below) was removed from the data: what is left of the image-P_0
     // coefficient is the data's lack of resolution (and quadrature error): part of the tail.
     sol.solvability_defect = scale_F * physical_defect;
-    Real biggest = 0;
-    for (const Real& v : abs_data) biggest = max(biggest, v);
-    if (biggest > 0) tail = max(tail, abs(smooth.solvability_defect) / biggest);
+    if (remainder.biggest_data > 0) tail = max(tail, abs(smooth.solvability_defect) / remainder.biggest_data);
   }
   sol.coefficient_tail = tail;
   sol.degree = used;
-  if (options.residual_points > 0) {
-    // Independent residual: direct quadrature of the one-sided integrals of both parts.
-    const typename abel_operator<Real>::quadrature_evaluator direct(op, e.gam, e.del, g.smooth.coefficients.size());
-    // Residual points: no node of the sampling grid (residual_grid_size) and none within margin of x0.
-    std::size_t r = detail::residual_grid_size(options.residual_points, used);
-    while (detail::grid_size_avoiding(r, g.x0, margin) != r || detail::same_power_of_two(r, used)) ++r;
-    const detail::chebyshev_grid<Real> grid(r);
-    // Points as (1 + y, 1 - y): the interior Chebyshev points, plus four points that see an apex
-    // close to an edge (where the Chebyshev points are sparse relative to the apex's distance d
-    // to the nearer edge): y = x0 -+ d/2 and the points d/4, 3 d/4 of the way from x0 to that edge.
-    std::vector<std::pair<Real, Real>> points;
-    for (std::size_t j = 0; j < grid.x.size(); ++j) points.emplace_back(grid.one_plus_x[j], grid.one_minus_x[j]);
-    if (s_map != 0) {
-      // Mapped: the sigma grid crowds toward the apex and leaves the far side of the physical
-      // interval (squeezed next to the pole-side end) with few points; add the same grid in x.
-      for (std::size_t j = 0; j < grid.x.size(); ++j) {
-        const auto d = g.sigma_of(grid.one_plus_x[j], grid.one_minus_x[j]);
-        const Real y = d[0] <= d[1] ? d[0] - 1 : 1 - d[1];
-        if (abs(y - g.x0) > margin) points.emplace_back(d[0], d[1]);
-      }
-    }
-    {
-      const Real to_lo = 1 + g.x0, to_hi = 1 - g.x0, d = std::min(to_lo, to_hi);
-      for (const Real& shift : {-d / 2, d / 2}) points.emplace_back(to_lo + shift, to_hi - shift);
-      for (const Real& fraction : {Real(1) / 4, Real(3) / 4}) {
-        if (to_lo <= to_hi) points.emplace_back(to_lo * (1 - fraction), to_hi + to_lo * fraction);
-        else points.emplace_back(to_lo + to_hi * fraction, to_hi * (1 - fraction));
-      }
-    }
-    // (Mapped: the defect is already out of the data.)
-    const Real defect = e.nu == -1 && s_map == 0 ? pow(h, alpha) * sol.solvability_defect : Real(0);
-    // g.smooth.series with the recurrence coefficients computed once (quadrature::jacobi_series).
-    const auto series = g.smooth.series_evaluator();
-    Real worst = 0, scale = 0;
-    for (const auto& [one_plus_y, one_minus_y] : points) {
-      // s: the point of the solved problem (sigma, in the units of [lo, hi], when mapped).
-      const Real s = one_plus_y <= one_minus_y ? op.lo() + h * one_plus_y : op.hi() - h * one_minus_y;
-      const Real y = one_plus_y <= one_minus_y ? one_plus_y - 1 : 1 - one_minus_y;
-      const Real Ag = direct([&](const Real& x) { return series(x); }, s) +
-                      pow(h, alpha) * g.enrichment * detail::enrichment_image_any(g, op.parameters(), si, y);
-      const Real Fs = data_at(one_plus_y, one_minus_y);
-      // Mapped: the residual of the physical equation A g = F - defect is that of the mapped one
-      // times F/F~ here.
-      const Real back = g.covariance_factor(g.x_of(one_plus_y, one_minus_y)[2]);  // 1 without a map
-      worst = max(worst, abs(Ag - (Fs - defect)) * back);
-      scale = max(scale, abs(Fs) * back);
-    }
-    sol.residual = scale > 0 ? worst / scale : worst;
-  }
+  // Independent residual: direct quadrature of the one-sided integrals of both parts.
+  if (options.residual_points > 0) sol.residual = detail::step_residual(op, sol, si, data_at, margin, options.residual_points, used);
   return sol;
 }
 

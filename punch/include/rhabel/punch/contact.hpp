@@ -177,7 +177,7 @@
 //     contacts; build/bin/study_multi_contact --rows-only, studies/README.md): N = 5 15 ms (10
 //     Newton iterations), 10 28 ms (13), 40 0.16 s (10), 100 0.51 s (12), 300 2.7 s (24), 1000 16 s
 //     (22; peak RSS 194 MB). From 6 contacts on,
-//     separated contacts act through abel's far field (abel/detail/far_field.hpp: the coupling
+//     separated contacts act through abel's far field (abel/far_field.hpp: the coupling
 //     data, the union's GMRES products without an assembled matrix, the residuals, the surface
 //     displacement), so an evaluation costs O(N) and memory O(N). Against the
 //     usual boundary-element

@@ -625,125 +625,160 @@ struct interior_finisher {
   }
 };
 
-// One half of the asymptotic path (double): nodes 1..count nearest the end with exponent a,
-// written in place into target. Returns false if Newton's method failed somewhere (the caller
-// then falls back).
-inline bool gauss_jacobi_asymptotic_half(std::size_t n, double a, double b, std::size_t count, double weight_factor,
-                                         const gauss_jacobi_half_target& target) {
-  const hahn_expansion hahn(n, a, b);
-  const double rho = hahn.rho();
-  // Boundary: the nodes before the first one whose initial guess lies in the interior region.
-  std::size_t boundary = 0;
-  double value = 0, slope = 0, s = 0, c = 0;
-  while (boundary < count && !hahn.evaluate(interior_guess(boundary + 1, a, b, rho), value, slope, s, c)) ++boundary;
-  std::vector<std::size_t> by_recurrence;  // node numbers k
-  std::vector<double> recurrence_start;
-  for (std::size_t k = 1; k <= boundary; ++k) {
-    by_recurrence.push_back(k);
-    const double t = boundary_guess(k, a, b, rho);
-    const double sin_half = std::sin(t / 2);
-    recurrence_start.push_back(2 * sin_half * sin_half);
+// One half of the asymptotic path (double): the nodes 1..count nearest the end with exponent a,
+// written into a gauss_jacobi_half_target. The boundary nodes (initial guess outside the interior
+// region of the Hahn expansion) and the interior nodes that the expansion cannot finish are
+// refined together by recurrence_newton.
+class gauss_jacobi_asymptotic_half_rule {
+ public:
+  gauss_jacobi_asymptotic_half_rule(std::size_t n, double a, double b, std::size_t count, double weight_factor,
+                                    const gauss_jacobi_half_target& target)
+      : n_(n), a_(a), b_(b), count_(count), weight_factor_(weight_factor), target_(target), hahn_(n, a, b),
+        rho_(hahn_.rho()), guesser_(a, b, rho_), finisher_(n, a, b), power_(2 * a + 1, 2 * b + 1) {}
+
+  // Computes all count nodes; false if Newton's method failed somewhere (the caller then falls back).
+  bool run() {
+    const std::size_t boundary = boundary_nodes();
+    for (std::size_t k = 1; k <= boundary; ++k) by_recurrence(k, boundary_guess(k, a_, b_, rho_));
+    for (std::size_t k0 = boundary + 1; k0 <= count_; k0 += B) batch(k0, std::min(B, count_ - k0 + 1));
+    return refine_by_recurrence();
   }
+
+ private:
+  static constexpr std::size_t B = hahn_expansion::batch_size;
   // Interior: Newton in t on y = P_n(cos t) = prefactor(t) G(t). Once the phase step
   // sigma = rho |dt| is below 1e-6 the node is finished with one Halley step and the weight
   // from a second-order Taylor step of y', both using the differential equation
   //   y'' = -C(t) y' - lambda y,  C = (a - b + (a + b + 1) cos t) / sin t,  lambda = n (n + a + b + 1)
   // (DLMF 18.8.1 in t); the neglected terms are O(sigma^3) relative, below 1e-17.
   // w = weight_factor s^(2a+1) c^(2b+1) / (y'(t + h)/prefactor(t))^2 (s, c at the point t).
-  constexpr double finish_threshold = 1e-6;
+  static constexpr double finish_threshold = 1e-6;
   // Newton sweeps over a batch before its remaining unfinished points go node by node, for
   // every exponent (at a = 30, n = 10^4, about 2000 nodes need them, which took 3/4 of the time
   // node by node; at (-0.9, 0.3) 11 nodes, at (5, 5) 170). With the point after a step made
   // consistent (interior_guesser::move) they also lower the table's worst weight at p = q = 5
   // (8.9 eps, against 11.6 without the sweeps).
-  constexpr int batch_newton_sweeps = 3;
-  const interior_guesser guesser(a, b, rho);
-  const interior_finisher finisher(n, a, b);
-  // s^(2a+1) c^(2b+1): per batch with two pows per batch (detail/gauss_jacobi_power.hpp,
-  // within 2 eps like pow * pow), or per node with two pows.
-  const endpoint_power power(2 * a + 1, 2 * b + 1);
+  static constexpr int batch_newton_sweeps = 3;
+
+  // The state of the points of one batch (arrays of hahn_expansion::batch_size).
+  struct batch_points {
+    double K[B], residual[B], sin_K[B], cos_K[B], sign[B], correction[B], largest_angle[B];
+    double s0[B], c0[B], cos_phi[B], sin_phi[B], last_bound[B], total[B];
+    double step[B], h[B], u[B], v[B], weight_slope[B], factor[B];
+  };
+
+  // The number of boundary nodes: those before the first one whose initial guess lies in the
+  // interior region.
+  std::size_t boundary_nodes() const {
+    std::size_t boundary = 0;
+    double value = 0, slope = 0, s = 0, c = 0;
+    while (boundary < count_ && !hahn_.evaluate(interior_guess(boundary + 1, a_, b_, rho_), value, slope, s, c)) ++boundary;
+    return boundary;
+  }
+
+  // Hands node k over to recurrence_newton, starting from the angle t (u = 1 - cos t).
+  void by_recurrence(std::size_t k, double t) {
+    by_recurrence_.push_back(k);
+    const double sin_half = std::sin(t / 2);
+    recurrence_start_.push_back(2 * sin_half * sin_half);
+  }
+
   // One interior node on its own (the batches below hand over every node they cannot finish):
   // the batch's computation for a single point, with up to 20 Newton steps.
-  auto single_node = [&](std::size_t k) {
+  void single_node(std::size_t k) {
     double K, residual, sin_K, cos_K, sign, correction, cos_phi, sin_phi, largest_angle;
-    guesser.guess_angle(k, K, residual, sin_K, cos_K, sign);
-    guesser.complete(sin_K, cos_K, residual, sign, correction, s, c, cos_phi, sin_phi, largest_angle);
+    double value = 0, slope = 0, s = 0, c = 0;
+    guesser_.guess_angle(k, K, residual, sin_K, cos_K, sign);
+    guesser_.complete(sin_K, cos_K, residual, sign, correction, s, c, cos_phi, sin_phi, largest_angle);
     if (!(largest_angle <= interior_guesser::largest_polynomial_angle)) {
-      guesser.exact_point(sin_K, cos_K, residual, sign, correction, s, c, cos_phi, sin_phi);
+      guesser_.exact_point(sin_K, cos_K, residual, sign, correction, s, c, cos_phi, sin_phi);
     }
     double step = 0, h = 0, u = 0, v = 0, weight_slope = 0;
-    bool ok = hahn.evaluate_at(s, c, 1 / (s * c), cos_phi, sin_phi, value, slope);
+    bool ok = hahn_.evaluate_at(s, c, 1 / (s * c), cos_phi, sin_phi, value, slope);
     // Newton in t until the step is small (rare: small n or large exponents), then finish.
     for (int iteration = 0; ok; ++iteration) {
-      finisher(s, c, 1 / (s * c), value, slope, step, h, u, v, weight_slope);
-      if (std::abs(step) * rho < finish_threshold) break;
+      finisher_(s, c, 1 / (s * c), value, slope, step, h, u, v, weight_slope);
+      if (std::abs(step) * rho_ < finish_threshold) break;
       ok = iteration < 20 && std::abs(step) < K + correction;  // t stays in (0, 2t)
       if (ok) {
-        guesser.move(K, residual, sign, step, correction, s, c, cos_phi, sin_phi);
-        ok = hahn.evaluate_at(s, c, 1 / (s * c), cos_phi, sin_phi, value, slope);
+        guesser_.move(K, residual, sign, step, correction, s, c, cos_phi, sin_phi);
+        ok = hahn_.evaluate_at(s, c, 1 / (s * c), cos_phi, sin_phi, value, slope);
       }
     }
     if (ok && K + correction + h > 0) {
-      target.set(k, u, v, weight_factor * power(s, c) / (weight_slope * weight_slope));
+      target_.set(k, u, v, weight_factor_ * power_(s, c) / (weight_slope * weight_slope));
     } else {
-      by_recurrence.push_back(k);
-      const double sin_half = std::sin(interior_guess(k, a, b, rho) / 2);
-      recurrence_start.push_back(2 * sin_half * sin_half);
+      by_recurrence(k, interior_guess(k, a_, b_, rho_));
     }
-  };
-  // The interior nodes in batches of hahn_expansion::batch_size: the computation of single_node
+  }
+
+  // Evaluates `size` points given by s, c and the phase, and finishes them; false if the first
+  // point needs more than hahn_max_terms terms (the caller's order: increasing t).
+  bool evaluate(std::size_t size, const double* s_, const double* c_, const double* cos_phi_, const double* sin_phi_,
+                double* last_bound_, double* total_, double* step_, double* h_, double* u_, double* v_,
+                double* weight_slope_) const {
+    double inverse_sc[B], values[B], slopes[B];
+    for (std::size_t i = 0; i < size; ++i) inverse_sc[i] = 1 / (s_[i] * c_[i]);
+    const int terms = hahn_.terms_needed(s_[0], c_[0]);
+    if (terms > hahn_max_terms) return false;
+    hahn_.evaluate_batch(size, terms, s_, c_, inverse_sc, cos_phi_, sin_phi_, values, slopes, last_bound_, total_);
+    for (std::size_t i = 0; i < size; ++i) {
+      finisher_(s_[i], c_[i], inverse_sc[i], values[i], slopes[i], step_[i], h_[i], u_[i], v_[i], weight_slope_[i]);
+    }
+    return true;
+  }
+
+  // The interior nodes k0, ..., k0 + size - 1 as a batch: the computation of single_node
   // in loops over the batch without branches or calls (vectorised by the compiler; the rule at
   // n = 10^6 takes about 0.8 of the time of the node-by-node loop), with the number of terms
   // that the batch's first node needs (the bound decreases with t in the interior, except near
   // t = pi/2 for large b). A node goes to single_node whenever single_node would have taken another branch:
   // a last term not below eps/16, a bound sum above hahn.max_total(), or a Newton step above the
   // finishing threshold after the batch's sweeps.
-  constexpr std::size_t B = hahn_expansion::batch_size;
-  double K[B], residual[B], sin_K[B], cos_K[B], sign[B], correction[B], largest_angle[B];
-  double s0[B], c0[B], cos_phi[B], sin_phi[B], last_bound[B], total[B];
-  double step[B], h[B], u[B], v[B], weight_slope[B], factor[B];
-  // Evaluates `size` points given by s, c and the phase, and finishes them; false if the first
-  // point needs more than hahn_max_terms terms (the caller's order: increasing t).
-  auto evaluate = [&](std::size_t size, const double* s_, const double* c_, const double* cos_phi_,
-                      const double* sin_phi_, double* last_bound_, double* total_, double* step_, double* h_,
-                      double* u_, double* v_, double* weight_slope_) {
-    double inverse_sc[B], values[B], slopes[B];
-    for (std::size_t i = 0; i < size; ++i) inverse_sc[i] = 1 / (s_[i] * c_[i]);
-    const int terms = hahn.terms_needed(s_[0], c_[0]);
-    if (terms > hahn_max_terms) return false;
-    hahn.evaluate_batch(size, terms, s_, c_, inverse_sc, cos_phi_, sin_phi_, values, slopes, last_bound_, total_);
+  void batch(std::size_t k0, std::size_t size) {
+    batch_points p{};  // value-initialised: else GCC 12 at -O3 warns -Wmaybe-uninitialized
+    guesser_.guess_angles(k0, size, p.K, p.residual, p.sin_K, p.cos_K, p.sign);
     for (std::size_t i = 0; i < size; ++i) {
-      finisher(s_[i], c_[i], inverse_sc[i], values[i], slopes[i], step_[i], h_[i], u_[i], v_[i], weight_slope_[i]);
-    }
-    return true;
-  };
-  for (std::size_t k0 = boundary + 1; k0 <= count; k0 += B) {
-    const std::size_t size = std::min(B, count - k0 + 1);
-    guesser.guess_angles(k0, size, K, residual, sin_K, cos_K, sign);
-    for (std::size_t i = 0; i < size; ++i) {
-      guesser.complete(sin_K[i], cos_K[i], residual[i], sign[i], correction[i], s0[i], c0[i], cos_phi[i], sin_phi[i],
-                       largest_angle[i]);
+      guesser_.complete(p.sin_K[i], p.cos_K[i], p.residual[i], p.sign[i], p.correction[i], p.s0[i], p.c0[i],
+                        p.cos_phi[i], p.sin_phi[i], p.largest_angle[i]);
     }
     for (std::size_t i = 0; i < size; ++i) {
-      if (!(largest_angle[i] <= interior_guesser::largest_polynomial_angle)) {
-        guesser.exact_point(sin_K[i], cos_K[i], residual[i], sign[i], correction[i], s0[i], c0[i], cos_phi[i],
-                            sin_phi[i]);
+      if (!(p.largest_angle[i] <= interior_guesser::largest_polynomial_angle)) {
+        guesser_.exact_point(p.sin_K[i], p.cos_K[i], p.residual[i], p.sign[i], p.correction[i], p.s0[i], p.c0[i],
+                             p.cos_phi[i], p.sin_phi[i]);
       }
     }
-    if (!evaluate(size, s0, c0, cos_phi, sin_phi, last_bound, total, step, h, u, v, weight_slope)) {
+    if (!evaluate(size, p.s0, p.c0, p.cos_phi, p.sin_phi, p.last_bound, p.total, p.step, p.h, p.u, p.v,
+                  p.weight_slope)) {
       for (std::size_t i = 0; i < size; ++i) single_node(k0 + i);
-      continue;
+      return;
     }
-    // Newton sweeps for the points whose guess is not yet within the finishing threshold (all
-    // of them near the end at large exponents, a few elsewhere): only those points move
-    // (interior_guesser::move: the step goes into the correction, so the phase stays a small
-    // angle known to a few eps) and only they are evaluated again, as a batch of their own in
-    // the order of the batch (the points that did not move keep their results).
+    newton_sweeps(size, p);
+    power_(size, p.s0, p.c0, p.factor);
+    for (std::size_t i = 0; i < size; ++i) {
+      const bool ok = p.last_bound[i] < hahn_expansion::tolerance && p.total[i] <= hahn_.max_total() &&
+                      std::abs(p.step[i]) * rho_ < finish_threshold && p.K[i] + p.correction[i] + p.h[i] > 0;
+      if (ok) {
+        target_.set(k0 + i, p.u[i], p.v[i], weight_factor_ * p.factor[i] / (p.weight_slope[i] * p.weight_slope[i]));
+      } else {
+        single_node(k0 + i);
+      }
+    }
+  }
+
+  // Up to batch_newton_sweeps Newton steps for the batch's points not yet within the finishing
+  // threshold.
+  // Newton sweeps for the points whose guess is not yet within the finishing threshold (all
+  // of them near the end at large exponents, a few elsewhere): only those points move
+  // (interior_guesser::move: the step goes into the correction, so the phase stays a small
+  // angle known to a few eps) and only they are evaluated again, as a batch of their own in
+  // the order of the batch (the points that did not move keep their results).
+  void newton_sweeps(std::size_t size, batch_points& p) const {
     for (int sweep = 0; sweep < batch_newton_sweeps; ++sweep) {
       std::size_t moving[B], moving_count = 0;
       for (std::size_t i = 0; i < size; ++i) {
-        if (std::abs(step[i]) * rho >= finish_threshold && last_bound[i] < hahn_expansion::tolerance &&
-            total[i] <= hahn.max_total() && std::abs(step[i]) < K[i] + correction[i]) {
+        if (std::abs(p.step[i]) * rho_ >= finish_threshold && p.last_bound[i] < hahn_expansion::tolerance &&
+            p.total[i] <= hahn_.max_total() && std::abs(p.step[i]) < p.K[i] + p.correction[i]) {
           moving[moving_count++] = i;
         }
       }
@@ -751,51 +786,68 @@ inline bool gauss_jacobi_asymptotic_half(std::size_t n, double a, double b, std:
       double ms[B], mc[B], mcos[B], msin[B], mlast[B], mtotal[B], mstep[B], mh[B], mu[B], mv[B], mslope[B];
       for (std::size_t j = 0; j < moving_count; ++j) {
         const std::size_t i = moving[j];
-        guesser.move(K[i], residual[i], sign[i], step[i], correction[i], s0[i], c0[i], cos_phi[i], sin_phi[i]);
-        ms[j] = s0[i];
-        mc[j] = c0[i];
-        mcos[j] = cos_phi[i];
-        msin[j] = sin_phi[i];
+        guesser_.move(p.K[i], p.residual[i], p.sign[i], p.step[i], p.correction[i], p.s0[i], p.c0[i], p.cos_phi[i],
+                      p.sin_phi[i]);
+        ms[j] = p.s0[i];
+        mc[j] = p.c0[i];
+        mcos[j] = p.cos_phi[i];
+        msin[j] = p.sin_phi[i];
       }
       // A first moving point outside the interior region: the moving points go to single_node
       // (an infinite step marks them unfinished).
       if (!evaluate(moving_count, ms, mc, mcos, msin, mlast, mtotal, mstep, mh, mu, mv, mslope)) {
-        for (std::size_t j = 0; j < moving_count; ++j) step[moving[j]] = std::numeric_limits<double>::infinity();
+        for (std::size_t j = 0; j < moving_count; ++j) p.step[moving[j]] = std::numeric_limits<double>::infinity();
         break;
       }
       for (std::size_t j = 0; j < moving_count; ++j) {
         const std::size_t i = moving[j];
-        last_bound[i] = mlast[j];
-        total[i] = mtotal[j];
-        step[i] = mstep[j];
-        h[i] = mh[j];
-        u[i] = mu[j];
-        v[i] = mv[j];
-        weight_slope[i] = mslope[j];
-      }
-    }
-    power(size, s0, c0, factor);
-    for (std::size_t i = 0; i < size; ++i) {
-      const bool ok = last_bound[i] < hahn_expansion::tolerance && total[i] <= hahn.max_total() &&
-                      std::abs(step[i]) * rho < finish_threshold && K[i] + correction[i] + h[i] > 0;
-      if (ok) {
-        target.set(k0 + i, u[i], v[i], weight_factor * factor[i] / (weight_slope[i] * weight_slope[i]));
-      } else {
-        single_node(k0 + i);
+        p.last_bound[i] = mlast[j];
+        p.total[i] = mtotal[j];
+        p.step[i] = mstep[j];
+        p.h[i] = mh[j];
+        p.u[i] = mu[j];
+        p.v[i] = mv[j];
+        p.weight_slope[i] = mslope[j];
       }
     }
   }
-  if (!by_recurrence.empty()) {
-    const long double la = a, lb = b;
+
+  // The nodes handed over to recurrence_newton, refined and written; false if it did not converge.
+  bool refine_by_recurrence() {
+    if (by_recurrence_.empty()) return true;
+    const long double la = a_, lb = b_;
     const auto refined = recurrence_newton<double>(
-        n, a, b, recurrence_start,
-        static_cast<double>(gauss_jacobi_weight_constant_over_end_value<long double>(n, la, lb)));
+        n_, a_, b_, recurrence_start_,
+        static_cast<double>(gauss_jacobi_weight_constant_over_end_value<long double>(n_, la, lb)));
     if (!refined.converged) return false;
-    for (std::size_t j = 0; j < by_recurrence.size(); ++j) {
-      target.set(by_recurrence[j], refined.u[j], 2 - refined.u[j], refined.weight[j]);
+    for (std::size_t j = 0; j < by_recurrence_.size(); ++j) {
+      target_.set(by_recurrence_[j], refined.u[j], 2 - refined.u[j], refined.weight[j]);
     }
+    return true;
   }
-  return true;
+
+  std::size_t n_;
+  double a_, b_;
+  std::size_t count_;
+  double weight_factor_;
+  const gauss_jacobi_half_target& target_;
+  const hahn_expansion hahn_;
+  const double rho_;
+  const interior_guesser guesser_;
+  const interior_finisher finisher_;
+  // s^(2a+1) c^(2b+1): per batch with two pows per batch (detail/gauss_jacobi_power.hpp,
+  // within 2 eps like pow * pow), or per node with two pows.
+  const endpoint_power power_;
+  std::vector<std::size_t> by_recurrence_;  // node numbers k
+  std::vector<double> recurrence_start_;
+};
+
+// One half of the asymptotic path (double): nodes 1..count nearest the end with exponent a,
+// written in place into target. Returns false if Newton's method failed somewhere (the caller
+// then falls back).
+inline bool gauss_jacobi_asymptotic_half(std::size_t n, double a, double b, std::size_t count, double weight_factor,
+                                         const gauss_jacobi_half_target& target) {
+  return gauss_jacobi_asymptotic_half_rule(n, a, b, count, weight_factor, target).run();
 }
 
 // The asymptotic rule, built in place; an empty rule tells the caller to fall back.

@@ -55,7 +55,7 @@
 #pragma once
 
 #include "rhabel/abel/abel_operator.hpp"
-#include "rhabel/abel/detail/far_field.hpp"
+#include "rhabel/abel/far_field.hpp"
 #include "rhabel/abel/detail/numerics.hpp"
 #include "rhabel/abel/detail/union_assembly.hpp"
 #include "rhabel/abel/detail/union_core.hpp"

@@ -12,17 +12,14 @@
 //  * chebyshev_to_jacobi: coefficients of a Chebyshev series in the basis P_m^(p,q) by the
 //    exact connection matrix (built from x T_k = (T_{k+1} + T_|k-1|)/2) and back substitution.
 //    Uniform in p, q (works through p = -1), O(M^2).
-//  * panel_integrator: int_0^len (len - u)^p u^q f(u, len - u) du for f with singularities at
-//    known distances outside [0, len]: geometric panels (ratio 2) toward each near singularity,
-//    quadrature::gauss_jacobi on the panels that touch an end, Gauss-Legendre elsewhere. A
-//    singularity at distance d from an end sits 3 panel half-widths from the centre of every
-//    panel, so each panel converges like (3 + sqrt 8)^(-2 n_panel): 16 nodes give ~ 1e-24.
-//  * cached_gauss_jacobi_rule: quadrature::gauss_jacobi from a thread-safe cache keyed by (n, p, q).
 //  * gauss_log_power_rule: Gauss rule on [0, 1] for the weight (t^-alpha - 1)/alpha (-log t at
 //    alpha = 0), the end rule of the step enrichment at x0 for small alpha.
-//  * chebyshev_grid / chebyshev_coefficients, exprel, lgamma_difference_over_alpha.
+//  * exprel, lgamma_difference_over_alpha.
+// The public kernels the other modules use as well (plain_jacobi_values, cached_gauss_jacobi_rule,
+// chebyshev_grid, chebyshev_coefficients, panel_integrator) are in rhabel/abel/numerics.hpp.
 #pragma once
 
+#include "rhabel/abel/numerics.hpp"
 #include "rhabel/quadrature/gauss_jacobi.hpp"
 #include "rhabel/quadrature/jacobi_polynomial.hpp"
 
@@ -52,20 +49,6 @@ namespace rhabel::abel::detail {
 using rhabel::quadrature::detail::jacobi_recurrence_coefficients;
 using rhabel::quadrature::detail::throw_bad_parameter;
 
-/// P_0(x), ..., P_n(x) of P^(p,q) by the plain forward three-term recurrence, for ANY real p, q
-/// with p + q != -2, -3, ... (no difference forms near the ends, no exponent check).
-template <class Real>
-std::vector<Real> plain_jacobi_values(std::size_t n, const Real& p, const Real& q, const Real& x) {
-  std::vector<Real> v(n + 1);
-  v[0] = 1;
-  if (n >= 1) v[1] = (p + q + 2) / 2 * x + (p - q) / 2;
-  for (std::size_t k = 1; k < n; ++k) {
-    const auto r = jacobi_recurrence_coefficients(k, p, q);
-    v[k + 1] = (r.A * x + r.B) * v[k] - r.C * v[k - 1];
-  }
-  return v;
-}
-
 /// P_0(x), ..., P_n(x) of P^(p,q) for ANY real p, q with p + q != -2, -3, ... For p, q > -1
 /// this is quadrature::jacobi_p_all; the plain recurrence runs only for p <= -1 or q <= -1
 /// (rejected by quadrature). The abel headers themselves call jacobi_p_all directly;
@@ -94,79 +77,6 @@ Real jacobi_sum_any(const std::vector<Real>& c, const Real& p, const Real& q, co
     b1 = b0;
   }
   return b1;
-}
-
-/// quadrature::gauss_jacobi(n, p, q) from a process-wide cache keyed by (n, p, q) (exact keys: the
-/// rule depends on the exact exponents). Building a rule costs O(n^2)-O(n^3) operations
-/// (quadrature::gauss_jacobi); the abel quadratures (panel_integrator, jacobi_density::integrate,
-/// abel_operator::apply outside [lo, hi], the enrichment of step_enrichment.hpp) need the same few
-/// rules thousands of times per solve. Thread-safe (one mutex; the rules are immutable and
-/// shared). The cache is emptied when it holds more than 512 rules, so memory stays bounded when
-/// the exponents sweep a continuum (a rule of n nodes holds 4n numbers).
-template <class Real>
-std::shared_ptr<const rhabel::quadrature::quadrature_rule<Real>> cached_gauss_jacobi_rule(std::size_t n, const Real& p,
-                                                                                         const Real& q) {
-  using rule_type = rhabel::quadrature::quadrature_rule<Real>;
-  static std::mutex mutex;
-  static std::map<std::tuple<std::size_t, Real, Real>, std::shared_ptr<const rule_type>> cache;
-  const auto key = std::make_tuple(n, p, q);
-  {
-    const std::lock_guard<std::mutex> lock(mutex);
-    const auto it = cache.find(key);
-    if (it != cache.end()) return it->second;
-  }
-  // Built outside the lock (two threads may build the same rule once each; both are identical).
-  auto rule = std::make_shared<const rule_type>(rhabel::quadrature::gauss_jacobi<Real>(n, p, q));
-  const std::lock_guard<std::mutex> lock(mutex);
-  if (cache.size() >= 512) cache.clear();
-  return cache.emplace(key, std::move(rule)).first->second;
-}
-
-/// Chebyshev points of the first kind x_j = cos(pi (j + 1/2)/m), j = 0..m-1, with 1 -+ x_j
-/// computed as 2 sin^2 / 2 cos^2 of the half angle (no cancellation near the ends).
-template <class Real>
-struct chebyshev_grid {
-  std::vector<Real> x, one_minus_x, one_plus_x;
-  explicit chebyshev_grid(std::size_t m) : x(m), one_minus_x(m), one_plus_x(m) {
-    using std::cos;
-    using std::sin;
-    const Real pi = boost::math::constants::pi<Real>();
-    for (std::size_t j = 0; j < m; ++j) {
-      const Real theta = pi * (Real(j) + Real(0.5)) / Real(m);
-      x[j] = cos(theta);
-      const Real s = sin(theta / 2), c = cos(theta / 2);
-      one_minus_x[j] = 2 * s * s;
-      one_plus_x[j] = 2 * c * c;
-    }
-  }
-};
-
-/// Chebyshev coefficients a_0..a_{m-1} of the interpolant of values f_j at chebyshev_grid(m).
-/// T_k(x_j) = cos(pi k (2j+1)/(2m)) is taken from a table of cos(pi r/(2m)) by reducing
-/// k (2j+1) modulo 4m: every entry is a correctly rounded cosine (no recurrence drift). The index
-/// advances by 2k modulo 4m from j to j + 1 (a subtraction, not an integer division per term:
-/// the same entries, ~2x faster at m = 195).
-template <class Real>
-std::vector<Real> chebyshev_coefficients(const std::vector<Real>& f) {
-  using std::cos;
-  const std::size_t m = f.size();
-  const Real pi = boost::math::constants::pi<Real>();
-  std::vector<Real> table(4 * m);
-  for (std::size_t r = 0; r < 4 * m; ++r) table[r] = cos(pi * Real(r) / Real(2 * m));
-  std::vector<Real> a(m, Real(0));
-  const std::size_t period = 4 * m;
-  for (std::size_t k = 0; k < m; ++k) {
-    Real sum = 0;
-    const std::size_t step = (2 * k) % period;
-    std::size_t index = k % period;  // k (2j + 1) mod 4m at j = 0
-    for (std::size_t j = 0; j < m; ++j) {
-      sum += f[j] * table[index];
-      index += step;
-      if (index >= period) index -= period;
-    }
-    a[k] = sum * (k == 0 ? Real(1) : Real(2)) / Real(m);
-  }
-  return a;
 }
 
 /// Coefficients d_m of sum_k a_k T_k in the basis P_m^(p,q), m = 0..size-1 (exact re-expansion
@@ -207,101 +117,6 @@ std::vector<Real> chebyshev_to_jacobi(const std::vector<Real>& a, const Real& p,
   }
   return d;
 }
-
-/// Composite integrator for int_0^len (len - u)^p u^q f(u, len - u) du where f may be
-/// singular at u = -d_left and u = len + d_right (pass +inf when absent).
-template <class Real>
-class panel_integrator {
- public:
-  /// The four rules come from cached_gauss_jacobi_rule: constructing an integrator is cheap
-  /// after the first use of (nodes, p, q).
-  panel_integrator(const Real& p, const Real& q, std::size_t nodes = 16)
-      : p_(p), q_(q),
-        legendre_(cached_gauss_jacobi_rule<Real>(nodes, Real(0), Real(0))),
-        left_(cached_gauss_jacobi_rule<Real>(nodes, Real(0), q)),
-        right_(cached_gauss_jacobi_rule<Real>(nodes, p, Real(0))),
-        both_(cached_gauss_jacobi_rule<Real>(nodes, p, q)) {}
-
-  template <class F>
-  Real integrate(const Real& len, const Real& d_left, const Real& d_right, F&& f) const {
-    Real sum = 0;
-    for_each_node(len, d_left, d_right, [&](const Real& u, const Real& v, const Real& weight) { sum += weight * f(u, v); });
-    return sum;
-  }
-
-  /// Calls visit(u, len - u, weight) for every node of the composite rule (weight includes
-  /// (len-u)^p u^q and the panel scaling).
-  template <class Visit>
-  void for_each_node(const Real& len, const Real& d_left, const Real& d_right, Visit&& visit) const {
-    visit_nodes<false>(len, d_left, d_right, visit);
-  }
-
-  /// for_each_node with the powers that the Gauss-Jacobi weights do not carry left to the
-  /// visitor: visit(u, len - u, weight, q_here, p_here), where weight has the rule weight and the
-  /// panel scaling, and the node's full weight is weight u^q_here (len - u)^p_here (q_here = 0 on
-  /// the panel touching 0, where u^q is the rule's weight, else q; p_here likewise). For visitors
-  /// that fold these powers into a detail::power_product of their own: one log each and a shared
-  /// exp instead of a pow each (the quadrature of A[phi] in solve_step, ~4 powers a node).
-  template <class Visit>
-  void for_each_node_deferred(const Real& len, const Real& d_left, const Real& d_right, Visit&& visit) const {
-    visit_nodes<true>(len, d_left, d_right, visit);
-  }
-
- private:
-  template <bool deferred, class Visit>
-  void visit_nodes(const Real& len, const Real& d_left, const Real& d_right, Visit& visit) const {
-    using std::pow;
-    // Breakpoints as pairs (distance from 0, distance from len): 0, then d, 3d, 7d, ... (panel
-    // widths doubling) up to the middle, graded toward a singularity at distance d from that end.
-    const Real half = len / 2;
-    const auto graded_breaks = [&half](const Real& d) {
-      std::vector<Real> breaks{Real(0)};
-      if (d > 0 && d < half) {
-        Real w = d;
-        for (Real pos = d; pos < half; w *= 2, pos += w) breaks.push_back(pos);
-      }
-      return breaks;
-    };
-    const std::vector<Real> from_left = graded_breaks(d_left);
-    const std::vector<Real> from_right = graded_breaks(d_right);
-    // Assemble panels [u_k, u_{k+1}] with both distances.
-    struct point {
-      Real left, right;
-    };
-    std::vector<point> pts;
-    for (const auto& v : from_left) pts.push_back({v, len - v});
-    for (std::size_t k = from_right.size(); k-- > 0;) pts.push_back({len - from_right[k], from_right[k]});
-    for (std::size_t k = 0; k + 1 < pts.size(); ++k) {
-      const point a = pts[k], b = pts[k + 1];
-      // The width from the distances to the nearer end: the breaks graded toward len are exact as
-      // distances from len and rounded as distances from 0, so b.left - a.left would be off by
-      // ~eps len there, ~eps len/d relative next to a singularity at distance d from len (the
-      // quadrature of A g at 1e-8 from an unbounded end was off by 1e-6 relative at alpha = 0).
-      const Real width = b.right < a.left ? a.right - b.right : b.left - a.left;
-      if (!(width > 0)) continue;
-      const bool touches_left = k == 0, touches_right = k + 2 == pts.size();
-      const auto& rule = *(touches_left ? (touches_right ? both_ : left_) : (touches_right ? right_ : legendre_));
-      const Real h = width / 2;
-      const Real scale = pow(h, (touches_left ? q_ : Real(0)) + (touches_right ? p_ : Real(0)) + 1);
-      for (std::size_t i = 0; i < rule.size(); ++i) {
-        const Real from_a = rule.x_minus_lo[i] * h, to_b = rule.hi_minus_x[i] * h;
-        const Real u = a.left + from_a;              // distance from 0
-        const Real v = b.right + to_b;               // distance from len
-        Real weight = rule.weight[i];
-        if constexpr (deferred) {
-          visit(u, v, scale * weight, touches_left ? Real(0) : q_, touches_right ? Real(0) : p_);
-        } else {
-          if (!touches_left && q_ != 0) weight *= pow(u, q_);  // (the exponent is often exactly 0)
-          if (!touches_right && p_ != 0) weight *= pow(v, p_);
-          visit(u, v, scale * weight);
-        }
-      }
-    }
-  }
-
-  Real p_, q_;
-  std::shared_ptr<const rhabel::quadrature::quadrature_rule<Real>> legendre_, left_, right_, both_;
-};
 
 /// n-point Gauss rule on [0, 1] for the weight W(t) = (t^-alpha - 1)/alpha, 0 <= alpha < 1
 /// (W = -log t at alpha = 0; W > 0 on (0, 1)): int_0^1 W(t) f(t) dt ~ sum_i weight[i] f(x[i]),

@@ -21,7 +21,7 @@
 //    <= 3.9e-12 relative to h sqrt(h_0 h_n) (1.9e-14 unless both ends are unbounded; the worst
 //    at the top degrees), and through the solver (tests/abel/test_multi_interval.cpp:
 //    forward/inverse consistency to 1e-11, the alpha = 0 closed form to 8e-11 at gap 1e-4).
-//    Relation to detail::panel_integrator::for_each_node (numerics.hpp), deliberately NOT used
+//    Relation to panel_integrator::for_each_node (numerics.hpp), deliberately NOT used
 //    here: the GRADING is the same (its breaks for len = 2, d_left = d, d_right = inf are these,
 //    and so are its four rules: Gauss-Jacobi with the facing end's exponent on the first panel,
 //    the far end's on the last, Gauss-Legendre between; at degree 0 the two node sets coincide
@@ -34,15 +34,15 @@
 //    with the facing end on the right its node distances to that end are off by ~eps absolute,
 //    ~eps/d relative (2.3e-13 in the weights at d = 2e-4); here u is measured from the facing
 //    end on either side.
-//  * separated_cross_nodes: the node count of the one panel a separated pair (gap >= the
-//    source's half-length) gets instead: n/2 plus the nodes the kernel's analyticity ellipse asks
-//    for (its function comment).
+//  * separated_cross_nodes (rhabel/abel/cross_nodes.hpp): the node count of the one panel a
+//    separated pair (gap >= the source's half-length) gets instead.
 //  * cross_block: the matrix B(k, n) = scale int_{I_i} w_i P_n K(t - s_k) dt at collocation
 //    points s_k of I_j given by their distance to the end of I_j facing I_i (no cancellation
 //    in t - s: t - s = (distance of t to its facing end) + gap + (distance of s to its facing end)).
 #pragma once
 
 #include "rhabel/abel/abel_operator.hpp"
+#include "rhabel/abel/cross_nodes.hpp"
 #include "rhabel/abel/detail/numerics.hpp"
 
 #include <Eigen/Dense>
@@ -56,50 +56,6 @@
 #include <vector>
 
 namespace rhabel::abel::detail {
-
-/// Quadrature nodes on an interval I_i for the cross integrals: reference x, weight (including
-/// w_i and dt = h dx), t - lo, hi - t (the distances without cancellation).
-template <class Real>
-struct cross_nodes {
-  std::vector<Real> x, weight, t_minus_lo, hi_minus_t;
-};
-
-/// Gauss nodes for the panel [ua, ub] of u = distance from the facing end (reference units,
-/// u in [0, 2]) so that P_n, n < degree, is resolved: 20 + degree (theta_b - theta_a)/2,
-/// theta = arccos(1 - u), rounded up to a multiple of 8 so that few distinct rules enter the
-/// cache (the top of this header). THE difference from panel_integrator (one count for all).
-template <class Real>
-std::size_t cross_panel_nodes(const Real& ua, const Real& ub, std::size_t degree) {
-  using std::acos;
-  const double extra = static_cast<double>(Real(degree) * (acos(1 - ub) - acos(1 - ua)) / 2);
-  const std::size_t nodes = 20 + static_cast<std::size_t>(std::ceil(extra));
-  return (nodes + 7) / 8 * 8;
-}
-
-/// Gauss-Jacobi nodes that integrate w P_n K(t - s), n < degree, over the whole of I_i in ONE
-/// panel when every point s is at least d = gap/h >= 1 half-lengths h of I_i from its facing end
-/// (a separated pair). K(t - s) = |t - s|^(alpha-1) is then analytic in x (t = centre + h x) inside
-/// the Bernstein ellipse through the singular point x0 = -(1 + d') (d' >= d), whose parameter is
-/// rho(d) = 1 + d + sqrt(d (2 + d)). A Q-point Gauss rule for the weight w is exact for polynomials
-/// of degree 2Q - 1, so its error on P_n K is that of the best approximation of K by degree
-/// 2Q - 1 - n, <= C rho'^-(2Q - 1 - n) for any rho' < rho (C ~ max |K| on that ellipse, which is
-/// of the size of K at the facing end for rho' = rho^0.9, the 10 % kept off the singularity).
-/// So Q = ceil(degree/2) + ceil(ln(100/eps) / (2 x 0.9 ln rho)) + 2 nodes (eps: Real's machine
-/// epsilon) reach eps/100 relative to K's size; in double: n/2 + 20 at d = 1 (neighbours one half-length apart), n/2 + 13 at d = 4, n/2 + 7 at
-/// d = 100, against 20 + pi n/4 + margin of cross_panel_nodes over the same panel, whose count is
-/// for a kernel singularity next to the panel (gap -> 0). Rounded up to a multiple of 4 (few
-/// distinct cached rules) and never more than cross_panel_nodes(0, 2, degree). 0 if d < 1 (not
-/// separated: the graded panels of degree_graded_cross_nodes).
-template <class Real>
-std::size_t separated_cross_nodes(const Real& d, std::size_t degree) {
-  if (!(d >= 1)) return 0;
-  const double dd = static_cast<double>(d);
-  const double log_rho = std::log(1 + dd + std::sqrt(dd * (2 + dd)));
-  const double log_target = std::log(100 / static_cast<double>(std::numeric_limits<Real>::epsilon()));
-  const auto kernel_nodes = static_cast<std::size_t>(std::ceil(log_target / (2 * 0.9 * log_rho)));
-  const std::size_t nodes = (degree + 1) / 2 + kernel_nodes + 2;
-  return std::min((nodes + 3) / 4 * 4, cross_panel_nodes(Real(0), Real(2), degree));
-}
 
 /// Nodes graded toward the end of I_i facing the other interval (the lo end if facing_left),
 /// at distance `gap`; resolve P_n for n < degree (see the top of this header).

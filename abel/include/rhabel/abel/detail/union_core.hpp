@@ -7,8 +7,9 @@
 
 #include "rhabel/abel/abel_solver.hpp"
 #include "rhabel/abel/detail/block_gmres.hpp"
-#include "rhabel/abel/detail/far_field.hpp"
+#include "rhabel/abel/far_field.hpp"
 #include "rhabel/abel/detail/union_assembly.hpp"
+#include "rhabel/abel/union_memory.hpp"
 
 #include <Eigen/Dense>
 
@@ -19,6 +20,7 @@
 #include <limits>
 #include <memory>
 #include <optional>
+#include <utility>
 #include <sstream>
 #include <stdexcept>
 #include <type_traits>
@@ -45,7 +47,7 @@ struct multi_solve_options {
   std::vector<std::optional<Real>> loads;  ///< per interval, used for nu = +1 intervals only
   /// status = not_converged when the independent residual exceeds this (only if it is computed).
   Real residual_tolerance = Real(1e-10);
-  /// Bound on the estimated peak memory of one dense solve (detail::union_memory_bytes, bytes):
+  /// Bound on the estimated peak memory of one dense solve (union_memory_bytes, bytes):
   /// solve_union throws std::domain_error, before allocating, when max(degree, max_degree)
   /// would exceed it. Default 2 GiB (two intervals: degree <= 5181).
   std::size_t max_memory_bytes = std::size_t(1) << 31;
@@ -56,10 +58,10 @@ struct multi_solve_options {
   /// block-diagonal preconditioner (detail/block_gmres.hpp; LU if it does not reach its tolerance)
   /// instead of LU; multi_solution::condition is then NaN. Floating-point Real only.
   std::size_t iterative_from = 0;
-  /// The far field of exactly these intervals for that route (detail/far_field.hpp), when the
+  /// The far field of exactly these intervals for that route (far_field.hpp), when the
   /// caller has one (the punch layer builds it for its data anyway); null: solve_union builds it
   /// with order_for(residual_tolerance / 1000) points per box.
-  std::shared_ptr<const detail::far_field<Real>> far_field;
+  std::shared_ptr<const rhabel::abel::far_field<Real>> far_field;
 };
 
 /// The boundary-layer part of a density on [lo, hi] (solve_union_layered):
@@ -99,7 +101,7 @@ struct layer_density {
   /// int_lo^hi g by Gauss-Jacobi panels graded toward the nearest poles (~ eps relative).
   Real integral() const {
     if (empty()) return Real(0);
-    const detail::panel_integrator<Real> rule(del, gam, 24);
+    const panel_integrator<Real> rule(del, gam, 24);
     return half_length() * rule.integrate(Real(2), nearest_lo(), nearest_hi(),
                                           [&](const Real& u, const Real& v) { return factor_at_distance(u, v); });
   }
@@ -129,31 +131,6 @@ struct multi_solution {
   /// see the header); converged otherwise, or when no residual was computed.
   solve_status status = solve_status::converged;
 };
-
-namespace detail {
-
-/// Nodes of I_i (physical t, weight including w_i and dt = (L/2) dx, reference x) graded toward
-/// the end of I_i facing the point set at distance `gap` (left if facing_left); `nodes` per
-/// panel (cross_nodes: detail/union_assembly.hpp). The independent route of the residual (the
-/// assembly uses degree_graded_cross_nodes).
-template <class Real>
-cross_nodes<Real> make_cross_nodes(const jacobi_density<Real>& g, const Real& gap, bool facing_left, std::size_t nodes) {
-  const Real h = g.half_length();
-  const panel_integrator<Real> rule(g.del, g.gam, nodes);
-  const Real inf = std::numeric_limits<Real>::infinity();
-  const Real d = gap / h;
-  cross_nodes<Real> out;
-  rule.for_each_node(Real(2), facing_left ? d : inf, facing_left ? inf : d,
-                     [&](const Real& u, const Real& v, const Real& weight) {
-                       out.x.push_back(u <= v ? u - 1 : 1 - v);
-                       out.weight.push_back(h * weight);
-                       out.t_minus_lo.push_back(h * u);
-                       out.hi_minus_t.push_back(h * v);
-                     });
-  return out;
-}
-
-}  // namespace detail
 
 /// A g at s for densities on a union of disjoint intervals (each with its own class). Own
 /// interval: spectral relation; others: graded quadrature. Any s (also outside every interval).
@@ -196,65 +173,313 @@ std::vector<union_point<Real>> union_points(const interval_spec<Real>& iv, const
   return out;
 }
 
-/// Estimated peak memory (bytes, as a double: no overflow for any size_t arguments) of
-/// solve_union_at_degree for K intervals at M collocation points each, T = K M unknowns: the
-/// larger of the assembly phase, T^2 + 6 M^2 numbers (the matrix plus one cross block's kernel
-/// values M x Q, basis values Q x M and their M x M product; Q ~ 2M nodes at gaps down to 1e-4,
-/// 2.5M at 1e-12), and the factorisation phase, T^2 numbers (LU in place) or 2 T^2 for non-IEEE
-/// types (the inverse, see `condition`). Measured peaks: the header's "Memory" paragraph.
-template <class Real>
-double union_memory_bytes(std::size_t K, std::size_t M) {
-  const double T = double(K) * double(M), m = double(M);
-  const double assembly = T * T + (K > 1 ? 6 * m * m : 0);
-  const double factorisation = (std::is_floating_point_v<Real> ? 1 : 2) * T * T;
-  return double(sizeof(Real)) * std::max(assembly, factorisation);
-}
-
-/// The largest M with union_memory_bytes<Real>(K, M) <= bytes (K >= 1; bisection, the estimate
-/// is increasing in M and >= sizeof(Real) (K M)^2).
-template <class Real>
-std::size_t union_degree_limit(std::size_t K, std::size_t bytes) {
-  using std::sqrt;
-  std::size_t lo = 0;  // union_memory_bytes(K, lo) <= bytes
-  std::size_t hi = static_cast<std::size_t>(sqrt(double(bytes) / (double(sizeof(Real)) * double(K) * double(K)))) + 1;
-  while (hi - lo > 1) {
-    const std::size_t mid = lo + (hi - lo) / 2;
-    (union_memory_bytes<Real>(K, mid) <= double(bytes) ? lo : hi) = mid;
-  }
-  return lo;
-}
-
 /// Gap between intervals i and j (i != j), sorted and disjoint.
 template <class Real>
 Real union_gap(const std::vector<interval_spec<Real>>& intervals, std::size_t i, std::size_t j) {
   return i > j ? intervals[i].lo - intervals[j].hi : intervals[j].lo - intervals[i].hi;
 }
 
-/// Estimated peak memory (bytes) of the matrix-free route (far field, far_field.hpp) for K
-/// intervals at M points each with `near` near pairs in all: the own and near blocks and the
-/// diagonal blocks' LUs ((2 K + near) M^2), the Krylov basis and work vectors (64 K M), the
-/// moment matrices (K p M) and the pairs' kernel matrices (pairs p^2).
+/// The coupled system of solve_union_at_degree at M collocation points per interval: the
+/// unknowns' layout, the own and cross blocks, the right-hand side, and the linear solve (dense:
+/// LU or GMRES on the assembled matrix; matrix-free: own and near blocks plus the far field).
+/// Holds the solution being built (sol); not copyable (the solvers refer to its members).
 template <class Real>
-double union_far_memory_bytes(const far_field<Real>& far, std::size_t M) {
-  const double K = double(far.leaves()), m = double(M), p = double(far.order());
-  double near = 0;
-  for (std::size_t j = 0; j < far.leaves(); ++j) near += double(far.near_leaves(j).size());
-  return double(sizeof(Real)) * ((2 * K + near) * m * m + 64 * K * m + K * p * m + double(far.pairs()) * p * p);
-}
+class union_degree_system {
+ public:
+  using matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
+  using vector = Eigen::Matrix<Real, Eigen::Dynamic, 1>;
 
-/// The largest M (>= 1) with union_far_memory_bytes(far, M) <= bytes (0 if none: the estimate is
-/// increasing in M).
-template <class Real>
-std::size_t union_far_degree_limit(const far_field<Real>& far, std::size_t bytes) {
-  if (union_far_memory_bytes(far, 1) > double(bytes)) return 0;
-  std::size_t lo = 1, hi = 2;
-  while (union_far_memory_bytes(far, hi) <= double(bytes)) lo = hi, hi *= 2;
-  while (hi - lo > 1) {
-    const std::size_t mid = lo + (hi - lo) / 2;
-    (union_far_memory_bytes(far, mid) <= double(bytes) ? lo : hi) = mid;
+  multi_solution<Real> sol;
+
+  union_degree_system(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
+                      const std::vector<std::function<Real(Real)>>& F, const multi_solve_options<Real>& options,
+                      std::size_t M, const far_field<Real>* far)
+      : par_(par), intervals_(intervals), options_(options), far_(far), K_(intervals.size()), M_(M),
+        T_(static_cast<Eigen::Index>(intervals.size() * M)), Mi_(static_cast<Eigen::Index>(M)),
+        defect_column_(static_cast<Eigen::Index>(M - 1)), grid_(M) {
+    sol.degree = M;
+    lay_out();
+    collocate(F);
+    if (!far_)
+      assemble_dense();
+    else
+      assemble_matrix_free();
   }
-  return lo;
-}
+  union_degree_system(const union_degree_system&) = delete;
+  union_degree_system& operator=(const union_degree_system&) = delete;
+
+  /// The scaled data at the collocation points (equations of interval j in units of h_j^alpha).
+  const vector& rhs() const { return rhs_; }
+
+  /// The fixed c_0 of interval i (nu = +1: from its load, 0 without one; 0 for nu != +1).
+  Real fixed_c0(std::size_t i) const {
+    if (sol.exponents[i].nu != 1) return Real(0);
+    if (i < options_.loads.size() && options_.loads[i]) {
+      const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[i].del, sol.exponents[i].gam);
+      return *options_.loads[i] / (ops_[i].half_length() * h0);
+    }
+    return Real(0);
+  }
+
+  /// c_0 of the homogeneous solution of interval k (nu = +1), unit load: 1/(h_k ||P_0||^2).
+  Real unit_c0(std::size_t k) const {
+    const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[k].del, sol.exponents[k].gam);
+    return 1 / (ops_[k].half_length() * h0);
+  }
+
+  /// The densities with the unknowns x and the fixed c_0 values c0s.
+  std::vector<jacobi_density<Real>> unpack(const vector& x, const std::vector<Real>& c0s) const {
+    std::vector<jacobi_density<Real>> out = sol.densities;
+    for (std::size_t i = 0; i < K_; ++i)
+      for (std::size_t n = 0; n < n_basis_[i]; ++n) {
+        const long u = local_index(i, n);
+        out[i].coefficients[n] = u >= 0 ? x[static_cast<Eigen::Index>(offset_[i]) + u] : c0s[i];
+      }
+    return out;
+  }
+
+  /// The solvability defects d_j (nu = -1; 0 otherwise) among the unknowns x.
+  std::vector<Real> defects(const vector& x) const {
+    std::vector<Real> out(K_, Real(0));
+    for (std::size_t j = 0; j < K_; ++j)
+      if (sol.exponents[j].nu == -1) out[j] = x[static_cast<Eigen::Index>(offset_[j]) + defect_column_];
+    return out;
+  }
+
+  /// x = A^-1 right; nothing when the matrix-free GMRES does not reach its tolerance (the dense
+  /// route's GMRES falls back to the LU).
+  std::optional<vector> linear_solve(const vector& right) {
+    if (far_) {
+      vector x;
+      if (gmres_->solve(right, x, Real(1e-14))) return x;
+      return std::nullopt;
+    }
+    if (gmres_) {
+      vector x;
+      if (gmres_->solve(right, x, Real(1e-14))) return x;
+      factorise();
+    }
+    return vector(lu_->solve(right));
+  }
+
+  /// The image under A of the fixed c_0 values c0s (subtracted from the data).
+  vector c0_image(const std::vector<Real>& c0s) const {
+    if (far_) {
+      vector out = far_part(vector::Zero(T_), c0s);
+      for (std::size_t j = 0; j < K_; ++j)
+        for (const auto& [i, column] : near_c0_[j])
+          if (sol.exponents[i].nu == 1) out.segment(static_cast<Eigen::Index>(offset_[j]), Mi_) += c0s[i] * column;
+      return out;
+    }
+    vector out = vector::Zero(T_);
+    for (std::size_t i = 0; i < K_; ++i)
+      if (sol.exponents[i].nu == 1) out += c0s[i] * c0_columns_[i];
+    return out;
+  }
+
+ private:
+  // The intervals' operators, classes, basis sizes, block offsets and zero densities.
+  // Unknowns of interval i: the coefficients c^i_n (n_basis[i] of them; for nu = +1 c^i_0 is
+  // fixed by the load and not an unknown) and, for nu = -1, the defect d_i. Rows: the M
+  // collocation equations of interval i. Both number M per interval: the system is square.
+  void lay_out() {
+    n_basis_.resize(K_);
+    offset_.resize(K_);
+    for (std::size_t i = 0; i < K_; ++i) {
+      ops_.emplace_back(par_, intervals_[i].lo, intervals_[i].hi);
+      const auto e = par_.exponents(intervals_[i].leading, intervals_[i].trailing);
+      sol.exponents.push_back(e);
+      n_basis_[i] = e.nu == -1 ? M_ - 1 : (e.nu == 0 ? M_ : M_ + 1);
+      offset_[i] = i * M_;
+      sol.densities.push_back(zero_density(intervals_[i], e, n_basis_[i]));
+    }
+  }
+
+  // The collocation points of each interval, the equations' scales h_j^-alpha and the scaled data.
+  void collocate(const std::vector<std::function<Real(Real)>>& F) {
+    using std::pow;
+    pts_.resize(K_);
+    scale_.resize(K_);
+    rhs_.resize(T_);
+    for (std::size_t j = 0; j < K_; ++j) {
+      scale_[j] = pow(ops_[j].half_length(), -par_.alpha());
+      pts_[j] = union_points(intervals_[j], grid_);
+      for (std::size_t k = 0; k < M_; ++k) {
+        const Real v = F[j](pts_[j][k].s);
+        check_finite_value("rhabel::abel::solve_union", v, pts_[j][k].s);
+        rhs_[static_cast<Eigen::Index>(offset_[j] + k)] = scale_[j] * v;
+      }
+    }
+  }
+
+  // Column of c^i_n within interval i's block (-1: the fixed c_0 of nu = +1).
+  long local_index(std::size_t i, std::size_t n) const {
+    if (sol.exponents[i].nu == 1) return n == 0 ? -1 : static_cast<long>(n - 1);
+    return static_cast<long>(n);
+  }
+
+  // Own block of interval j (M x M, j's unknowns): A(w P_n) = h^alpha lambda_n P_{n - nu}^(gam + nu,
+  // del + nu) (spectral relation); nu = -1: F - A g = d_j P_0 (the part of the data outside the range).
+  matrix own_block(std::size_t j) const {
+    const auto& e = sol.exponents[j];
+    const Real p = e.gam + Real(e.nu), q = e.del + Real(e.nu);
+    const std::vector<Real> lambda = ops_[j].eigenvalues(n_basis_[j], e);  // O(n_basis) in all
+    matrix B = matrix::Zero(Mi_, Mi_);
+    for (std::size_t k = 0; k < M_; ++k) {
+      const auto r = static_cast<Eigen::Index>(k);
+      const auto image = jacobi_values_any(M_, p, q, grid_.x[k]);
+      for (std::size_t n = 0; n < n_basis_[j]; ++n) {
+        const long m = static_cast<long>(n) - e.nu;
+        if (m < 0) continue;  // nu = +1, n = 0: the homogeneous solution, image 0
+        const long c = local_index(j, n);
+        if (c >= 0) B(r, c) += lambda[n] * image[static_cast<std::size_t>(m)];
+      }
+      if (e.nu == -1) B(r, defect_column_) += Real(1);
+    }
+    return B;
+  }
+
+  // Cross block of interval i acting on j's collocation points (M x M in i's unknowns) and the
+  // column of i's fixed c_0 (nu = +1).
+  matrix cross(std::size_t j, std::size_t i, vector& c0_column) {
+    const bool right = i > j;
+    std::vector<Real> dist(M_);
+    for (std::size_t k = 0; k < M_; ++k) dist[k] = right ? pts_[j][k].to_hi : pts_[j][k].from_lo;
+    const auto& par = par_;
+    const auto B = cross_block(sol.densities[i], union_gap(intervals_, i, j), right, dist, n_basis_[i], scale_[j],
+                               [&](const Real& t_minus_s) { return cross_kernel(par, t_minus_s); }, &basis_cache_);
+    matrix out = matrix::Zero(Mi_, Mi_);
+    c0_column = vector::Zero(Mi_);
+    for (std::size_t n = 0; n < n_basis_[i]; ++n) {
+      const long c = local_index(i, n);
+      if (c >= 0)
+        out.col(c) += B.col(static_cast<Eigen::Index>(n));
+      else
+        c0_column += B.col(static_cast<Eigen::Index>(n));
+    }
+    return out;
+  }
+
+  // Dense route: A assembled, then GMRES (options.iterative_from) or its LU.
+  // Many intervals (options.iterative_from): GMRES with the block-diagonal preconditioner
+  // (detail/block_gmres.hpp), O(T^2) per iteration against the LU's 2/3 T^3; `condition` is
+  // then not computed (NaN). Otherwise, or when GMRES does not reach its tolerance: LU.
+  void assemble_dense() {
+    A_ = matrix::Zero(T_, T_);
+    c0_columns_.assign(K_, vector::Zero(T_));
+    for (std::size_t j = 0; j < K_; ++j) {
+      const auto row0 = static_cast<Eigen::Index>(offset_[j]);
+      A_.block(row0, row0, Mi_, Mi_) = own_block(j);
+      for (std::size_t i = 0; i < K_; ++i) {
+        if (i == j) continue;
+        vector c0_column;
+        A_.block(row0, static_cast<Eigen::Index>(offset_[i]), Mi_, Mi_) += cross(j, i, c0_column);
+        c0_columns_[i].segment(row0, Mi_) += c0_column;
+      }
+    }
+    // 1-norm of A for the exact condition of non-IEEE types (A is overwritten below).
+    if constexpr (!std::is_floating_point_v<Real>) norm_A_ = A_.cwiseAbs().colwise().sum().maxCoeff();
+    if (std::is_floating_point_v<Real> && K_ > 1 && options_.iterative_from > 1 && K_ >= options_.iterative_from) {
+      gmres_ = std::make_unique<block_gmres<Real>>(A_, Mi_);
+      sol.condition = std::numeric_limits<Real>::quiet_NaN();
+    } else {
+      factorise();
+    }
+  }
+
+  // LU of the dense A in place, and its condition number.
+  // LU in place (Eigen::Ref): A holds the factors from then on. With a
+  // copy of A (PartialPivLU of a matrix; its rcond() then also allocated a T x T temporary) the
+  // peak was 3 (K M)^2 numbers: 405 MB against 143 MB now at K = 1, M = 4096; 410 MB against
+  // 268 MB at K = 2, M = 2048. The factorisation is the same, bit for bit (checked on a random
+  // 2000 x 2000).
+  void factorise() {
+    gmres_.reset();  // it refers to A, which the LU overwrites
+    lu_ = std::make_unique<Eigen::PartialPivLU<Eigen::Ref<matrix>>>(A_);
+    if constexpr (std::is_floating_point_v<Real>) {
+      sol.condition = 1 / lu_->rcond();
+    } else {
+      // Eigen's estimator needs NumTraits<Real>::infinity(), which the Boost.Multiprecision
+      // bindings lack: the exact 1-norm condition instead (O(size^3), like the LU itself).
+      const matrix inverse = lu_->inverse();
+      sol.condition = norm_A_ * inverse.cwiseAbs().colwise().sum().maxCoeff();
+    }
+  }
+
+  // Matrix-free route: own and near blocks, moment matrices, the far field's interpolation, and
+  // GMRES on their product.
+  void assemble_matrix_free() {
+    own_.resize(K_);
+    moment_.resize(K_);
+    near_.resize(K_);
+    near_c0_.resize(K_);
+    interpolation_ = far_->interpolation(grid_.x);
+    for (std::size_t j = 0; j < K_; ++j) {
+      own_[j] = own_block(j);
+      moment_[j] = far_->moment_matrix(j, sol.densities[j].del, sol.densities[j].gam, n_basis_[j]);
+      for (std::size_t i : far_->near_leaves(j)) {
+        vector c0_column;
+        near_[j].emplace_back(i, cross(j, i, c0_column));
+        near_c0_[j].emplace_back(i, std::move(c0_column));
+      }
+    }
+    const std::vector<Real> no_c0(K_, Real(0));
+    auto apply = [this, no_c0](const vector& x) {
+      vector out = far_part(x, no_c0);
+      for (std::size_t j = 0; j < K_; ++j) {
+        const auto row0 = static_cast<Eigen::Index>(offset_[j]);
+        out.segment(row0, Mi_) += own_[j] * x.segment(row0, Mi_);
+        for (const auto& [i, B] : near_[j]) out.segment(row0, Mi_) += B * x.segment(static_cast<Eigen::Index>(offset_[i]), Mi_);
+      }
+      return out;
+    };
+    gmres_ = std::make_unique<block_gmres<Real>>(apply, own_);
+    sol.condition = std::numeric_limits<Real>::quiet_NaN();
+  }
+
+  // The far part of A x (coefficients from x and the fixed c_0 values c0s).
+  vector far_part(const vector& x, const std::vector<Real>& c0s) const {
+    std::vector<vector> W(K_);
+    for (std::size_t i = 0; i < K_; ++i) {
+      vector c(static_cast<Eigen::Index>(n_basis_[i]));
+      for (std::size_t n = 0; n < n_basis_[i]; ++n) {
+        const long u = local_index(i, n);
+        c[static_cast<Eigen::Index>(n)] = u >= 0 ? x[static_cast<Eigen::Index>(offset_[i]) + u] : c0s[i];
+      }
+      W[i] = moment_[i] * c;
+    }
+    const auto local = far_->far_values(W);
+    vector out(T_);
+    for (std::size_t j = 0; j < K_; ++j) out.segment(static_cast<Eigen::Index>(offset_[j]), Mi_) = scale_[j] * (interpolation_ * local[j]);
+    return out;
+  }
+
+  const abel_parameters<Real>& par_;
+  const std::vector<interval_spec<Real>>& intervals_;
+  const multi_solve_options<Real>& options_;
+  const far_field<Real>* far_;
+  std::size_t K_, M_;
+  Eigen::Index T_, Mi_;
+  Eigen::Index defect_column_;  // column of the defect d_i (nu = -1): the last unknown of the block
+  chebyshev_grid<Real> grid_;
+  std::vector<abel_operator<Real>> ops_;
+  std::vector<std::size_t> n_basis_, offset_;
+  separated_basis_cache<Real> basis_cache_;
+  std::vector<std::vector<union_point<Real>>> pts_;
+  std::vector<Real> scale_;  // equations of interval j in units of h_j^alpha
+  vector rhs_;
+  // Dense route: A (then its LU factors), the images of the fixed c_0 of nu = +1 intervals.
+  matrix A_;
+  std::vector<vector> c0_columns_;
+  Real norm_A_ = 0;  // 1-norm of A before the LU (non-IEEE types only)
+  std::unique_ptr<Eigen::PartialPivLU<Eigen::Ref<matrix>>> lu_;
+  std::unique_ptr<block_gmres<Real>> gmres_;
+  // Matrix-free route: own and near blocks, moment matrices, the far field's interpolation.
+  std::vector<matrix> own_, moment_;
+  std::vector<std::vector<std::pair<std::size_t, matrix>>> near_;  // near_[j]: (i, block)
+  std::vector<std::vector<std::pair<std::size_t, vector>>> near_c0_;
+  matrix interpolation_;
+};
 
 /// One solve of the coupled system at `degree` collocation points per interval (no residual).
 /// far: null for the dense system (LU, or GMRES on the assembled matrix from iterative_from on);
@@ -267,252 +492,27 @@ std::optional<multi_solution<Real>> solve_union_at_degree(const abel_parameters<
                                                           const std::vector<std::function<Real(Real)>>& F,
                                                           const multi_solve_options<Real>& options, std::size_t M,
                                                           const far_field<Real>* far = nullptr) {
-  using std::pow;
   const std::size_t K = intervals.size();
-  const Real alpha = par.alpha();
-  multi_solution<Real> sol;
-  sol.degree = M;
-  std::vector<abel_operator<Real>> ops;
-  // Unknowns of interval i: the coefficients c^i_n (n_basis[i] of them; for nu = +1 c^i_0 is
-  // fixed by the load and not an unknown) and, for nu = -1, the defect d_i. Rows: the M
-  // collocation equations of interval i. Both number M per interval: the system is square.
-  std::vector<std::size_t> n_basis(K), offset(K);
-  for (std::size_t i = 0; i < K; ++i) {
-    ops.emplace_back(par, intervals[i].lo, intervals[i].hi);
-    const auto e = par.exponents(intervals[i].leading, intervals[i].trailing);
-    sol.exponents.push_back(e);
-    n_basis[i] = e.nu == -1 ? M - 1 : (e.nu == 0 ? M : M + 1);
-    offset[i] = i * M;
-    sol.densities.push_back(zero_density(intervals[i], e, n_basis[i]));
-  }
-  const std::size_t total = K * M;
-  // Column of c^i_n within interval i's block (-1: the fixed c_0 of nu = +1).
-  auto local_index = [&](std::size_t i, std::size_t n) -> long {
-    if (sol.exponents[i].nu == 1) return n == 0 ? -1 : static_cast<long>(n - 1);
-    return static_cast<long>(n);
-  };
-  // Column of the defect d_i (nu = -1): the last unknown of the block.
-  const auto defect_column = static_cast<Eigen::Index>(M - 1);
-  auto fixed_c0 = [&](std::size_t i) -> Real {
-    if (sol.exponents[i].nu != 1) return Real(0);
-    if (i < options.loads.size() && options.loads[i]) {
-      const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[i].del, sol.exponents[i].gam);
-      return *options.loads[i] / (ops[i].half_length() * h0);
-    }
-    return Real(0);
-  };
-  using matrix = Eigen::Matrix<Real, Eigen::Dynamic, Eigen::Dynamic>;
-  using vector = Eigen::Matrix<Real, Eigen::Dynamic, 1>;
-  const auto T = static_cast<Eigen::Index>(total);
-  const auto Mi = static_cast<Eigen::Index>(M);
-  const chebyshev_grid<Real> grid(M);
-  separated_basis_cache<Real> basis_cache;
-  std::vector<std::vector<union_point<Real>>> pts(K);
-  std::vector<Real> scale(K);  // equations of interval j in units of h_j^alpha
-  vector rhs(T);
-  for (std::size_t j = 0; j < K; ++j) {
-    scale[j] = pow(ops[j].half_length(), -alpha);
-    pts[j] = union_points(intervals[j], grid);
-    for (std::size_t k = 0; k < M; ++k) {
-      const Real v = F[j](pts[j][k].s);
-      check_finite_value("rhabel::abel::solve_union", v, pts[j][k].s);
-      rhs[static_cast<Eigen::Index>(offset[j] + k)] = scale[j] * v;
-    }
-  }
-  // Own block of interval j (M x M, j's unknowns): A(w P_n) = h^alpha lambda_n P_{n - nu}^(gam + nu,
-  // del + nu) (spectral relation); nu = -1: F - A g = d_j P_0 (the part of the data outside the range).
-  auto own_block = [&](std::size_t j) {
-    const auto& e = sol.exponents[j];
-    const Real p = e.gam + Real(e.nu), q = e.del + Real(e.nu);
-    const std::vector<Real> lambda = ops[j].eigenvalues(n_basis[j], e);  // O(n_basis) in all
-    matrix B = matrix::Zero(Mi, Mi);
-    for (std::size_t k = 0; k < M; ++k) {
-      const auto r = static_cast<Eigen::Index>(k);
-      const auto image = jacobi_values_any(M, p, q, grid.x[k]);
-      for (std::size_t n = 0; n < n_basis[j]; ++n) {
-        const long m = static_cast<long>(n) - e.nu;
-        if (m < 0) continue;  // nu = +1, n = 0: the homogeneous solution, image 0
-        const long c = local_index(j, n);
-        if (c >= 0) B(r, c) += lambda[n] * image[static_cast<std::size_t>(m)];
-      }
-      if (e.nu == -1) B(r, defect_column) += Real(1);
-    }
-    return B;
-  };
-  // Cross block of interval i acting on j's collocation points (M x M in i's unknowns) and the
-  // column of i's fixed c_0 (nu = +1).
-  auto cross = [&](std::size_t j, std::size_t i, vector& c0_column) {
-    const bool right = i > j;
-    std::vector<Real> dist(M);
-    for (std::size_t k = 0; k < M; ++k) dist[k] = right ? pts[j][k].to_hi : pts[j][k].from_lo;
-    const auto B = cross_block(sol.densities[i], union_gap(intervals, i, j), right, dist, n_basis[i], scale[j],
-                               [&](const Real& t_minus_s) { return cross_kernel(par, t_minus_s); }, &basis_cache);
-    matrix out = matrix::Zero(Mi, Mi);
-    c0_column = vector::Zero(Mi);
-    for (std::size_t n = 0; n < n_basis[i]; ++n) {
-      const long c = local_index(i, n);
-      if (c >= 0)
-        out.col(c) += B.col(static_cast<Eigen::Index>(n));
-      else
-        c0_column += B.col(static_cast<Eigen::Index>(n));
-    }
-    return out;
-  };
+  union_degree_system<Real> system(par, intervals, F, options, M, far);
+  multi_solution<Real>& sol = system.sol;
   std::vector<Real> c0(K, Real(0));
-  for (std::size_t i = 0; i < K; ++i) c0[i] = fixed_c0(i);
-  auto unpack = [&](const vector& x, const std::vector<Real>& c0s) {
-    std::vector<jacobi_density<Real>> out = sol.densities;
-    for (std::size_t i = 0; i < K; ++i)
-      for (std::size_t n = 0; n < n_basis[i]; ++n) {
-        const long u = local_index(i, n);
-        out[i].coefficients[n] = u >= 0 ? x[static_cast<Eigen::Index>(offset[i]) + u] : c0s[i];
-      }
-    return out;
-  };
-  auto defects = [&](const vector& x) {
-    std::vector<Real> out(K, Real(0));
-    for (std::size_t j = 0; j < K; ++j)
-      if (sol.exponents[j].nu == -1) out[j] = x[static_cast<Eigen::Index>(offset[j]) + defect_column];
-    return out;
-  };
-  // The linear solve x = A^-1 right, and the image of fixed c_0 values (subtracted from the data).
-  std::function<std::optional<vector>(const vector&)> linear_solve;
-  std::function<vector(const std::vector<Real>&)> c0_image;
-  // Dense route: A assembled. LU in place (Eigen::Ref): A holds the factors from then on. With a
-  // copy of A (PartialPivLU of a matrix; its rcond() then also allocated a T x T temporary) the
-  // peak was 3 (K M)^2 numbers: 405 MB against 143 MB now at K = 1, M = 4096; 410 MB against
-  // 268 MB at K = 2, M = 2048. The factorisation is the same, bit for bit (checked on a random
-  // 2000 x 2000).
-  matrix A;
-  std::vector<vector> c0_columns;  // dense route: image of the fixed c_0 of nu = +1 intervals
-  std::unique_ptr<Eigen::PartialPivLU<Eigen::Ref<matrix>>> lu;
-  std::unique_ptr<block_gmres<Real>> gmres;
-  // Matrix-free route: own and near blocks, moment matrices, the far field's interpolation.
-  std::vector<matrix> own(K), moment(K);
-  std::vector<std::vector<std::pair<std::size_t, matrix>>> near(K);  // near[j]: (i, block)
-  std::vector<std::vector<std::pair<std::size_t, vector>>> near_c0(K);
-  matrix interpolation;
-  if (!far) {
-    A = matrix::Zero(T, T);
-    c0_columns.assign(K, vector::Zero(T));
-    for (std::size_t j = 0; j < K; ++j) {
-      const auto row0 = static_cast<Eigen::Index>(offset[j]);
-      A.block(row0, row0, Mi, Mi) = own_block(j);
-      for (std::size_t i = 0; i < K; ++i) {
-        if (i == j) continue;
-        vector c0_column;
-        A.block(row0, static_cast<Eigen::Index>(offset[i]), Mi, Mi) += cross(j, i, c0_column);
-        c0_columns[i].segment(row0, Mi) += c0_column;
-      }
-    }
-    // 1-norm of A for the exact condition of non-IEEE types (A is overwritten below).
-    Real norm_A = 0;
-    if constexpr (!std::is_floating_point_v<Real>) norm_A = A.cwiseAbs().colwise().sum().maxCoeff();
-    auto factorise = [&, norm_A] {
-      gmres.reset();  // it refers to A, which the LU overwrites
-      lu = std::make_unique<Eigen::PartialPivLU<Eigen::Ref<matrix>>>(A);
-      if constexpr (std::is_floating_point_v<Real>) {
-        (void)norm_A;  // used for the exact condition of non-IEEE types only
-        sol.condition = 1 / lu->rcond();
-      } else {
-        // Eigen's estimator needs NumTraits<Real>::infinity(), which the Boost.Multiprecision
-        // bindings lack: the exact 1-norm condition instead (O(size^3), like the LU itself).
-        const matrix inverse = lu->inverse();
-        sol.condition = norm_A * inverse.cwiseAbs().colwise().sum().maxCoeff();
-      }
-    };
-    // Many intervals (options.iterative_from): GMRES with the block-diagonal preconditioner
-    // (detail/block_gmres.hpp), O(T^2) per iteration against the LU's 2/3 T^3; `condition` is
-    // then not computed (NaN). Otherwise, or when GMRES does not reach its tolerance: LU.
-    if (std::is_floating_point_v<Real> && K > 1 && options.iterative_from > 1 && K >= options.iterative_from) {
-      gmres = std::make_unique<block_gmres<Real>>(A, Mi);
-      sol.condition = std::numeric_limits<Real>::quiet_NaN();
-    } else {
-      factorise();
-    }
-    linear_solve = [&, factorise](const vector& right) -> std::optional<vector> {
-      if (gmres) {
-        vector x;
-        if (gmres->solve(right, x, Real(1e-14))) return x;
-        factorise();
-      }
-      return vector(lu->solve(right));
-    };
-    c0_image = [&](const std::vector<Real>& c0s) {
-      vector out = vector::Zero(T);
-      for (std::size_t i = 0; i < K; ++i)
-        if (sol.exponents[i].nu == 1) out += c0s[i] * c0_columns[i];
-      return out;
-    };
-  } else {
-    interpolation = far->interpolation(grid.x);
-    for (std::size_t j = 0; j < K; ++j) {
-      own[j] = own_block(j);
-      moment[j] = far->moment_matrix(j, sol.densities[j].del, sol.densities[j].gam, n_basis[j]);
-      for (std::size_t i : far->near_leaves(j)) {
-        vector c0_column;
-        near[j].emplace_back(i, cross(j, i, c0_column));
-        near_c0[j].emplace_back(i, std::move(c0_column));
-      }
-    }
-    // The far part of A x (coefficients from x and the fixed c_0 values c0s).
-    auto far_part = [&](const vector& x, const std::vector<Real>& c0s) {
-      std::vector<vector> W(K);
-      for (std::size_t i = 0; i < K; ++i) {
-        vector c(static_cast<Eigen::Index>(n_basis[i]));
-        for (std::size_t n = 0; n < n_basis[i]; ++n) {
-          const long u = local_index(i, n);
-          c[static_cast<Eigen::Index>(n)] = u >= 0 ? x[static_cast<Eigen::Index>(offset[i]) + u] : c0s[i];
-        }
-        W[i] = moment[i] * c;
-      }
-      const auto local = far->far_values(W);
-      vector out(T);
-      for (std::size_t j = 0; j < K; ++j) out.segment(static_cast<Eigen::Index>(offset[j]), Mi) = scale[j] * (interpolation * local[j]);
-      return out;
-    };
-    const std::vector<Real> no_c0(K, Real(0));
-    auto apply = [&, far_part, no_c0](const vector& x) {
-      vector out = far_part(x, no_c0);
-      for (std::size_t j = 0; j < K; ++j) {
-        const auto row0 = static_cast<Eigen::Index>(offset[j]);
-        out.segment(row0, Mi) += own[j] * x.segment(row0, Mi);
-        for (const auto& [i, B] : near[j]) out.segment(row0, Mi) += B * x.segment(static_cast<Eigen::Index>(offset[i]), Mi);
-      }
-      return out;
-    };
-    gmres = std::make_unique<block_gmres<Real>>(apply, own);
-    sol.condition = std::numeric_limits<Real>::quiet_NaN();
-    linear_solve = [&](const vector& right) -> std::optional<vector> {
-      vector x;
-      if (gmres->solve(right, x, Real(1e-14))) return x;
-      return std::nullopt;
-    };
-    c0_image = [&, far_part](const std::vector<Real>& c0s) {
-      vector out = far_part(vector::Zero(T), c0s);
-      for (std::size_t j = 0; j < K; ++j)
-        for (const auto& [i, column] : near_c0[j])
-          if (sol.exponents[i].nu == 1) out.segment(static_cast<Eigen::Index>(offset[j]), Mi) += c0s[i] * column;
-      return out;
-    };
-  }
-  const auto c = linear_solve(rhs - c0_image(c0));
+  for (std::size_t i = 0; i < K; ++i) c0[i] = system.fixed_c0(i);
+  const auto c = system.linear_solve(system.rhs() - system.c0_image(c0));
   if (!c) return std::nullopt;
-  sol.densities = unpack(*c, c0);
-  sol.solvability_defects = defects(*c);
+  sol.densities = system.unpack(*c, c0);
+  sol.solvability_defects = system.defects(*c);
   sol.homogeneous.assign(K, {});
   sol.homogeneous_defects.assign(K, std::vector<Real>(K, Real(0)));
   for (std::size_t k = 0; k < K && options.homogeneous; ++k) {
     if (sol.exponents[k].nu != 1) continue;
-    const Real h0 = rhabel::quadrature::jacobi_norm_squared(0, sol.exponents[k].del, sol.exponents[k].gam);
     std::vector<Real> c0k(K, Real(0));
-    c0k[k] = 1 / (ops[k].half_length() * h0);
-    const auto x = linear_solve(-c0_image(c0k));
+    c0k[k] = system.unit_c0(k);
+    const auto x = system.linear_solve(-system.c0_image(c0k));
     if (!x) return std::nullopt;
-    sol.homogeneous[k] = unpack(*x, c0k);
-    sol.homogeneous_defects[k] = defects(*x);
+    sol.homogeneous[k] = system.unpack(*x, c0k);
+    sol.homogeneous_defects[k] = system.defects(*x);
   }
-  return sol;
+  return std::move(sol);
 }
 
 /// sum_q weight_q K(t_q - s) value_q: the action on a point s of I_j of a density of I_i given by

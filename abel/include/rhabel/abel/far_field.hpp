@@ -1,4 +1,4 @@
-// rhabel/abel/detail/far_field.hpp: the action of many disjoint intervals' densities on one
+// rhabel/abel/far_field.hpp: the action of many disjoint intervals' densities on one
 // another through the smooth far field of the kernel, in O(K p^2) operations and O(K p^2) numbers
 // for K intervals (a one-dimensional interpolative fast multipole method). Used by
 // abel::solve_union (multi_interval.hpp) from multi_solve_options::iterative_from intervals on,
@@ -35,7 +35,7 @@
 // rho = 1 + 2 eta + sqrt(2 eta (2 + 2 eta)) = 5.83 at eta = 1, and likewise in s. The
 // interpolation error of each variable falls like rho^-p: p = 26 makes it ~eps/100 of the kernel's
 // size at the nearest point with the 10 % of the ellipse kept off the singularity as in
-// union_assembly.hpp's separated_cross_nodes. order_for(tolerance) takes the p for a looser
+// cross_nodes.hpp's separated_cross_nodes. order_for(tolerance) takes the p for a looser
 // relative tolerance (the punch layer asks 1e-3 of its requested tolerance).
 // ONE TREE, MOVING INTERVALS. far_field(boxes, intervals) reuses a built tree for densities on
 // intervals inside its leaf boxes (the exact re-expansion at that constructor), so that a caller
@@ -45,7 +45,7 @@
 #pragma once
 
 #include "rhabel/abel/abel_operator.hpp"
-#include "rhabel/abel/detail/numerics.hpp"
+#include "rhabel/abel/numerics.hpp"
 
 #include <Eigen/Dense>
 
@@ -61,7 +61,7 @@
 #include <utility>
 #include <vector>
 
-namespace rhabel::abel::detail {
+namespace rhabel::abel {
 
 /// Cross-term kernel for t in I_i, s outside I_i: (t-s)^(alpha-1) for t > s, -kappa (s-t)^(alpha-1) for t < s.
 template <class Real>
@@ -417,4 +417,4 @@ class far_field {
   mutable std::map<std::tuple<Real, Real, std::size_t>, matrix> reference_moments_;
 };
 
-}  // namespace rhabel::abel::detail
+}  // namespace rhabel::abel
