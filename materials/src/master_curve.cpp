@@ -183,12 +183,12 @@ master_curve read_master_curve(const std::string& path) {
 
 double wlf_log10_shift(const wlf_shift& wlf, double temperature) {
   if (!std::isfinite(wlf.C1) || !std::isfinite(wlf.C2) || !std::isfinite(wlf.T_ref) || !std::isfinite(temperature)) {
-    throw std::domain_error("wlf_log10_shift: C1, C2, T_ref and the temperature must be finite");
+    throw std::domain_error("rhabel::materials::wlf_log10_shift: C1, C2, T_ref and the temperature must be finite");
   }
   const double dT = temperature - wlf.T_ref;
   const double denominator = wlf.C2 + dT;
   if (!(denominator > 0)) {
-    throw std::domain_error("wlf_log10_shift: C2 + T - T_ref = " + short_num(denominator) +
+    throw std::domain_error("rhabel::materials::wlf_log10_shift: C2 + T - T_ref = " + short_num(denominator) +
                             " must be > 0 (temperature " + short_num(temperature) + " is below T_ref - C2 = " +
                             short_num(wlf.T_ref - wlf.C2) + ", where the WLF equation has no meaning)");
   }
@@ -201,7 +201,7 @@ master_curve shift_to_temperature(const master_curve& curve, const wlf_shift& wl
   master_curve out = curve;
   for (auto& w : out.omega) w *= factor;
   if (!std::isfinite(out.omega.back()) || !(out.omega.front() > 0)) {
-    throw std::domain_error("shift_to_temperature: the WLF shift 10^" + short_num(-log10_aT) +
+    throw std::domain_error("rhabel::materials::shift_to_temperature: the WLF shift 10^" + short_num(-log10_aT) +
                             " takes the frequencies beyond the double range");
   }
   return out;
@@ -218,13 +218,13 @@ const char* to_string(fit_status status) {
 }
 
 local_fit fit_at(const master_curve& curve, double omega0, const fit_options& options) {
-  if (curve.omega.size() < 2) throw std::invalid_argument("fit_at: the master curve has fewer than 2 points");
+  if (curve.omega.size() < 2) throw std::invalid_argument("rhabel::materials::fit_at: the master curve has fewer than 2 points");
   if (!(options.half_window_decades > 0) || !(options.warning_threshold > 0)) {
-    throw std::invalid_argument("fit_at: half_window_decades and warning_threshold must be > 0");
+    throw std::invalid_argument("rhabel::materials::fit_at: half_window_decades and warning_threshold must be > 0");
   }
   const double lo = curve.omega.front(), hi = curve.omega.back();
   if (!(omega0 >= lo && omega0 <= hi)) {
-    throw std::domain_error("fit_at: omega0 = " + short_num(omega0) + " rad/s is outside the master curve's range [" +
+    throw std::domain_error("rhabel::materials::fit_at: omega0 = " + short_num(omega0) + " rad/s is outside the master curve's range [" +
                             short_num(lo) + ", " + short_num(hi) + "] rad/s (no extrapolation)");
   }
   const log_curve c(curve);
@@ -248,7 +248,7 @@ local_fit fit_at(const master_curve& curve, double omega0, const fit_options& op
   f.alpha_tan_delta = 2 / std::numbers::pi * interpolate(c.x, c.phase, x0);
   f.modulus = std::exp(interpolate(c.x, c.lnE, x0));
   if (!(f.alpha_slope >= 0 && f.alpha_slope < 1)) {
-    throw std::domain_error("fit_at: the slope d ln|E*|/d ln omega of " + curve.source + " around omega0 = " +
+    throw std::domain_error("rhabel::materials::fit_at: the slope d ln|E*|/d ln omega of " + curve.source + " around omega0 = " +
                             short_num(omega0) + " rad/s is " + short_num(f.alpha_slope) +
                             ", outside [0, 1): no power law E(t) = E1 t^-alpha fits there");
   }
@@ -272,7 +272,7 @@ fixed_point_fit fit_fixed_point(const master_curve& curve, double speed,
                                 const std::function<double(const local_fit&)>& contact_length,
                                 const fit_options& options, std::optional<double> initial_length, double tolerance,
                                 std::size_t max_iterations) {
-  if (!(speed > 0) || !std::isfinite(speed)) throw std::invalid_argument("fit_fixed_point: speed must be > 0 and finite");
+  if (!(speed > 0) || !std::isfinite(speed)) throw std::invalid_argument("rhabel::materials::fit_fixed_point: speed must be > 0 and finite");
   const double xmin = std::log(curve.omega.front()), xmax = std::log(curve.omega.back());
   fixed_point_fit out;
   // g(x) = ln(U / L(fit at e^x)); x* = g(x*).
@@ -284,7 +284,7 @@ fixed_point_fit fit_fixed_point(const master_curve& curve, double speed,
     last_length = contact_length(last_fit);
     ++out.iterations;
     if (!(last_length > 0) || !std::isfinite(last_length)) {
-      throw std::domain_error("fit_fixed_point: the contact length " + short_num(last_length) +
+      throw std::domain_error("rhabel::materials::fit_fixed_point: the contact length " + short_num(last_length) +
                               " m is not positive (no contact frequency U/L)");
     }
     return std::log(speed / last_length);
@@ -312,7 +312,7 @@ fixed_point_fit fit_fixed_point(const master_curve& curve, double speed,
     stuck_low = x1 == xmin && g1 < xmin;
     stuck_high = x1 == xmax && g1 > xmax;
     if (stuck_low || stuck_high) {
-      throw std::domain_error("fit_fixed_point: the contact frequency U/L = " + short_num(std::exp(g1)) +
+      throw std::domain_error("rhabel::materials::fit_fixed_point: the contact frequency U/L = " + short_num(std::exp(g1)) +
                               " rad/s lies outside the master curve's range [" + short_num(curve.omega.front()) +
                               ", " + short_num(curve.omega.back()) + "] rad/s");
     }

@@ -159,7 +159,7 @@ def test_nearly_coincident_indentors_are_a_result_not_an_exception():
 
 def test_domain_error_becomes_value_error_with_the_message():
     # Quadrature: p <= -1 (throw_bad_parameter: std::domain_error).
-    with pytest.raises(ValueError, match=r"^gauss_jacobi: p = -1 is outside the valid range \(-1, 30\]$"):
+    with pytest.raises(ValueError, match=r"^rhabel::quadrature::gauss_jacobi: p = -1 is outside the valid range \(-1, 30\]$"):
         rhabel.gauss_jacobi(4, -1.0, 0.0)
     with pytest.raises(ValueError, match="gauss_jacobi: n = 0"):
         rhabel.gauss_jacobi(0, 0.0, 0.0)

@@ -99,9 +99,9 @@ class abel_parameters {
     using std::isfinite;
     using std::sin;
     if (!isfinite(alpha) || !(alpha >= 0) || !(alpha < 1))
-      detail::throw_bad_parameter("abel_parameters", "alpha", alpha, "[0, 1)");
+      detail::throw_bad_parameter("rhabel::abel::abel_parameters", "alpha", alpha, "[0, 1)");
     if (!isfinite(beta) || !(beta > -1) || !(beta < 1))
-      detail::throw_bad_parameter("abel_parameters", "beta", beta, "(-1, 1)");
+      detail::throw_bad_parameter("rhabel::abel::abel_parameters", "beta", beta, "(-1, 1)");
     const Real pi = boost::math::constants::pi<Real>();
     const Real cb = cos(beta * pi / 2);
     // cos((alpha + beta/2) pi) = sin(pi (1/2 - alpha - beta/2)); the argument is formed as
@@ -120,9 +120,9 @@ class abel_parameters {
     using std::isfinite;
     using std::sin;
     if (!isfinite(alpha) || !(alpha > 0) || !(alpha < 1))
-      detail::throw_bad_parameter("abel_parameters::from_kappa", "alpha", alpha,
+      detail::throw_bad_parameter("rhabel::abel::abel_parameters::from_kappa", "alpha", alpha,
                                   "(0, 1) (at alpha = 0 kappa is 1 and beta is not determined)");
-    if (!isfinite(kappa)) detail::throw_bad_parameter("abel_parameters::from_kappa", "kappa", kappa, "finite");
+    if (!isfinite(kappa)) detail::throw_bad_parameter("rhabel::abel::abel_parameters::from_kappa", "kappa", kappa, "finite");
     const Real pi = boost::math::constants::pi<Real>();
     return abel_parameters(alpha, 2 * atan((cos(alpha * pi) - kappa) / sin(alpha * pi)) / pi);
   }
@@ -141,7 +141,7 @@ class abel_parameters {
     const Real gam = leading == edge::bounded ? half_minus_ : half_minus_ - 1;
     const Real del = trailing == edge::bounded ? (1 + beta_) / 2 : (beta_ - 1) / 2;
     if (!(gam > -1))
-      detail::throw_bad_parameter("abel_parameters::exponents", "leading edge exponent gam", gam,
+      detail::throw_bad_parameter("rhabel::abel::abel_parameters::exponents", "leading edge exponent gam", gam,
                                   "(-1, inf): edge::unbounded at the leading edge needs 2 alpha + beta < 1");
     const int nu = leading == edge::bounded ? (trailing == edge::bounded ? -1 : 0)
                                             : (trailing == edge::bounded ? 0 : 1);
@@ -299,8 +299,8 @@ class abel_operator {
  public:
   abel_operator(const abel_parameters<Real>& parameters, Real lo, Real hi) : par_(parameters), lo_(lo), hi_(hi) {
     using std::isfinite;
-    if (!isfinite(lo)) detail::throw_bad_parameter("abel_operator", "lo", lo, "finite");
-    if (!isfinite(hi) || !(hi > lo)) detail::throw_bad_parameter("abel_operator", "hi", hi, "finite and > lo");
+    if (!isfinite(lo)) detail::throw_bad_parameter("rhabel::abel::abel_operator", "lo", lo, "finite");
+    if (!isfinite(hi) || !(hi > lo)) detail::throw_bad_parameter("rhabel::abel::abel_operator", "hi", hi, "finite and > lo");
   }
   abel_operator(Real alpha, Real beta, Real lo, Real hi) : abel_operator(abel_parameters<Real>(alpha, beta), lo, hi) {}
 
@@ -409,7 +409,7 @@ class abel_operator {
       const abel_operator& op = op_;
       if (!(s > op.lo_) || !(s < op.hi_)) {
         if (s == op.lo_ || s == op.hi_)
-          detail::throw_bad_parameter("abel_operator::apply_by_quadrature", "s", s,
+          detail::throw_bad_parameter("rhabel::abel::abel_operator::apply_by_quadrature", "s", s,
                                       "s != lo, hi (the one-sided integrals are singular at the ends)");
         return op.apply_outside([&](const Real& x) { return smooth3(x, 1 + x, 1 - x); }, gam_, del_, degree_hint_, s);
       }
@@ -425,7 +425,7 @@ class abel_operator {
                                                const Real& beyond_lo = std::numeric_limits<Real>::infinity(),
                                                const Real& beyond_hi = std::numeric_limits<Real>::infinity()) const {
       if (!(s > op_.lo_) || !(s < op_.hi_))
-        detail::throw_bad_parameter("abel_operator::quadrature_evaluator::many", "s", s, "(lo, hi)");
+        detail::throw_bad_parameter("rhabel::abel::abel_operator::quadrature_evaluator::many", "s", s, "(lo, hi)");
       using V = Eigen::Array<Real, Eigen::Dynamic, 1>;
       return inside<V>([&](const Real& x, const Real& p, const Real& m) -> V { return values(x, p, m); }, s, beyond_lo,
                        beyond_hi);

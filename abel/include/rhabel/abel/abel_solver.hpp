@@ -93,7 +93,7 @@ struct abel_solution {
   jacobi_density<Real> with_load(const Real& load) const {
     jacobi_density<Real> g = density;
     if (exponents.nu != 1 || homogeneous.coefficients.empty())
-      detail::throw_bad_parameter("abel_solution::with_load", "nu", exponents.nu, "{+1} (a free constant exists only for nu = +1)");
+      detail::throw_bad_parameter("rhabel::abel::abel_solution::with_load", "nu", exponents.nu, "{+1} (a free constant exists only for nu = +1)");
     if (g.coefficients.empty()) g.coefficients.assign(1, Real(0));
     g.coefficients[0] += (load - density.integral()) * homogeneous.coefficients[0];
     return g;
@@ -297,17 +297,17 @@ abel_solution<Real> solve_piecewise(const abel_operator<Real>& op, edge leading,
   const Real h = op.half_length();
   const Real p = e.gam + Real(e.nu), q = e.del + Real(e.nu);
   if (!(p > -1))
-    detail::throw_bad_parameter("rhabel::abel::solve_piecewise", "image exponent gam + nu", p,
+    detail::throw_bad_parameter("rhabel::abel::rhabel::abel::solve_piecewise", "image exponent gam + nu", p,
                                 "(-1, inf): piecewise data in the class nu = -1 needs 2 alpha + beta < 1");
   const std::size_t M = options.degree != 0 ? options.degree : options.piecewise_degree;
-  if (M == 0) detail::throw_bad_parameter("rhabel::abel::solve_piecewise", "piecewise_degree", M, "[1, inf)");
+  if (M == 0) detail::throw_bad_parameter("rhabel::abel::rhabel::abel::solve_piecewise", "piecewise_degree", M, "[1, inf)");
   const Real scale_F = pow(h, -op.parameters().alpha());
   std::sort(breakpoints.begin(), breakpoints.end());
   std::vector<Real> cuts{Real(-1)};
   std::vector<Real> cuts_s{op.lo()};
   for (const Real& b : breakpoints) {
     if (!(b > op.lo() && b < op.hi()))
-      detail::throw_bad_parameter("rhabel::abel::solve_piecewise", "breakpoint", b, "(lo, hi)");
+      detail::throw_bad_parameter("rhabel::abel::rhabel::abel::solve_piecewise", "breakpoint", b, "(lo, hi)");
     cuts.push_back(-1 + (b - op.lo()) / h);
     cuts_s.push_back(b);
   }

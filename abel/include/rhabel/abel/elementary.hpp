@@ -39,7 +39,7 @@ abel_solution<Real> solve_elementary_abel(const Real& alpha, side which, const R
                                           const solve_options<Real>& options = {}) {
   using std::isfinite;
   if (!isfinite(alpha) || !(alpha > 0) || !(alpha < 1))
-    detail::throw_bad_parameter("rhabel::abel::solve_elementary_abel", "alpha", alpha, "(0, 1)");
+    detail::throw_bad_parameter("rhabel::abel::rhabel::abel::solve_elementary_abel", "alpha", alpha, "(0, 1)");
   const auto par = abel_parameters<Real>::from_kappa(alpha, Real(0));
   if (which == side::right) {
     const abel_operator<Real> op(par, lo, hi);
@@ -69,9 +69,9 @@ Real elementary_abel_primitive(const Real& alpha, side which, const Real& lo, co
   using std::isfinite;
   using std::sin;
   if (!isfinite(alpha) || !(alpha > 0) || !(alpha < 1))
-    detail::throw_bad_parameter("rhabel::abel::elementary_abel_primitive", "alpha", alpha, "(0, 1)");
-  if (!(hi > lo)) detail::throw_bad_parameter("rhabel::abel::elementary_abel_primitive", "hi", hi, "> lo");
-  if (!(x >= lo) || !(x <= hi)) detail::throw_bad_parameter("rhabel::abel::elementary_abel_primitive", "x", x, "[lo, hi]");
+    detail::throw_bad_parameter("rhabel::abel::rhabel::abel::elementary_abel_primitive", "alpha", alpha, "(0, 1)");
+  if (!(hi > lo)) detail::throw_bad_parameter("rhabel::abel::rhabel::abel::elementary_abel_primitive", "hi", hi, "> lo");
+  if (!(x >= lo) || !(x <= hi)) detail::throw_bad_parameter("rhabel::abel::rhabel::abel::elementary_abel_primitive", "x", x, "[lo, hi]");
   const Real pi = boost::math::constants::pi<Real>();
   if ((which == side::right && x == hi) || (which == side::left && x == lo)) return Real(0);
   const auto rule = which == side::right ? rhabel::quadrature::gauss_jacobi<Real>(nodes, Real(0), -alpha, x, hi)

@@ -134,7 +134,7 @@ class far_field {
   /// the accuracy estimate are the boxes' (a target point of interval i lies in box i).
   far_field(const far_field& boxes, const std::vector<box>& intervals) : far_field(boxes) {
     if (!boxes.covers(intervals))
-      throw std::invalid_argument("far_field: every interval must lie inside its box (covers())");
+      throw std::invalid_argument("rhabel::abel::far_field: every interval must lie inside its box (covers())");
     interval_ = intervals;
     inner_.assign(intervals.size(), matrix());
     const std::size_t p = order();

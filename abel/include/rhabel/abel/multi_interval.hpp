@@ -162,7 +162,7 @@ multi_solution<Real> solve_union(const abel_parameters<Real>& par, const std::ve
   if (std::is_floating_point_v<Real> && K > 1 && options.iterative_from > 1 && K >= options.iterative_from) {
     far = options.far_field;
     if (far && far->leaves() != K)
-      detail::throw_bad_parameter("rhabel::abel::solve_union", "options.far_field leaves", far->leaves(),
+      detail::throw_bad_parameter("rhabel::abel::rhabel::abel::solve_union", "options.far_field leaves", far->leaves(),
                                   "the number of intervals");
     if (!far) {
       std::vector<typename far_field<Real>::box> boxes;
@@ -180,7 +180,7 @@ multi_solution<Real> solve_union(const abel_parameters<Real>& par, const std::ve
           << " interval(s): the solve would need ~" << bytes
           << " bytes > options.max_memory_bytes = " << options.max_memory_bytes
           << " (raise it deliberately for a larger system)";
-    detail::throw_bad_parameter("rhabel::abel::solve_union", M_max == M ? "options.degree" : "options.max_degree",
+    detail::throw_bad_parameter("rhabel::abel::rhabel::abel::solve_union", M_max == M ? "options.degree" : "options.max_degree",
                                 M_max, range.str().c_str());
   }
   for (;;) {
@@ -219,7 +219,7 @@ multi_solution<Real> solve_union_layered(const abel_parameters<Real>& par, const
                                          const multi_solve_options<Real>& options = {}, std::size_t poles_per_decade = 8) {
   detail::check_union_arguments(par, intervals, F, options);
   if (poles_per_decade == 0)
-    detail::throw_bad_parameter("rhabel::abel::solve_union_layered", "poles_per_decade", 0, "[1, inf)");
+    detail::throw_bad_parameter("rhabel::abel::rhabel::abel::solve_union_layered", "poles_per_decade", 0, "[1, inf)");
   std::size_t M = std::max<std::size_t>(options.degree, 2);
   const std::size_t M_max = std::max(M, options.max_degree);
   for (;;) {

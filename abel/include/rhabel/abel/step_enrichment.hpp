@@ -1407,11 +1407,11 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   using std::pow;
   const Real alpha = op.parameters().alpha(), kappa = op.parameters().kappa();
   if (!(t0 > op.lo() && t0 < op.hi()))
-    detail::throw_bad_parameter("rhabel::abel::solve_step", "t0", t0, "(lo, hi)");
+    detail::throw_bad_parameter("rhabel::abel::rhabel::abel::solve_step", "t0", t0, "(lo, hi)");
   const auto e = op.exponents(leading, trailing);
   const bool centred = placement == apex_placement::centred;
   if (centred && e.nu == -1)
-    detail::throw_bad_parameter("rhabel::abel::solve_step", "nu (apex_placement::centred)", Real(e.nu), "{0, +1}");
+    detail::throw_bad_parameter("rhabel::abel::rhabel::abel::solve_step", "nu (apex_placement::centred)", Real(e.nu), "{0, +1}");
   const Real h = op.half_length();
   const Real scale_F = pow(h, -alpha);
   const Real x0 = -1 + (t0 - op.lo()) / h;
@@ -1442,7 +1442,7 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
     const Real v = f(t);
     detail::check_finite_value("rhabel::abel::solve_step", v, t);
     if (centred && v != 0 && (long_side_below ? one_plus < one_plus_x0 : one_minus < one_minus_x0))
-      detail::throw_bad_parameter("rhabel::abel::solve_step", "f on the long side of t0 (apex_placement::centred)", v, "{0}");
+      detail::throw_bad_parameter("rhabel::abel::rhabel::abel::solve_step", "f on the long side of t0 (apex_placement::centred)", v, "{0}");
     return v;
   };
   const Real physical_defect =

@@ -97,7 +97,7 @@ integral_result<Real> abel_right_impl(const char* name, const H& h, const Real& 
 /// h: callable Real -> Real analytic near [-1, 1]; `order` Gauss nodes per panel (0: automatic).
 template <class Real, class H>
 integral_result<Real> abel_integral_right(const H& h, Real p, Real q, Real mu, Real x, std::size_t order = 0) {
-  return detail::abel_right_impl("abel_integral_right", h, p, q, mu, x, order, 0);
+  return detail::abel_right_impl("rhabel::quadrature::abel_integral_right", h, p, q, mu, x, order, 0);
 }
 
 /// int_{-1}^x (x - t)^(mu-1) (1-t)^p (1+t)^q h(t) dt for x >= -1 (x > 1: the whole interval).
@@ -105,18 +105,18 @@ integral_result<Real> abel_integral_right(const H& h, Real p, Real q, Real mu, R
 template <class Real, class H>
 integral_result<Real> abel_integral_left(const H& h, Real p, Real q, Real mu, Real x, std::size_t order = 0) {
   using std::isnan;
-  if (isnan(x)) detail::throw_bad_parameter("abel_integral_left", "x", x, "[-1, inf)");
-  if (x < -1) detail::throw_bad_parameter("abel_integral_left", "x", x, "[-1, inf)");
+  if (isnan(x)) detail::throw_bad_parameter("rhabel::quadrature::abel_integral_left", "x", x, "[-1, inf)");
+  if (x < -1) detail::throw_bad_parameter("rhabel::quadrature::abel_integral_left", "x", x, "[-1, inf)");
   auto reflected = [&h](const Real& t) { return h(-t); };
-  return detail::abel_right_impl("abel_integral_left", reflected, q, p, mu, Real(-x), order, 0);
+  return detail::abel_right_impl("rhabel::quadrature::abel_integral_left", reflected, q, p, mu, Real(-x), order, 0);
 }
 
 /// abel_integral_right for h = sum_k c[k] P_k^(p,q).
 template <class Real>
 integral_result<Real> abel_integral_right_series(const std::vector<Real>& c, Real p, Real q, Real mu, Real x,
                                                  std::size_t order = 0) {
-  detail::check_jacobi_exponents("abel_integral_right_series", p, q);
-  return detail::abel_right_impl("abel_integral_right_series", detail::jacobi_series_callable(c, p, q), p, q, mu, x,
+  detail::check_jacobi_exponents("rhabel::quadrature::abel_integral_right_series", p, q);
+  return detail::abel_right_impl("rhabel::quadrature::abel_integral_right_series", detail::jacobi_series_callable(c, p, q), p, q, mu, x,
                                  order, detail::series_degree(c));
 }
 
@@ -125,11 +125,11 @@ template <class Real>
 integral_result<Real> abel_integral_left_series(const std::vector<Real>& c, Real p, Real q, Real mu, Real x,
                                                 std::size_t order = 0) {
   using std::isnan;
-  detail::check_jacobi_exponents("abel_integral_left_series", p, q);
-  if (isnan(x) || x < -1) detail::throw_bad_parameter("abel_integral_left_series", "x", x, "[-1, inf)");
+  detail::check_jacobi_exponents("rhabel::quadrature::abel_integral_left_series", p, q);
+  if (isnan(x) || x < -1) detail::throw_bad_parameter("rhabel::quadrature::abel_integral_left_series", "x", x, "[-1, inf)");
   auto h = detail::jacobi_series_callable(c, p, q);
   auto reflected = [&h](const Real& t) { return h(-t); };
-  return detail::abel_right_impl("abel_integral_left_series", reflected, q, p, mu, Real(-x), order,
+  return detail::abel_right_impl("rhabel::quadrature::abel_integral_left_series", reflected, q, p, mu, Real(-x), order,
                                  detail::series_degree(c));
 }
 

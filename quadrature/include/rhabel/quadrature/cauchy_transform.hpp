@@ -205,7 +205,7 @@ integral_result<Real> cauchy_principal_value(const H& h, Real p, Real q, Real x,
 template <class Real>
 integral_result<Real> cauchy_principal_value_series(const std::vector<Real>& c, Real p, Real q, Real x,
                                                     std::size_t order = 0) {
-  return detail::with_jacobi_series("cauchy_principal_value_series", c, p, q, order, [&](const auto& h, std::size_t n) {
+  return detail::with_jacobi_series("rhabel::quadrature::cauchy_principal_value_series", c, p, q, order, [&](const auto& h, std::size_t n) {
     return cauchy_principal_value(h, p, q, x, n);
   });
 }
@@ -272,7 +272,7 @@ complex_integral_result<Real> cauchy_transform(const H& h, Real p, Real q, std::
 template <class Real>
 complex_integral_result<Real> cauchy_transform_series(const std::vector<Real>& c, Real p, Real q,
                                                       std::complex<Real> z, std::size_t order = 0) {
-  return detail::with_jacobi_series("cauchy_transform_series", c, p, q, order, [&](const auto& h, std::size_t n) {
+  return detail::with_jacobi_series("rhabel::quadrature::cauchy_transform_series", c, p, q, order, [&](const auto& h, std::size_t n) {
     return cauchy_transform(h, p, q, z, n);
   });
 }
@@ -283,8 +283,8 @@ template <class Real, class H>
 plemelj_result<Real> cauchy_plemelj(const H& h, Real p, Real q, Real x, std::size_t order = 0) {
   using std::pow;
   using complex = std::complex<Real>;
-  detail::check_jacobi_exponents("cauchy_plemelj", p, q);
-  detail::check_open_interval_point("cauchy_plemelj", x);
+  detail::check_jacobi_exponents("rhabel::quadrature::cauchy_plemelj", p, q);
+  detail::check_open_interval_point("rhabel::quadrature::cauchy_plemelj", x);
   const auto pv = cauchy_principal_value(h, p, q, x, order);  // (1/pi) PV int
   const Real rho = pow(1 - x, p) * pow(1 + x, q) * h(x);
   // (1/(2 pi i)) PV int = -(i/2) (1/pi) PV int.
@@ -296,7 +296,7 @@ plemelj_result<Real> cauchy_plemelj(const H& h, Real p, Real q, Real x, std::siz
 template <class Real>
 plemelj_result<Real> cauchy_plemelj_series(const std::vector<Real>& c, Real p, Real q, Real x,
                                            std::size_t order = 0) {
-  return detail::with_jacobi_series("cauchy_plemelj_series", c, p, q, order, [&](const auto& h, std::size_t n) {
+  return detail::with_jacobi_series("rhabel::quadrature::cauchy_plemelj_series", c, p, q, order, [&](const auto& h, std::size_t n) {
     return cauchy_plemelj(h, p, q, x, n);
   });
 }
@@ -304,7 +304,7 @@ plemelj_result<Real> cauchy_plemelj_series(const std::vector<Real>& c, Real p, R
 /// Q_k(z) = int_{-1}^{1} (1-t)^p (1+t)^q P_k^(p,q)(t) / (z - t) dt for k = 0..n_max, z off [-1, 1].
 template <class Real>
 std::vector<std::complex<Real>> jacobi_q_all(std::size_t n_max, Real p, Real q, std::complex<Real> z) {
-  detail::check_jacobi_exponents("jacobi_q_all", p, q);
+  detail::check_jacobi_exponents("rhabel::quadrature::jacobi_q_all", p, q);
   using std::abs;
   using std::ceil;
   using std::log;

@@ -376,7 +376,7 @@ quadrature_rule<Real> gauss_jacobi_by_recurrence(std::size_t n, const Real& p, c
   const auto right = recurrence_newton<W>(n, pw, qw, std::move(right_start), constants.right);
   const auto left = recurrence_newton<W>(n, qw, pw, std::move(left_start), constants.left);
   if (!right.converged || !left.converged) {
-    throw std::runtime_error("gauss_jacobi: Newton's method on the recurrence did not converge (n = " +
+    throw std::runtime_error("rhabel::quadrature::gauss_jacobi: Newton's method on the recurrence did not converge (n = " +
                              std::to_string(n) + "); please report the case");
   }
   quadrature_rule<Real> rule;
@@ -928,7 +928,7 @@ quadrature_rule<Real> convert_rule(quadrature_rule<double>&& rule) {
 /// for n <= 10^6, p, q in (-1, 5]; weights <= 128 eps for p or q up to 30 (header comment).
 /// Cost O(n) for n > 40 (double, float), O(n^2) otherwise.
 /// Throws std::domain_error naming n, p or q when out of range (p or q <= -1, > 30, or NaN:
-/// "gauss_jacobi: p = 1000 is outside the valid range (-1, 30]"); std::invalid_argument if the
+/// "rhabel::quadrature::gauss_jacobi: p = 1000 is outside the valid range (-1, 30]"); std::invalid_argument if the
 /// asymptotic method is forced for a Real other than float/double; std::runtime_error if
 /// Newton's method fails (never observed).
 template <class Real>
@@ -936,12 +936,12 @@ quadrature_rule<Real> gauss_jacobi(std::size_t n, Real p, Real q, gauss_jacobi_o
   // (-1, 30]: the accuracy contract's range (gauss_jacobi_max_exponent); NaN fails both tests.
   // Subnormal and zero exponents are inside it.
   if (!(p > -1) || !(p <= Real(gauss_jacobi_max_exponent))) {
-    detail::throw_bad_parameter("gauss_jacobi", "p", p, "(-1, 30]");
+    detail::throw_bad_parameter("rhabel::quadrature::gauss_jacobi", "p", p, "(-1, 30]");
   }
   if (!(q > -1) || !(q <= Real(gauss_jacobi_max_exponent))) {
-    detail::throw_bad_parameter("gauss_jacobi", "q", q, "(-1, 30]");
+    detail::throw_bad_parameter("rhabel::quadrature::gauss_jacobi", "q", q, "(-1, 30]");
   }
-  if (n == 0) detail::throw_bad_parameter("gauss_jacobi", "n", 0, "[1, inf)");
+  if (n == 0) detail::throw_bad_parameter("rhabel::quadrature::gauss_jacobi", "n", 0, "[1, inf)");
   const bool hardware = detail::gauss_jacobi_is_hardware_float<Real>;
   switch (options.method) {
     case gauss_jacobi_method::automatic:
@@ -952,7 +952,7 @@ quadrature_rule<Real> gauss_jacobi(std::size_t n, Real p, Real q, gauss_jacobi_o
     case gauss_jacobi_method::asymptotic:
       if (!hardware) {
         throw std::invalid_argument(
-            "gauss_jacobi: method = asymptotic is only available for Real = float or double; use recurrence");
+            "rhabel::quadrature::gauss_jacobi: method = asymptotic is only available for Real = float or double; use recurrence");
       }
       break;
   }
@@ -964,7 +964,7 @@ quadrature_rule<Real> gauss_jacobi(std::size_t n, Real p, Real q, gauss_jacobi_o
     if (rule.size() != n || !detail::gauss_jacobi_strictly_increasing(rule)) {
       // Safety net (see the header comment); the O(n^2) path only where it finishes in seconds.
       if (n <= gauss_jacobi_fallback_max_n) return detail::gauss_jacobi_by_recurrence(n, p, q);
-      throw std::runtime_error("gauss_jacobi: the asymptotic path failed for n = " + std::to_string(n) +
+      throw std::runtime_error("rhabel::quadrature::gauss_jacobi: the asymptotic path failed for n = " + std::to_string(n) +
                                "; please report the case");
     }
     return detail::convert_rule<Real>(std::move(rule));
@@ -982,8 +982,8 @@ template <class Real>
 quadrature_rule<Real> gauss_jacobi(std::size_t n, Real p, Real q, Real lo, Real hi, gauss_jacobi_options options = {}) {
   using std::isfinite;
   using std::pow;
-  if (!isfinite(lo)) detail::throw_bad_parameter("gauss_jacobi", "lo", lo, "finite, lo < hi");
-  if (!isfinite(hi) || !(hi > lo)) detail::throw_bad_parameter("gauss_jacobi", "hi", hi, "finite, hi > lo");
+  if (!isfinite(lo)) detail::throw_bad_parameter("rhabel::quadrature::gauss_jacobi", "lo", lo, "finite, lo < hi");
+  if (!isfinite(hi) || !(hi > lo)) detail::throw_bad_parameter("rhabel::quadrature::gauss_jacobi", "hi", hi, "finite, hi > lo");
   const Real half_length = hi / 2 - lo / 2;  // no overflow even when hi - lo exceeds the range
   quadrature_rule<Real> rule = gauss_jacobi(n, p, q, options);
   const Real scale = pow(half_length, p + q + 1);

@@ -233,8 +233,8 @@ Real jacobi_p_recurrence_near_one(std::size_t n, const Real& p, const Real& q, c
 template <class Real>
 Real jacobi_p(std::size_t n, const Real& p, const Real& q, const Real& x) {
   using std::isfinite;
-  detail::check_jacobi_exponents("jacobi_p", p, q);
-  if (!isfinite(x)) detail::throw_bad_parameter("jacobi_p", "x", x, "finite");
+  detail::check_jacobi_exponents("rhabel::quadrature::jacobi_p", p, q);
+  if (!isfinite(x)) detail::throw_bad_parameter("rhabel::quadrature::jacobi_p", "x", x, "finite");
   if (n >= 2 && x >= 0 && x <= 1) {
     const Real u = (1 - x) / 2;  // exact for x >= 1/2 (Sterbenz)
     if (Real(n) * Real(n) * u <= 1) return detail::jacobi_p_endpoint_series(n, p, q, u);
@@ -260,7 +260,7 @@ Real jacobi_p(std::size_t n, const Real& p, const Real& q, const Real& x) {
 /// endpoint series).
 template <class Real>
 std::vector<Real> jacobi_p_all(std::size_t n_max, const Real& p, const Real& q, const Real& x) {
-  detail::check_jacobi_exponents("jacobi_p_all", p, q);
+  detail::check_jacobi_exponents("rhabel::quadrature::jacobi_p_all", p, q);
   std::vector<Real> values(n_max + 1);
   if (x >= Real(0.5) && x <= 1) {
     detail::jacobi_p_visit_near_one(n_max, p, q, Real(1 - x), [&](std::size_t k, const Real& v) { values[k] = v; });
@@ -283,7 +283,7 @@ std::vector<Real> jacobi_p_all(std::size_t n_max, const Real& p, const Real& q, 
 /// d/dx P_n^(p,q)(x) = (n + p + q + 1)/2 P_{n-1}^(p+1,q+1)(x).
 template <class Real>
 Real jacobi_p_derivative(std::size_t n, const Real& p, const Real& q, const Real& x) {
-  detail::check_jacobi_exponents("jacobi_p_derivative", p, q);
+  detail::check_jacobi_exponents("rhabel::quadrature::jacobi_p_derivative", p, q);
   if (n == 0) return Real(0);
   return (Real(n) + p + q + 1) / 2 * jacobi_p(n - 1, p + 1, q + 1, x);
 }
@@ -293,7 +293,7 @@ template <class Real>
 Real log_jacobi_norm_squared(std::size_t n, const Real& p, const Real& q) {
   using boost::math::lgamma;
   using std::log;
-  detail::check_jacobi_exponents("jacobi_norm_squared", p, q);
+  detail::check_jacobi_exponents("rhabel::quadrature::jacobi_norm_squared", p, q);
   const Real ln2 = log(Real(2));
   if (n == 0) {
     return (p + q + 1) * ln2 + lgamma(p + 1) + lgamma(q + 1) - lgamma(p + q + 2);
@@ -317,8 +317,8 @@ Real jacobi_norm_squared(std::size_t n, const Real& p, const Real& q) {
 template <class Real>
 Real jacobi_clenshaw(const std::vector<Real>& c, const Real& p, const Real& q, const Real& x) {
   using std::isfinite;
-  detail::check_jacobi_exponents("jacobi_clenshaw", p, q);
-  if (!isfinite(x)) detail::throw_bad_parameter("jacobi_clenshaw", "x", x, "finite");
+  detail::check_jacobi_exponents("rhabel::quadrature::jacobi_clenshaw", p, q);
+  if (!isfinite(x)) detail::throw_bad_parameter("rhabel::quadrature::jacobi_clenshaw", "x", x, "finite");
   if (c.empty()) return Real(0);
   if ((x >= Real(0.5) && x <= 1) || (x <= Real(-0.5) && x >= -1)) {
     const bool upper = x > 0;
@@ -327,7 +327,7 @@ Real jacobi_clenshaw(const std::vector<Real>& c, const Real& p, const Real& q, c
                                     [&](std::size_t k, const Real& v) {
                                       sum += (upper || k % 2 == 0) ? Real(c[k] * v) : Real(-c[k] * v);
                                     });
-    return detail::finite_sum("jacobi_clenshaw", x, sum);
+    return detail::finite_sum("rhabel::quadrature::jacobi_clenshaw", x, sum);
   }
   Real b1 = 0, b2 = 0;  // b_{k+1}, b_{k+2}
   for (std::size_t k = c.size(); k-- > 0;) {
@@ -337,7 +337,7 @@ Real jacobi_clenshaw(const std::vector<Real>& c, const Real& p, const Real& q, c
     b2 = b1;
     b1 = b0;
   }
-  return detail::finite_sum("jacobi_clenshaw", x, b1);
+  return detail::finite_sum("rhabel::quadrature::jacobi_clenshaw", x, b1);
 }
 
 /// (1 - x)^p (1 + x)^q from the complements one_minus_x = 1 - x, one_plus_x = 1 + x, both in
@@ -345,10 +345,10 @@ Real jacobi_clenshaw(const std::vector<Real>& c, const Real& p, const Real& q, c
 template <class Real>
 Real jacobi_weight(const Real& p, const Real& q, const Real& one_minus_x, const Real& one_plus_x) {
   using std::pow;
-  detail::check_jacobi_exponents("jacobi_weight", p, q);
+  detail::check_jacobi_exponents("rhabel::quadrature::jacobi_weight", p, q);
   // Complements outside [0, 2] (NaN included) are refused, as the message says.
-  detail::check_complement("jacobi_weight", "one_minus_x", one_minus_x);
-  detail::check_complement("jacobi_weight", "one_plus_x", one_plus_x);
+  detail::check_complement("rhabel::quadrature::jacobi_weight", "one_minus_x", one_minus_x);
+  detail::check_complement("rhabel::quadrature::jacobi_weight", "one_plus_x", one_plus_x);
   Real value = 1;
   if (p != 0) value *= pow(one_minus_x, p);
   if (q != 0) value *= pow(one_plus_x, q);
@@ -359,7 +359,7 @@ Real jacobi_weight(const Real& p, const Real& q, const Real& one_minus_x, const 
 /// (DLMF 18.9.5): first = (n+p+q+1)/(2n+p+q+1), second = -(n+q)/(2n+p+q+1); n = 0: (1, 0).
 template <class Real>
 std::pair<Real, Real> jacobi_connection_raise_p(std::size_t n, const Real& p, const Real& q) {
-  detail::check_jacobi_exponents("jacobi_connection_raise_p", p, q);
+  detail::check_jacobi_exponents("rhabel::quadrature::jacobi_connection_raise_p", p, q);
   if (n == 0) return {Real(1), Real(0)};
   const Real m = Real(n), s = 2 * m + p + q + 1;
   return {(m + p + q + 1) / s, -(m + q) / s};
@@ -369,7 +369,7 @@ std::pair<Real, Real> jacobi_connection_raise_p(std::size_t n, const Real& p, co
 /// first = (n+p+q+1)/(2n+p+q+1), second = +(n+p)/(2n+p+q+1); n = 0: (1, 0).
 template <class Real>
 std::pair<Real, Real> jacobi_connection_raise_q(std::size_t n, const Real& p, const Real& q) {
-  detail::check_jacobi_exponents("jacobi_connection_raise_q", p, q);
+  detail::check_jacobi_exponents("rhabel::quadrature::jacobi_connection_raise_q", p, q);
   if (n == 0) return {Real(1), Real(0)};
   const Real m = Real(n), s = 2 * m + p + q + 1;
   return {(m + p + q + 1) / s, (m + p) / s};
@@ -379,7 +379,7 @@ std::pair<Real, Real> jacobi_connection_raise_q(std::size_t n, const Real& p, co
 /// first = 2(n+p+1)/(2n+p+q+2), second = -2(n+1)/(2n+p+q+2).
 template <class Real>
 std::pair<Real, Real> jacobi_lowering_one_minus_x(std::size_t n, const Real& p, const Real& q) {
-  detail::check_jacobi_exponents("jacobi_lowering_one_minus_x", p, q);
+  detail::check_jacobi_exponents("rhabel::quadrature::jacobi_lowering_one_minus_x", p, q);
   const Real m = Real(n), s = 2 * m + p + q + 2;
   return {2 * (m + p + 1) / s, -2 * (m + 1) / s};
 }
@@ -388,7 +388,7 @@ std::pair<Real, Real> jacobi_lowering_one_minus_x(std::size_t n, const Real& p, 
 /// first = 2(n+q+1)/(2n+p+q+2), second = +2(n+1)/(2n+p+q+2).
 template <class Real>
 std::pair<Real, Real> jacobi_lowering_one_plus_x(std::size_t n, const Real& p, const Real& q) {
-  detail::check_jacobi_exponents("jacobi_lowering_one_plus_x", p, q);
+  detail::check_jacobi_exponents("rhabel::quadrature::jacobi_lowering_one_plus_x", p, q);
   const Real m = Real(n), s = 2 * m + p + q + 2;
   return {2 * (m + q + 1) / s, 2 * (m + 1) / s};
 }
@@ -467,7 +467,7 @@ Real jacobi_integral_below(std::size_t m, const Real& p, const Real& q, const Re
 template <class Real>
 Real jacobi_integral_below(std::size_t m, const Real& p, const Real& q, const Real& x0) {
   using std::isfinite;
-  if (!isfinite(x0) || x0 < -1 || x0 > 1) detail::throw_bad_parameter("jacobi_integral_below", "x0", x0, "[-1, 1]");
+  if (!isfinite(x0) || x0 < -1 || x0 > 1) detail::throw_bad_parameter("rhabel::quadrature::jacobi_integral_below", "x0", x0, "[-1, 1]");
   return jacobi_integral_below(m, p, q, Real(1 - x0), Real(1 + x0));
 }
 
@@ -490,7 +490,7 @@ std::vector<Real> jacobi_step_coefficients(std::size_t n, const Real& p, const R
 template <class Real>
 std::vector<Real> jacobi_step_coefficients(std::size_t n, const Real& p, const Real& q, const Real& x0) {
   using std::isfinite;
-  if (!isfinite(x0) || x0 < -1 || x0 > 1) detail::throw_bad_parameter("jacobi_step_coefficients", "x0", x0, "[-1, 1]");
+  if (!isfinite(x0) || x0 < -1 || x0 > 1) detail::throw_bad_parameter("rhabel::quadrature::jacobi_step_coefficients", "x0", x0, "[-1, 1]");
   return jacobi_step_coefficients(n, p, q, Real(1 - x0), Real(1 + x0));
 }
 
@@ -501,7 +501,7 @@ std::vector<Real> jacobi_step_coefficients(std::size_t n, const Real& p, const R
 /// (integrate int_{-1}^{y} w P_m = -(1/(2m)) w_(p+1,q+1)(y) P_{m-1}^(p+1,q+1)(y) once more in y).
 template <class Real>
 Real jacobi_ramp_moment(std::size_t m, const Real& p, const Real& q, const Real& one_minus_x0, const Real& one_plus_x0) {
-  detail::check_jacobi_exponents("jacobi_ramp_moment", p, q);
+  detail::check_jacobi_exponents("rhabel::quadrature::jacobi_ramp_moment", p, q);
   if (m == 0)
     return one_plus_x0 * jacobi_integral_below(0, p, q, one_minus_x0, one_plus_x0) -
            jacobi_integral_below(0, p, q + 1, one_minus_x0, one_plus_x0);
@@ -530,7 +530,7 @@ std::vector<Real> jacobi_ramp_coefficients(std::size_t n, const Real& p, const R
 template <class Real>
 std::vector<Real> jacobi_ramp_coefficients(std::size_t n, const Real& p, const Real& q, const Real& x0) {
   using std::isfinite;
-  if (!isfinite(x0) || x0 < -1 || x0 > 1) detail::throw_bad_parameter("jacobi_ramp_coefficients", "x0", x0, "[-1, 1]");
+  if (!isfinite(x0) || x0 < -1 || x0 > 1) detail::throw_bad_parameter("rhabel::quadrature::jacobi_ramp_coefficients", "x0", x0, "[-1, 1]");
   return jacobi_ramp_coefficients(n, p, q, Real(1 - x0), Real(1 + x0));
 }
 
@@ -545,7 +545,7 @@ class jacobi_series {
  public:
   jacobi_series() = default;
   jacobi_series(std::vector<Real> c, const Real& p, const Real& q) : c_(std::move(c)), p_(p), q_(q) {
-    detail::check_jacobi_exponents("jacobi_series", p, q);
+    detail::check_jacobi_exponents("rhabel::quadrature::jacobi_series", p, q);
     const std::size_t K = c_.size();
     A_.resize(K);
     B_.resize(K);
@@ -569,23 +569,23 @@ class jacobi_series {
   /// a sum beyond the range of Real, possible for |x| > 1: std::overflow_error, never inf or NaN).
   Real operator()(const Real& x) const {
     using std::isfinite;
-    if (!isfinite(x)) detail::throw_bad_parameter("jacobi_series", "x", x, "finite");
+    if (!isfinite(x)) detail::throw_bad_parameter("rhabel::quadrature::jacobi_series", "x", x, "finite");
     if (c_.empty()) return Real(0);
-    if (x >= Real(0.5) && x <= 1) return detail::finite_sum("jacobi_series", x, near_end(upper_, p_, q_, Real(1 - x), false));
-    if (x <= Real(-0.5) && x >= -1) return detail::finite_sum("jacobi_series", x, near_end(lower_, q_, p_, Real(1 + x), true));
-    return detail::finite_sum("jacobi_series", x, clenshaw(x));
+    if (x >= Real(0.5) && x <= 1) return detail::finite_sum("rhabel::quadrature::jacobi_series", x, near_end(upper_, p_, q_, Real(1 - x), false));
+    if (x <= Real(-0.5) && x >= -1) return detail::finite_sum("rhabel::quadrature::jacobi_series", x, near_end(lower_, q_, p_, Real(1 + x), true));
+    return detail::finite_sum("rhabel::quadrature::jacobi_series", x, clenshaw(x));
   }
 
   /// The sum at x given the complements one_minus_x = 1 - x and one_plus_x = 1 + x (both in
   /// [0, 2]); near an end the small complement is used as it is.
   Real operator()(const Real& one_minus_x, const Real& one_plus_x) const {
-    detail::check_complement("jacobi_series", "one_minus_x", one_minus_x);
-    detail::check_complement("jacobi_series", "one_plus_x", one_plus_x);
+    detail::check_complement("rhabel::quadrature::jacobi_series", "one_minus_x", one_minus_x);
+    detail::check_complement("rhabel::quadrature::jacobi_series", "one_plus_x", one_plus_x);
     if (c_.empty()) return Real(0);
     const Real x = one_plus_x <= one_minus_x ? one_plus_x - 1 : 1 - one_minus_x;
-    if (one_minus_x <= Real(0.5)) return detail::finite_sum("jacobi_series", x, near_end(upper_, p_, q_, one_minus_x, false));
-    if (one_plus_x <= Real(0.5)) return detail::finite_sum("jacobi_series", x, near_end(lower_, q_, p_, one_plus_x, true));
-    return detail::finite_sum("jacobi_series", x, clenshaw(x));
+    if (one_minus_x <= Real(0.5)) return detail::finite_sum("rhabel::quadrature::jacobi_series", x, near_end(upper_, p_, q_, one_minus_x, false));
+    if (one_plus_x <= Real(0.5)) return detail::finite_sum("rhabel::quadrature::jacobi_series", x, near_end(lower_, q_, p_, one_plus_x, true));
+    return detail::finite_sum("rhabel::quadrature::jacobi_series", x, clenshaw(x));
   }
 
   /// The sum at the n points x[0], ..., x[n-1] (each finite, else std::domain_error before anything
@@ -600,7 +600,7 @@ class jacobi_series {
   void evaluate(const Real* x, Real* out, std::size_t n) const {
     using std::isfinite;
     for (std::size_t i = 0; i < n; ++i)
-      if (!isfinite(x[i])) detail::throw_bad_parameter("jacobi_series::evaluate", "x", x[i], "finite");
+      if (!isfinite(x[i])) detail::throw_bad_parameter("rhabel::quadrature::jacobi_series::evaluate", "x", x[i], "finite");
     if (c_.empty()) {
       std::fill(out, out + n, Real(0));
       return;
@@ -626,7 +626,7 @@ class jacobi_series {
         [&](const Real& u) { return near_end(lower_, q_, p_, u, true); });
     run(middle, [](const Real& xi) { return xi; }, [&](const Real* xs, Real* v) { clenshaw_lanes(xs, v); },
         [&](const Real& xi) { return clenshaw(xi); });
-    for (std::size_t i = 0; i < n; ++i) detail::finite_sum("jacobi_series::evaluate", x[i], out[i]);
+    for (std::size_t i = 0; i < n; ++i) detail::finite_sum("rhabel::quadrature::jacobi_series::evaluate", x[i], out[i]);
   }
 
  private:

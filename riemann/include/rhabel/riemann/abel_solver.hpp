@@ -820,7 +820,7 @@ class abel_rh_solution {
   /// int_a^y g, a <= y <= b.
   estimated<Real> integral(const Real& y) const {
     using std::pow;
-    if (!(y >= a_) || !(y <= b_)) quadrature::detail::throw_bad_parameter("abel_rh_solution::integral", "y", y, "[a, b]");
+    if (!(y >= a_) || !(y <= b_)) quadrature::detail::throw_bad_parameter("rhabel::riemann::abel_rh_solution::integral", "y", y, "[a, b]");
     if (y == b_) return total();
     estimated<Real> r = pair(coarse_->integral(y), fine_->integral(y));
     if (nu_ == 1 && constant_ != 0) {
@@ -834,7 +834,7 @@ class abel_rh_solution {
   /// g(y), a < y < b (not on a step of F).
   estimated<Real> density(const Real& y) const {
     using std::pow;
-    if (!(y > a_) || !(y < b_)) quadrature::detail::throw_bad_parameter("abel_rh_solution::density", "y", y, "(a, b)");
+    if (!(y > a_) || !(y < b_)) quadrature::detail::throw_bad_parameter("rhabel::riemann::abel_rh_solution::density", "y", y, "(a, b)");
     estimated<Real> r = pair(coarse_->density(y), fine_->density(y));
     if (nu_ == 1 && constant_ != 0) r.value += constant_ * homogeneous(y);
     return r;
@@ -854,10 +854,10 @@ class abel_rh_solution {
   std::vector<estimated<Real>> densities(const std::vector<Real>& ys) const {
     Real finest = b_ - a_;
     for (const Real& y : ys) {
-      if (!(y > a_) || !(y < b_)) quadrature::detail::throw_bad_parameter("abel_rh_solution::densities", "y", y, "(a, b)");
+      if (!(y > a_) || !(y < b_)) quadrature::detail::throw_bad_parameter("rhabel::riemann::abel_rh_solution::densities", "y", y, "(a, b)");
       for (const auto& s : coarse_->data().steps)
         if (y == s.position)
-          quadrature::detail::throw_bad_parameter("abel_rh_solution::densities", "y", y, "(a, b) off the steps of F");
+          quadrature::detail::throw_bad_parameter("rhabel::riemann::abel_rh_solution::densities", "y", y, "(a, b) off the steps of F");
       finest = std::min<Real>(finest, (b_ - y) / 3);
     }
     std::vector<estimated<Real>> out;

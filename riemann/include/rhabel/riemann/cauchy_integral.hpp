@@ -145,7 +145,7 @@ class jacobi_cauchy_integral {
 
   /// PV int w h/(t - x) dt, lo < x < hi, x not on a step.
   Real principal_value(const Real& x) const {
-    check_on_cut("jacobi_cauchy_integral::principal_value", x);
+    check_on_cut("rhabel::riemann::jacobi_cauchy_integral::principal_value", x);
     const auto& layout = layouts_[choose_layout(x)];
     Real sum = 0;
     for (const auto& piece : layout) sum += piece_pv(piece, x);
@@ -167,9 +167,9 @@ class jacobi_cauchy_integral {
   complex_type transform(const complex_type& z) const {
     using std::isfinite;
     if (!isfinite(z.real()) || !isfinite(z.imag()))
-      quadrature::detail::throw_bad_parameter("jacobi_cauchy_integral::transform", "z", z, "finite, not on [lo, hi]");
+      quadrature::detail::throw_bad_parameter("rhabel::riemann::jacobi_cauchy_integral::transform", "z", z, "finite, not on [lo, hi]");
     if (z.imag() == 0 && z.real() >= lo_ && z.real() <= hi_)
-      quadrature::detail::throw_bad_parameter("jacobi_cauchy_integral::transform", "z", z,
+      quadrature::detail::throw_bad_parameter("rhabel::riemann::jacobi_cauchy_integral::transform", "z", z,
                                               "C \\ [lo, hi] (use principal_value / plemelj_* on the cut)");
     complex_type sum(0);
     for (const auto& piece : layouts_[0]) sum += piece_transform(piece, z);

@@ -202,10 +202,10 @@ riemann_solution<Real> solve_riemann_problem(const riemann_problem<Real>& proble
   const Real p = problem.data_exponent_hi - x.exponent_hi;
   const Real q = problem.data_exponent_lo - x.exponent_lo;
   if (!(p > -1))
-    quadrature::detail::throw_bad_parameter("solve_riemann_problem", "data_exponent_hi - n", p,
+    quadrature::detail::throw_bad_parameter("rhabel::riemann::solve_riemann_problem", "data_exponent_hi - n", p,
                                             "(-1, inf) (g1 / X_+ must be integrable at hi)");
   if (!(q > -1))
-    quadrature::detail::throw_bad_parameter("solve_riemann_problem", "data_exponent_lo - m", q,
+    quadrature::detail::throw_bad_parameter("rhabel::riemann::solve_riemann_problem", "data_exponent_lo - m", q,
                                             "(-1, inf) (g1 / X_+ must be integrable at lo)");
   return riemann_solution<Real>(problem, x, index == 1 ? constant : std::complex<Real>(0), order);
 }

@@ -206,7 +206,7 @@ void check_layered_memory(const std::vector<interval_spec<Real>>& intervals, con
     std::ostringstream range;
     range << "a smaller value or wider gaps: ~" << N_est << " unknowns at ~" << R_est << " points would need ~"
           << bytes << " bytes > options.max_memory_bytes = " << options.max_memory_bytes;
-    throw_bad_parameter("rhabel::abel::solve_union_layered", "poles_per_decade", double(per_decade), range.str().c_str());
+    throw_bad_parameter("rhabel::abel::rhabel::abel::solve_union_layered", "poles_per_decade", double(per_decade), range.str().c_str());
   }
 }
 

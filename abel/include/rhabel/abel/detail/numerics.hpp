@@ -146,8 +146,8 @@ struct log_power_rule {
 template <class Real>
 const log_power_rule<Real>& gauss_log_power_rule(std::size_t n, const Real& alpha) {
   using std::abs;
-  if (n == 0 || n > 100) throw_bad_parameter("gauss_log_power_rule", "n", double(n), "[1, 100]");
-  if (!(alpha >= 0 && alpha < 1)) throw_bad_parameter("gauss_log_power_rule", "alpha", alpha, "[0, 1)");
+  if (n == 0 || n > 100) throw_bad_parameter("rhabel::abel::gauss_log_power_rule", "n", double(n), "[1, 100]");
+  if (!(alpha >= 0 && alpha < 1)) throw_bad_parameter("rhabel::abel::gauss_log_power_rule", "alpha", alpha, "[0, 1)");
   static std::mutex mutex;
   static std::map<std::pair<std::size_t, Real>, std::shared_ptr<const log_power_rule<Real>>> cache;
   const std::lock_guard<std::mutex> lock(mutex);

@@ -616,21 +616,21 @@ template <class Real>
 void check_union_arguments(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
                            const std::vector<std::function<Real(Real)>>& F, const multi_solve_options<Real>& options) {
   const std::size_t K = intervals.size();
-  if (K == 0) throw_bad_parameter("rhabel::abel::solve_union", "number of intervals", 0, "[1, inf)");
+  if (K == 0) throw_bad_parameter("rhabel::abel::rhabel::abel::solve_union", "number of intervals", 0, "[1, inf)");
   if (F.size() != K)
-    throw_bad_parameter("rhabel::abel::solve_union", "number of data functions", F.size(), "equal to the number of intervals");
+    throw_bad_parameter("rhabel::abel::rhabel::abel::solve_union", "number of data functions", F.size(), "equal to the number of intervals");
   for (std::size_t i = 0; i < K; ++i) {
     abel_operator<Real> check(par, intervals[i].lo, intervals[i].hi);  // validates lo < hi
     (void)check;
     if (i > 0 && !(intervals[i].lo > intervals[i - 1].hi))
-      throw_bad_parameter("rhabel::abel::solve_union", "interval lo", intervals[i].lo,
+      throw_bad_parameter("rhabel::abel::rhabel::abel::solve_union", "interval lo", intervals[i].lo,
                           "> hi of the previous interval (sorted, disjoint intervals)");
   }
   if (options.max_degree != 0 && options.max_degree < options.degree)
-    throw_bad_parameter("rhabel::abel::solve_union", "options.max_degree", options.max_degree,
+    throw_bad_parameter("rhabel::abel::rhabel::abel::solve_union", "options.max_degree", options.max_degree,
                         "0 (no adaptation) or >= options.degree");
   if (options.max_degree > options.degree && options.residual_points == 0)
-    throw_bad_parameter("rhabel::abel::solve_union", "options.residual_points", 0,
+    throw_bad_parameter("rhabel::abel::rhabel::abel::solve_union", "options.residual_points", 0,
                         "> 0 when options.max_degree > options.degree (the residual drives the degree)");
 }
 

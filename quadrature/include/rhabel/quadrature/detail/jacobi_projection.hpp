@@ -92,8 +92,8 @@ std::vector<Real> jacobi_sums_at_nodes(const quadrature_rule<Real>& rule, const 
 /// n >= 1.
 template <class Real, class F>
 std::vector<Real> jacobi_coefficients(F&& f, Real p, Real q, std::size_t n) {
-  detail::check_jacobi_exponents("jacobi_coefficients", p, q);
-  if (n == 0) detail::throw_bad_parameter("jacobi_coefficients", "n", 0, "[1, inf)");
+  detail::check_jacobi_exponents("rhabel::quadrature::jacobi_coefficients", p, q);
+  if (n == 0) detail::throw_bad_parameter("rhabel::quadrature::jacobi_coefficients", "n", 0, "[1, inf)");
   const quadrature_rule<Real> rule = gauss_jacobi<Real>(n, p, q);
   std::vector<Real> fw(n);
   for (std::size_t i = 0; i < n; ++i) {

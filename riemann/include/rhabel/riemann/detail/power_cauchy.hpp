@@ -202,7 +202,7 @@ template <class Real>
 class power_cauchy {
  public:
   explicit power_cauchy(Real q) : q_(q) {
-    if (!(q > -1) || !(q < 1)) quadrature::detail::throw_bad_parameter("power_cauchy", "q", q, "(-1, 1)");
+    if (!(q > -1) || !(q < 1)) quadrature::detail::throw_bad_parameter("rhabel::riemann::power_cauchy", "q", q, "(-1, 1)");
     near_rule_ = quadrature::gauss_jacobi<Real>(nodes_for_ratio<Real>(5.8), Real(0), q, Real(0), Real(1) / 4);
     far_rule_ = quadrature::gauss_jacobi<Real>(nodes_for_ratio<Real>(3.0), Real(0), Real(0), Real(1) / 4, Real(1));
     const Real pi = boost::math::constants::pi<Real>();
