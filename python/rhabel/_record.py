@@ -80,9 +80,31 @@ class Contact(Record):
         rounding), 0 outside the open contact interval, +inf at a singular point inside (a wedge's
         apex below the boundary). Accuracy: the density's, ``error_estimate`` relative to the peak
         (an estimate). ValueError for a non-finite x. Releases the GIL."""
+        field = getattr(self, "_pressure", None)
+        if field is None:
+            raise RuntimeError("pressure_at: this contact was unpickled or built from plain data: the solution "
+                               "behind pressure_at stays in the process that solved it")
         xs = np.asarray(x, dtype=float)
-        p = self._pressure(np.ascontiguousarray(xs.ravel())).reshape(xs.shape)
+        p = field(np.ascontiguousarray(xs.ravel())).reshape(xs.shape)
         return float(p) if xs.ndim == 0 else p
+
+    def __reduce__(self):
+        # Pickled (to another process): the data, without the solution behind pressure_at.
+        return (Contact, (dict(self),))
+
+    def __copy__(self):
+        return self._copy(dict(self))
+
+    def __deepcopy__(self, memo):
+        import copy
+        return self._copy(copy.deepcopy(dict(self), memo))
+
+    def _copy(self, data):
+        out = Contact(data)
+        field = getattr(self, "_pressure", None)
+        if field is not None:
+            out._pressure = field  # immutable: copies share it
+        return out
 
 
 class Result(Record):

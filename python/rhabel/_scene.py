@@ -92,12 +92,40 @@ def _plain(value, path):
     _fail(f"{path or 'the value'} = {_show(value)} is not a JSON value (type {kind.__name__})")
 
 
+def _plain_json(value):
+    """json.dumps' default: NumPy arrays and scalars (np.float64 is a float already) as Python data."""
+    if isinstance(value, (np.ndarray, np.generic)):
+        return value.tolist()
+    raise TypeError
+
+
+def _string_keys(value, depth=0):
+    """Whether json.dumps may take value as it is: every key of every Mapping a string (json.dumps
+    would turn 1 into "1") and every int within the double range (the walk names the others)."""
+    if depth > 64:
+        return False  # deep: the walk of _plain decides (and names the limit)
+    if isinstance(value, Mapping):
+        return all(type(k) is str and _string_keys(v, depth + 1) for k, v in value.items())
+    if type(value) in (list, tuple):
+        return all(type(v) in (float, str) or _string_keys(v, depth + 1) for v in value)
+    if type(value) is int:
+        return -_LARGEST <= value <= _LARGEST
+    return True
+
+
 def json_text(value, what):
     """A scene or a sweep (what: "scene" or "sweep") as the JSON text of the scene layer; a value
     JSON has not is a ValueError naming its path (in a sweep, after "sweep: ")."""
     if not isinstance(value, Mapping):
         kind = "an array" if isinstance(value, (list, tuple)) else f"a {type(value).__name__}"
         _fail(f"{what}: the top level must be a JSON object {{...}} (a dict), got {kind}")
+    if type(value) is dict and _string_keys(value):
+        # The common case at json.dumps' speed; NaN, an infinity or a value JSON has not goes to
+        # the walk below, which names its path.
+        try:
+            return json.dumps(value, allow_nan=False, default=_plain_json)
+        except (ValueError, TypeError, OverflowError):
+            pass
     try:
         return json.dumps(_plain(value, ""), allow_nan=False)
     except ValueError as e:

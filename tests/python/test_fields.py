@@ -79,3 +79,17 @@ def test_surface_joins_the_contacts_and_equals_the_command_line(cli, tmp_path):
     assert (tmp_path / "two_surface.csv").read_text().startswith("x,displacement\n")
     single = rhabel.solve({**TWO, "indentors": TWO["indentors"][:1]}, grid=50)
     assert "surface" not in single
+
+
+def test_a_result_pickles_and_copies():
+    import copy
+    import pickle
+    r = rhabel.solve(TWO, grid=5)
+    x = np.mean(r.indentors[0].contact)
+    deep = copy.deepcopy(r)
+    assert deep.indentors[0].pressure_at(x) == r.indentors[0].pressure_at(x)
+    assert copy.copy(r.indentors[1]).pressure_at(x) == r.indentors[1].pressure_at(x)
+    back = pickle.loads(pickle.dumps(r))
+    assert back.to_plain() == r.to_plain() and isinstance(back.indentors[0], rhabel.Contact)
+    with pytest.raises(RuntimeError, match="unpickled"):
+        back.indentors[0].pressure_at(x)
