@@ -328,11 +328,7 @@ void report_surface(const std::vector<indentor_state>& st, const surface& height
     longest = std::max(longest, state.g.length());
   }
   if (!(longest > 0)) longest = hi - lo > 0 ? hi - lo : 1.0;
-  lo -= longest;
-  hi += longest;
-  const std::size_t n = cx.options.grid_points * st.size();
-  std::vector<double> xs(n);
-  for (std::size_t k = 0; k < n; ++k) xs[k] = lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(n - 1);
+  std::vector<double> xs = even_grid(lo - longest, hi + longest, cx.options.grid_points * st.size());
   out.surface = heights.absolute(xs);
   for (double& x : xs) x += origin;
   out.surface_x = std::move(xs);

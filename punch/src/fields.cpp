@@ -180,6 +180,13 @@ std::vector<double> pressure_grid(double a, double b, std::size_t n, sample_spac
   return t;
 }
 
+std::vector<double> even_grid(double lo, double hi, std::size_t n) {
+  std::vector<double> x(n);
+  for (std::size_t k = 0; k < n; ++k)
+    x[k] = n == 1 ? (lo + hi) / 2 : lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(n - 1);
+  return x;
+}
+
 // g.value(t) at every sample through one abel::enriched_evaluator, in one values() call (the
 // series' recurrence coefficients once, the series of four samples summed together, the weight
 // w = (1-x)^del (1+x)^gam once per sample): without a map the density whose series is g.jacobi

@@ -234,6 +234,9 @@ double edge_intensity(const contact_density& g, bool trailing);
 std::pair<double, double> peak_of(const contact_density& g);
 /// n pressure abscissae strictly inside (a, b), increasing (sample_spacing).
 std::vector<double> pressure_grid(double a, double b, std::size_t n, sample_spacing spacing);
+/// n equally spaced abscissae from lo to hi, both included (n = 1: the midpoint); the
+/// displacement grids.
+std::vector<double> even_grid(double lo, double hi, std::size_t n);
 /// p at the abscissae t (the solve's coordinates) into p: the density times its scale, 0 outside
 /// (a, b). Returns the error estimate of the Riemann-Hilbert values relative to the peak (0 when
 /// the density is a series).

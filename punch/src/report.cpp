@@ -340,13 +340,8 @@ void report_fields(const std::vector<indentor_state>& st, std::size_t i, const c
   }
   r.pressure_at = pressure_field(std::move(field), origin);
   if (options.grid_points > 0 && options.displacement) {
-    const std::size_t n = options.grid_points;
     const double L = g.length() > 0 ? g.length() : 1.0;
-    r.displacement_x.resize(n);
-    r.displacement.resize(n);
-    const double lo = g.jacobi.lo - L, hi = g.jacobi.hi + L;
-    for (std::size_t k = 0; k < n; ++k)
-      r.displacement_x[k] = n == 1 ? (lo + hi) / 2 : lo + (hi - lo) * static_cast<double>(k) / static_cast<double>(n - 1);
+    r.displacement_x = even_grid(g.jacobi.lo - L, g.jacobi.hi + L, options.grid_points);
     r.displacement = heights.heights(i, r.displacement_x);
   }
 }

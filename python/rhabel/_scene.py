@@ -51,9 +51,9 @@ def _number(value, path):
 
 def _array(value, path):
     """A NumPy array as a list (its numbers checked finite)."""
-    if value.dtype.kind in "fc" and not np.all(np.isfinite(value)):
+    if value.dtype.kind == "f" and not np.all(np.isfinite(value)):
         bad = int(np.flatnonzero(~np.isfinite(value.ravel()))[0])
-        return [_plain(v, f"{path}[{i}]") for i, v in enumerate(value.ravel().tolist()[:bad + 1])]
+        _number(float(value.ravel()[bad]), f"{path}[{bad}]")  # raises, naming the first
     if value.dtype.kind in "biuf":
         return value.tolist()
     return [_plain(v, f"{path}[{i}]") for i, v in enumerate(value.tolist())]

@@ -31,26 +31,6 @@
 namespace rhabel::python {
 namespace {
 
-/// A JSON value of the scene layer's document as Python objects (objects as dicts, arrays as lists).
-py::object to_python(const nlohmann::ordered_json& value) {
-  if (value.is_object()) {
-    py::dict out;
-    for (const auto& [key, item] : value.items()) out[py::str(key)] = to_python(item);
-    return out;
-  }
-  if (value.is_array()) {
-    py::list out;
-    for (const auto& item : value) out.append(to_python(item));
-    return out;
-  }
-  if (value.is_string()) return py::str(value.get<std::string>());
-  if (value.is_boolean()) return py::bool_(value.get<bool>());
-  if (value.is_number_unsigned()) return py::int_(value.get<std::size_t>());
-  if (value.is_number_integer()) return py::int_(value.get<long long>());
-  if (value.is_number()) return py::float_(value.get<double>());
-  return py::none();
-}
-
 /// The message of the scene layer's input_error without the command's "solve: " prefix (the
 /// command line prints "rhabel: solve: " before it; Python raises it as it is).
 std::string without_command(const char* what) {
@@ -68,22 +48,36 @@ scene::scene_spec parse(const std::string& text, const std::string& directory) {
   }
 }
 
-/// rhabel._record.Record, the result's dict type with attribute access.
-py::object record_type() {
-  static const py::object* type = nullptr;  // the GIL serialises the first call
-  if (type == nullptr) type = new py::object(py::module_::import("rhabel._record").attr("Record"));
-  return *type;
+/// The classes of rhabel._record: Record (a dict with attribute access) and Contact (a contact's
+/// Record, with pressure_at).
+struct record_classes {
+  py::object record, contact;
+};
+const record_classes& records() {
+  static const record_classes* classes = nullptr;  // the GIL serialises the first call
+  if (classes == nullptr) {
+    const py::module_ module = py::module_::import("rhabel._record");
+    classes = new record_classes{module.attr("Record"), module.attr("Contact")};
+  }
+  return *classes;
 }
 
-/// The result document as Python objects: objects as Records, arrays as lists, a contact's
-/// interval (a, b) as a tuple, and the placeholders of sampled fields as the NumPy arrays
-/// themselves (moved out of `outcome`).
-py::object to_records(const nlohmann::ordered_json& value, scene::run_outcome& outcome) {
+/// A JSON value of the scene layer (a result document, a fit, a validated scene) as Python
+/// objects: objects as Records, those of the result's "indentors" and "contacts" as Contacts
+/// (`top`: value is the document itself), arrays as lists, a contact's interval (a, b) as a
+/// tuple, and the placeholders of sampled fields as the NumPy arrays themselves (moved out of
+/// `outcome`, when given). An object is made as `type` (default: Record).
+py::object to_records(const nlohmann::ordered_json& value, scene::run_outcome* outcome, bool top = false,
+                      const py::object* type = nullptr) {
   if (value.is_object()) {
-    py::object out = record_type()();
+    py::object out = type ? (*type)() : records().record();
     for (const auto& [key, item] : value.items()) {
       if (key == "contact" && item.is_array() && item.size() == 2) {
         out[py::str(key)] = py::make_tuple(item[0].get<double>(), item[1].get<double>());
+      } else if (top && item.is_array() && (key == "indentors" || key == "contacts")) {
+        py::list contacts;
+        for (const auto& c : item) contacts.append(to_records(c, outcome, false, &records().contact));
+        out[py::str(key)] = std::move(contacts);
       } else {
         out[py::str(key)] = to_records(item, outcome);
       }
@@ -97,29 +91,22 @@ py::object to_records(const nlohmann::ordered_json& value, scene::run_outcome& o
   }
   if (value.is_string()) {
     const auto& text = value.get_ref<const std::string&>();
-    if (std::vector<double>* array = outcome.array(text)) return to_numpy(std::move(*array));
+    if (std::vector<double>* array = outcome ? outcome->array(text) : nullptr) return to_numpy(std::move(*array));
     return py::str(text);
   }
-  return to_python(value);
+  if (value.is_boolean()) return py::bool_(value.get<bool>());
+  if (value.is_number_unsigned()) return py::int_(value.get<std::size_t>());
+  if (value.is_number_integer()) return py::int_(value.get<long long>());
+  if (value.is_number()) return py::float_(value.get<double>());
+  return py::none();
 }
 
-/// rhabel._record.Contact: the Record of a contact, with pressure_at.
-py::object contact_type() {
-  static const py::object* type = nullptr;  // the GIL serialises the first call
-  if (type == nullptr) type = new py::object(py::module_::import("rhabel._record").attr("Contact"));
-  return *type;
-}
-
-/// The contacts of the document (`key`: "indentors" or "contacts") as Contact records holding
-/// their solved pressure (pressure_at).
+/// The solved pressure of each contact (`key`: "indentors" or "contacts") on its Contact.
 void attach_pressure(py::object& result, const char* key, const std::vector<punch::indentor_result>& solved) {
   if (!result.contains(key)) return;
-  py::list items = result[key];
-  for (std::size_t i = 0; i < solved.size() && i < items.size(); ++i) {
-    py::object contact = contact_type()(items[i]);
-    contact.attr("_pressure") = py::cast(solved[i].pressure_at);
-    items[i] = contact;
-  }
+  const py::list items = result[key];
+  for (std::size_t i = 0; i < solved.size() && i < items.size(); ++i)
+    items[i].attr("_pressure") = py::cast(solved[i].pressure_at);
 }
 
 py::object solve_scene(const std::string& text, const std::string& directory, std::size_t grid, bool displacement,
@@ -142,7 +129,7 @@ py::object solve_scene(const std::string& text, const std::string& directory, st
   } catch (const scene::input_error& e) {
     throw py::value_error(without_command(e.what()));
   }
-  py::object result = to_records(outcome.result, outcome);
+  py::object result = to_records(outcome.result, &outcome, true);
   if (const auto* r = std::get_if<punch::scene_result>(&outcome.solved)) attach_pressure(result, "indentors", r->indentors);
   if (const auto* r = std::get_if<punch::profile_result>(&outcome.solved)) attach_pressure(result, "contacts", r->contacts);
   return result;
@@ -159,7 +146,7 @@ py::object trial_interval(const std::string& text, const std::string& directory,
     py::gil_scoped_release nogil;
     result = punch::trial_interval(s.material, s.speed, s.indentors.front(), a, b, options);
   }
-  py::object out = record_type()();
+  py::object out = records().record();
   out["load"] = result.load;
   out["hysteretic_friction"] = result.hysteretic_friction;
   out["error_estimate"] = result.error_estimate;
@@ -167,8 +154,7 @@ py::object trial_interval(const std::string& text, const std::string& directory,
 }
 
 py::object validate_scene(const std::string& text, const std::string& directory) {
-  scene::run_outcome none;  // no sampled fields
-  return to_records(scene::scene_json(parse(text, directory), true), none);
+  return to_records(scene::scene_json(parse(text, directory), true), nullptr);
 }
 
 /// `rhabel fit-material --json` (the scene layer's fit_material); arguments checked by the caller.
@@ -185,7 +171,7 @@ py::object fit_material(const std::string& curve, double speed, double length, s
   request.window_decades = window_decades;
   request.threshold = threshold;
   try {
-    return to_python(scene::fitted_material_json(request, scene::fit_material(request)));
+    return to_records(scene::fitted_material_json(request, scene::fit_material(request)), nullptr);
   } catch (const scene::input_error& e) {
     throw py::value_error(e.what());
   }

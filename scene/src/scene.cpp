@@ -409,38 +409,8 @@ profile_spec parse_profile(const json& value, const std::string& base_dir) {
   return p;
 }
 
-}  // namespace
-
-scene_spec parse_scene(std::string_view text, const std::string& source, const std::string& base_dir) {
-  check_bytes(text, source);
-  json root;
-  duplicate_key_guard guard;
-  try {
-    root = json::parse(text.begin(), text.end(),
-                       [&guard](int depth, json::parse_event_t event, json& parsed) {
-                         return guard(depth, event, parsed);
-                       });
-  } catch (const json::parse_error& e) {
-    // nlohmann's message: "[json.exception.parse_error.101] parse error at line 1, column 3: ..."
-    std::string what = e.what();
-    if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
-    // e.byte counts the bytes read, the offending one included: its offset is e.byte - 1.
-    const std::size_t offset = e.byte > 0 ? e.byte - 1 : 0;
-    fail_scene("scene " + source + " is not valid JSON: " + what + " (byte offset " + std::to_string(offset) + ")");
-  } catch (const json::out_of_range& e) {
-    // nlohmann-json 3.11 refuses a number beyond the double range ("number overflow parsing
-    // '1e400'"); the guard still knows which value was being read.
-    std::string what = e.what();
-    if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
-    fail_scene(guard.path() + " is out of range: " + what + " (numbers must be finite doubles)");
-  }
-  return parse_scene_value(root, source, base_dir);
-}
-
-scene_spec parse_scene_value(const nlohmann::json& root, const std::string& source, const std::string& base_dir) {
-  if (nested_deeper(root, 1))
-    fail_scene("scene " + source + " nests arrays and objects deeper than the limit of " + std::to_string(max_scene_depth) +
-               " levels");
+// The scene of a parsed value whose nesting is bounded: its fields validated.
+scene_spec scene_of(const json& root, const std::string& source, const std::string& base_dir) {
   if (!root.is_object()) fail_scene("scene " + source + ": the top level must be a JSON object {...}, got " + type_of(root));
   only_keys(root, "", {"description", "material", "speed", "body", "indentors", "profile"});
 
@@ -466,6 +436,41 @@ scene_spec parse_scene_value(const nlohmann::json& root, const std::string& sour
     scene.indentors.push_back(parse_indentor(list[i], "indentors[" + std::to_string(i) + "]", scene.body_load.has_value()));
   }
   return scene;
+}
+
+}  // namespace
+
+scene_spec parse_scene(std::string_view text, const std::string& source, const std::string& base_dir) {
+  check_bytes(text, source);
+  json root;
+  duplicate_key_guard guard;
+  try {
+    root = json::parse(text.begin(), text.end(),
+                       [&guard](int depth, json::parse_event_t event, json& parsed) {
+                         return guard(depth, event, parsed);
+                       });
+  } catch (const json::parse_error& e) {
+    // nlohmann's message: "[json.exception.parse_error.101] parse error at line 1, column 3: ..."
+    std::string what = e.what();
+    if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
+    // e.byte counts the bytes read, the offending one included: its offset is e.byte - 1.
+    const std::size_t offset = e.byte > 0 ? e.byte - 1 : 0;
+    fail_scene("scene " + source + " is not valid JSON: " + what + " (byte offset " + std::to_string(offset) + ")");
+  } catch (const json::out_of_range& e) {
+    // nlohmann-json 3.11 refuses a number beyond the double range ("number overflow parsing
+    // '1e400'"); the guard still knows which value was being read.
+    std::string what = e.what();
+    if (const auto at = what.find("] "); at != std::string::npos) what = what.substr(at + 2);
+    fail_scene(guard.path() + " is out of range: " + what + " (numbers must be finite doubles)");
+  }
+  return scene_of(root, source, base_dir);  // check_bytes has bounded the nesting
+}
+
+scene_spec parse_scene_value(const nlohmann::json& root, const std::string& source, const std::string& base_dir) {
+  if (nested_deeper(root, 1))
+    fail_scene("scene " + source + " nests arrays and objects deeper than the limit of " + std::to_string(max_scene_depth) +
+               " levels");
+  return scene_of(root, source, base_dir);
 }
 
 }  // namespace rhabel::scene

@@ -39,60 +39,6 @@ punch::material to_punch(const material_spec& m) {
   return out;
 }
 
-ordered_json echo_scene(const scene_spec& spec, bool samples) {
-  ordered_json material = {{"alpha", spec.material.alpha},
-                           {"E1", spec.material.E1},
-                           {"nu", spec.material.nu},
-                           {"coulomb", spec.material.coulomb}};
-  if (!spec.material.name.empty()) material["name"] = spec.material.name;
-  ordered_json indentors = ordered_json::array();
-  for (const auto& d : spec.indentors) {
-    ordered_json item = {{"shape", shape_name(d.shape)}};
-    if (!d.name.empty()) item["name"] = d.name;
-    switch (d.shape) {
-      case shape_kind::parabolic: item["radius"] = d.radius; break;
-      case shape_kind::wedge:
-        item["slope_leading"] = d.slope_leading;
-        item["slope_trailing"] = d.slope_trailing;
-        break;
-      case shape_kind::flat: item["width"] = d.width; break;
-    }
-    if (spec.body_load) {
-      item["height"] = d.height;
-    } else {
-      item["load"] = d.load;
-    }
-    item["apex"] = d.apex;
-    indentors.push_back(std::move(item));
-  }
-  ordered_json out;
-  if (!spec.description.empty()) out["description"] = spec.description;
-  out["material"] = std::move(material);
-  out["speed"] = spec.speed;
-  if (spec.body_load) out["body"] = {{"load", *spec.body_load}};
-  if (spec.profile) {
-    // The samples themselves are the input's (a measured profile has thousands): their count,
-    // range and file stand for them.
-    ordered_json profile;
-    if (!spec.profile->file.empty()) profile["file"] = spec.profile->file;
-    if (samples) {
-      profile["x"] = spec.profile->x;
-      profile["z"] = spec.profile->z;
-    } else {
-      profile["samples"] = spec.profile->x.size();
-      if (!spec.profile->x.empty()) profile["x_range"] = {spec.profile->x.front(), spec.profile->x.back()};
-    }
-    profile["corners"] = spec.profile->corners;
-    if (spec.profile->period > 0) profile["period"] = spec.profile->period;
-    profile["solver"] = spec.profile->boundary_element ? "boundary_element" : "spectral";
-    if (spec.profile->max_panels > 0) profile["max_panels"] = spec.profile->max_panels;
-    out["profile"] = std::move(profile);
-  } else {
-    out["indentors"] = std::move(indentors);
-  }
-  return out;
-}
-
 // Every number of the document must be finite: nlohmann-json would print NaN and Inf as null,
 // silently. The path of the first offender goes into the message.
 void require_finite(const ordered_json& value, const std::string& path) {
@@ -167,7 +113,7 @@ void begin_document(run_outcome& out, const run_request& request, const Result& 
 // scene; every number checked finite.
 void finish_document(run_outcome& out, const scene_spec& spec, punch::status_code code) {
   out.ok = code == punch::status_code::ok;
-  out.result["scene"] = echo_scene(spec, false);
+  out.result["scene"] = scene_json(spec);
   require_finite(out.result, "result");
 }
 
@@ -339,7 +285,59 @@ punch::scene punch_scene(const scene_spec& spec) {
   return s;
 }
 
-ordered_json scene_json(const scene_spec& scene, bool samples) { return echo_scene(scene, samples); }
+ordered_json scene_json(const scene_spec& spec, bool samples) {
+  ordered_json material = {{"alpha", spec.material.alpha},
+                           {"E1", spec.material.E1},
+                           {"nu", spec.material.nu},
+                           {"coulomb", spec.material.coulomb}};
+  if (!spec.material.name.empty()) material["name"] = spec.material.name;
+  ordered_json indentors = ordered_json::array();
+  for (const auto& d : spec.indentors) {
+    ordered_json item = {{"shape", shape_name(d.shape)}};
+    if (!d.name.empty()) item["name"] = d.name;
+    switch (d.shape) {
+      case shape_kind::parabolic: item["radius"] = d.radius; break;
+      case shape_kind::wedge:
+        item["slope_leading"] = d.slope_leading;
+        item["slope_trailing"] = d.slope_trailing;
+        break;
+      case shape_kind::flat: item["width"] = d.width; break;
+    }
+    if (spec.body_load) {
+      item["height"] = d.height;
+    } else {
+      item["load"] = d.load;
+    }
+    item["apex"] = d.apex;
+    indentors.push_back(std::move(item));
+  }
+  ordered_json out;
+  if (!spec.description.empty()) out["description"] = spec.description;
+  out["material"] = std::move(material);
+  out["speed"] = spec.speed;
+  if (spec.body_load) out["body"] = {{"load", *spec.body_load}};
+  if (spec.profile) {
+    // The samples themselves are the input's (a measured profile has thousands): their count,
+    // range and file stand for them.
+    ordered_json profile;
+    if (!spec.profile->file.empty()) profile["file"] = spec.profile->file;
+    if (samples) {
+      profile["x"] = spec.profile->x;
+      profile["z"] = spec.profile->z;
+    } else {
+      profile["samples"] = spec.profile->x.size();
+      if (!spec.profile->x.empty()) profile["x_range"] = {spec.profile->x.front(), spec.profile->x.back()};
+    }
+    profile["corners"] = spec.profile->corners;
+    if (spec.profile->period > 0) profile["period"] = spec.profile->period;
+    profile["solver"] = spec.profile->boundary_element ? "boundary_element" : "spectral";
+    if (spec.profile->max_panels > 0) profile["max_panels"] = spec.profile->max_panels;
+    out["profile"] = std::move(profile);
+  } else {
+    out["indentors"] = std::move(indentors);
+  }
+  return out;
+}
 
 const std::vector<double>* run_outcome::array(std::string_view text) const {
   if (grid_token.empty() || text.size() < grid_token.size() + 3 || text.substr(0, grid_token.size()) != grid_token)
