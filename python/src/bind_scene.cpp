@@ -115,6 +115,7 @@ py::object solve_scene(const std::string& text, const std::string& directory, st
   const scene::scene_spec spec = parse(text, directory);
   scene::run_request request;
   request.grid = grid;
+  request.grid_option = "grid";
   request.displacement = displacement;
   request.tolerance = tolerance;
   request.residual = residual;

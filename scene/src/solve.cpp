@@ -197,8 +197,8 @@ ordered_json estimate_json(const punch::bem_estimate& e) { return {{"value", e.v
 // fields (punch::solve_profile_bem has none; --grid is refused for it by the command).
 run_outcome run_profile_bem(const scene_spec& spec, const run_request& request, const punch::solve_options& options) {
   if (request.grid > 0)
-    throw input_error("solve: --grid and --csv sample the fields of profile.solver \"spectral\"; the boundary-element "
-                      "solver reports its patches only");
+    throw input_error("solve: " + request.grid_option + ": sampled fields come from profile.solver \"spectral\"; the "
+                      "boundary-element solver reports its patches only");
   const punch::profile_scene ps = profile_scene_of(spec);
   punch::bem_options bem;
   if (spec.profile->max_panels > 0) bem.max_panels = spec.profile->max_panels;

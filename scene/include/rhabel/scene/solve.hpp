@@ -26,6 +26,9 @@ namespace rhabel::scene {
 /// What `rhabel solve` was asked to add to the summary.
 struct run_request {
   std::size_t grid = 0;  ///< 0: no sampled fields; otherwise points per field (>= 2)
+  /// How the front end spells the option behind `grid`, for its refusal (a boundary-element
+  /// profile has no fields): the command line's "--grid and --csv", Python's "grid".
+  std::string grid_option = "--grid and --csv";
   /// punch::solve_options::acceptance, the bar of status "ok"; 0: the solver's default,
   /// default_acceptance (1e-9; 1e-4 for a profile by the boundary-element method).
   double acceptance = 0;
