@@ -72,6 +72,12 @@ constexpr std::size_t max_drops = 2;
 // into not_converged). Smaller coarse contacts there are left to the search and its clearance
 // check.
 constexpr double end_share = 1e-3;
+// Panels a sample of the coarse solve that seeds the search (coarse_contact.hpp clamps them to
+// 2^17): its edges start the first round's coupled solve.
+constexpr std::size_t seed_panels = 8;
+// The degree to which a search whose contacts missed the acceptance at solve_options::max_degree
+// is solved again (needs_degree).
+constexpr std::size_t profile_degree = 512;
 
 [[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(std::string(who) + ": " + what); }
 
@@ -344,11 +350,14 @@ std::vector<run> first_runs(const profile_model& m) {
 struct search_start {
   std::vector<run> runs;
   std::map<std::size_t, double> shares;
+  /// Per run: the edges (absolute) its contact's first coupled solve starts from and its load
+  /// there (a seed: coarse_patch); empty: every run starts from its isolated contact.
+  std::vector<coarse_patch> seeds;
   double t = start_fraction;
 };
 
 /// The continuation's start: the highest tip alone at start_fraction of the load.
-search_start continuation_start(const profile_model& m) { return {first_runs(m), {}, start_fraction}; }
+search_start continuation_start(const profile_model& m) { return {first_runs(m), {}, {}, start_fraction}; }
 
 /// std::domain_error naming body.load when a coarse contact at an end of the samples carries
 /// end_share of the load (in units of int g) or more: the contacts would leave the data.
@@ -365,14 +374,15 @@ void refuse_end_contacts(const profile_model& m, const std::vector<coarse_patch>
   }
 }
 
-/// The coarse solve's contacts (coarse_contact.hpp) at the full load as runs of bumps (runs that
-/// would share a bump become one), each with the coarse loads of its contacts; empty when the
-/// coarse solve did not settle. Refuses a scene whose contacts reach an end of the samples.
+/// The coarse solve's contacts (coarse_contact.hpp) at the full load, each the run of bumps whose
+/// tips it covers (two may share a bump: a bump's flank can carry a contact of its own), with its
+/// coarse edges and load as the seed of the first round; empty when the coarse solve did not
+/// settle. Refuses a scene whose contacts reach an end of the samples.
 std::optional<search_start> predicted_start(const profile_model& m, const context& cx) {
   const double load = m.source->load / cx.pressure_scale;
   std::vector<coarse_patch> patches;
   try {
-    patches = coarse_contacts(m.curve, load, cx, m.curve.x().size());
+    patches = coarse_contacts(m.curve, load, cx, seed_panels * m.curve.x().size());
   } catch (const time_limit_reached&) {
     return std::nullopt;  // the search's first round runs anyway: it has a result to report
   }
@@ -381,7 +391,6 @@ std::optional<search_start> predicted_start(const profile_model& m, const contex
   const auto& x = m.curve.x();
   search_start out;
   out.t = 1;
-  std::vector<double> loads;
   for (const coarse_patch& p : patches) {
     // The bumps whose tips it covers; none (a contact off its tip, as above alpha = 1/2): the bump
     // whose basin holds its middle. WHY not every basin it meets: a coarse edge is known to a
@@ -395,16 +404,11 @@ std::optional<search_start> predicted_start(const profile_model& m, const contex
       while (r.first + 1 < m.bumps.size() && x[m.bumps[r.first].last] < middle) ++r.first;
       r.last = r.first;
     }
-    if (!out.runs.empty() && out.runs.back().last >= r.first) {
-      out.runs.back().last = std::max(out.runs.back().last, r.last);
-      loads.back() += p.load;
-    } else {
-      out.runs.push_back(r);
-      loads.push_back(p.load);
-    }
+    out.runs.push_back(r);
+    out.seeds.push_back(p);
+    out.shares[m.tip(r)] += p.load;
   }
   if (out.runs.empty()) return std::nullopt;
-  for (std::size_t k = 0; k < out.runs.size(); ++k) out.shares[m.tip(out.runs[k])] = loads[k];
   return out;
 }
 
@@ -438,6 +442,12 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
     next.sc = make_scene(m, runs, t * load);
     next.states = prepare_states(next.sc, cx);
     start_split(m, runs, shares, next.states);
+    if (out.rounds == 1 && !start.seeds.empty())
+      for (auto& state : next.states.st) {  // each run its own load (runs may share a tip)
+        const coarse_patch& p = start.seeds[state.scene_index];
+        state.seed = std::pair{p.a - next.states.origin, p.b - next.states.origin};
+        state.target_load = p.load * t;
+      }
     try {
       next.outcome = solve_states(next.sc, next.states, cx);
     } catch (const std::domain_error& e) {
@@ -618,6 +628,38 @@ profile_result report_profile(const profile_model& m, const context& cx, const s
   return out;
 }
 
+/// The search from the seeded start (predicted_start); when that does not end in a verified set,
+/// by the continuation from the highest tip (their rounds and iterations add up). Reported.
+profile_result search_and_report(const profile_model& m, const context& cx) {
+  search_result sr;
+  const auto predicted = predicted_start(m, cx);
+  if (predicted) sr = search_contact_set(m, cx, *predicted);
+  if (!predicted || (!verified(sr, cx.options.acceptance) && !(sr.last && cx.out_of_time()))) {
+    search_result again = search_contact_set(m, cx, continuation_start(m));
+    again.rounds += sr.rounds;
+    again.iterations += sr.iterations;
+    sr = std::move(again);
+  }
+  cx.throw_if_interrupted(who);
+  // Not even the highest tip alone at 16^-12 of the load: no contact interval (as solve for one
+  // indentor without one).
+  if (!sr.last) throw std::domain_error(std::string(who) + ": no contact found: " + sr.failure);
+  return report_profile(m, cx, sr);
+}
+
+/// Whether a result missed the acceptance only because a contact's series stopped at
+/// solve_options::max_degree (below profile_degree), with time left to solve again. WHY: a contact
+/// spanning several samples carries the spline's C2 joints, so its series converges algebraically
+/// (a self-affine profile's contact over ~10 samples: residual of (8) 5e-6 at degree 127, 2e-8 at
+/// 511), while the contacts of smooth bumps need no more than the default (50 cosine bumps: 0.55 s
+/// at 128, 11 s when every contact may go to 512 chasing the tolerance).
+bool needs_degree(const profile_result& r, const context& cx) {
+  if (r.diagnostics.code == status_code::ok || cx.options.max_degree >= profile_degree || cx.out_of_time()) return false;
+  return std::any_of(r.contacts.begin(), r.contacts.end(), [&](const indentor_result& c) {
+    return c.degree + 1 >= cx.options.max_degree && c.residual > cx.options.acceptance;
+  });
+}
+
 }  // namespace
 }  // namespace detail
 
@@ -638,22 +680,16 @@ profile_result solve_profile(const profile_scene& s, const solve_options& option
         num(s.profile.z.front() == m.top ? s.profile.x.front() : s.profile.x.back()) +
         "): the first contact would leave the samples; extend them");
   const context cx = make_context(s.material, s.speed, options);
-  // From the coarse solve's contacts at the full load; when that does not end in a verified set,
-  // by the continuation from the highest tip (its rounds and iterations add up).
-  search_result sr;
-  const auto predicted = predicted_start(m, cx);
-  if (predicted) sr = search_contact_set(m, cx, *predicted);
-  if (!predicted || (!verified(sr, cx.options.acceptance) && !(sr.last && cx.out_of_time()))) {
-    search_result again = search_contact_set(m, cx, continuation_start(m));
-    again.rounds += sr.rounds;
-    again.iterations += sr.iterations;
-    sr = std::move(again);
+  profile_result out = search_and_report(m, cx);
+  if (needs_degree(out, cx)) {
+    // Again with the series to profile_degree (the clock and the interrupt shared).
+    context wide = cx;
+    wide.options.max_degree = profile_degree;
+    profile_result again = search_and_report(m, wide);
+    again.diagnostics.rounds += out.diagnostics.rounds;
+    again.diagnostics.iterations += out.diagnostics.iterations;
+    out = std::move(again);
   }
-  cx.throw_if_interrupted(who);
-  // Not even the highest tip alone at 16^-12 of the load: no contact interval (as solve for one
-  // indentor without one).
-  if (!sr.last) throw std::domain_error(std::string(who) + ": no contact found: " + sr.failure);
-  profile_result out = report_profile(m, cx, sr);
   out.diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

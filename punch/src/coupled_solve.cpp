@@ -389,9 +389,16 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   for (auto& s : st) {
     s.solved.reset();  // set below for a result in the boundary-layer basis
     pb.roles.push_back(role_of(s, cx));
-    solve_isolated(s, cx);  // the isolated contact: the start (its closed-form paths)
-    isolated.a.push_back(s.g.a());
-    isolated.b.push_back(pb.roles.back() == role::line_load ? s.g.a() : s.g.b());
+    if (s.seed && s.k == kind::general) {
+      // A seeded start (contact_set.cpp): its edges instead of the isolated contact's.
+      isolated.a.push_back(s.seed->first);
+      isolated.b.push_back(s.seed->second);
+      s.g.set_interval(s.seed->first, s.seed->second);
+    } else {
+      solve_isolated(s, cx);  // the isolated contact: the start (its closed-form paths)
+      isolated.a.push_back(s.g.a());
+      isolated.b.push_back(pb.roles.back() == role::line_load ? s.g.a() : s.g.b());
+    }
     int split = 0;
     if (s.k == kind::wedge && pb.roles.back() == role::smooth_both && s.epsilon) {
       const double e = *s.epsilon, one_minus_e = (s.g.b() - s.apex) / s.g.length();

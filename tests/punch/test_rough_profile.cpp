@@ -92,8 +92,9 @@ TEST_CASE("self-affine profiles: ok agrees with the boundary-element oracle, any
       if (bp::sanitizer_build && !(seed == 3 && load == 3e-4)) continue;  // the oracle: minutes under ASan
       ok += check_scene(1000, seed, load).ok ? 1 : 0;
     }
-  // Measured: seed 3 at 3e-4 is ok (3 patches, C_f within 6e-7 of the oracle's, bar 3.2e-6); the
-  // others end not_converged (residual of (8) 1e-6 .. 6e-5 against the spline, a valley in tension,
-  // or a partial load) or refused (contacts at x = 0).
-  CHECK(ok >= 1);
+  // Measured: all three seeds at 3e-4 and seed 3 at 1e-3 are ok (3 to 5 patches, C_f within
+  // twice the oracle's bar); seed 1 at 1e-3 ends not ok (10 contacts, three of which say the
+  // surface penetrates the profile next to them: the seeded set is not the physical one); seed 2
+  // at 1e-3 is refused (contacts at x = 0).
+  CHECK(ok >= (bp::sanitizer_build ? 1u : 4u));
 }

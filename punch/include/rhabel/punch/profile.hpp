@@ -38,10 +38,13 @@
 //   samples towards its neighbours. A contact covers one basin, or a run of adjacent basins when
 //   contacts merged.
 //   The first set comes from a coarse boundary-element solve of the whole profile at the full
-//   load (punch/src/coarse_contact.hpp: piecewise-constant pressure on one panel per sample,
-//   non-negative, one rigid body, an active set on panels refined from 256 panels up; a few ms
-//   for 4000 samples): each coarse contact becomes the run of basins it meets, with its coarse
-//   load as the start of the coupled solve's split. From there, rounds at the full load P:
+//   load (punch/src/coarse_contact.hpp: piecewise-constant pressure on 8 panels per sample, at
+//   most 2^17, non-negative, one rigid body, an active set on panels refined from 256 panels up;
+//   tens of ms for 4000 samples): each coarse contact becomes a contact of its own (the run of
+//   basins whose tips it covers; two coarse contacts may share a basin), with its coarse load as
+//   the start of the coupled solve's split and its coarse edges as the start of the first
+//   round's Newton iteration (a seed: the isolated contacts of a rough profile's bumps are often
+//   not found inside their basins, or overlap). From there, rounds at the full load P:
 //     1. solve the current contacts on one rigid body (contact.hpp's coupled solve: every contact a
 //        general profile with smooth edges, loads unknown, total load P, equal rigid levels),
 //        started from the last round's loads;
@@ -72,6 +75,11 @@
 //   lists where the profile penetrates the surface outside the contacts found (the contacts the
 //   search is missing). solve_options::time_limit is checked at every evaluation of a round's
 //   coupled solve and every step of the coarse solve: the search then reports its last round.
+//   The contacts' series go to solve_options::max_degree (128 by default). When the result
+//   misses the acceptance only because a contact's series stopped there with its residual of
+//   (8) above the acceptance (a contact spanning several samples of a rough profile: the
+//   spline's C2 joints make its series converge algebraically, measured residual 5e-6 at degree
+//   127 and 2e-8 at 511), the search runs again with the series to degree 512, on the same clock.
 //   So `ok` means: every contact passes contact.hpp's checks (residual of (8) against the
 //   spline, non-negative pressure, loads adding up to P, equal levels), and the surface clears
 //   the profile at every checked sample to acceptance x (max z - min z).
@@ -89,15 +97,18 @@
 //     4e-9 .. 3.5e-8 (the residual of the contacts of examples/rough_profile.json: 8e-10 .. 5e-8).
 //   * Cost (`rhabel solve --acceptance 1e-6 --threads 1`, diagnostics.seconds, one quiet core):
 //       scene (samples, contacts)                                      rounds   time
-//       examples/rough_profile.json (2000, 6)                               1     0.06 s
-//       studies/scenes/cosine_profile.py 10 (800, 6)                        1     0.09 s
-//       cosine_profile.py 25 (2000, 14)                                     1     0.17 s
-//       cosine_profile.py 50 (4000, 29)                                     1     1.1-1.5 s (0.75 s, 2 threads)
-//       cosine_profile.py 100 20 0.25 (2000, 45)                            2     1.4-2.3 s
-//     The coarse solve takes 3-40 ms of that.
+//       examples/rough_profile.json (2000, 6)                               1     0.08 s
+//       studies/scenes/cosine_profile.py 10 (800, 6)                        1     0.05 s
+//       cosine_profile.py 25 (2000, 14)                                     1     0.18-0.19 s
+//       cosine_profile.py 50 (4000, 29)                                     1     0.38-0.39 s
+//       cosine_profile.py 100 20 0.25 (2000, 45)                            1     0.55 s
+//       self_affine_profile.py 1000 SEED 5e-4, seeds 1-3 (3-6)              1     0.06-0.58 s
+//       self_affine_profile.py 4000 SEED 5e-4, seeds 1-3 (6-11)             1     0.57-0.74 s
+//     The coarse solve takes 3-40 ms of that; the self-affine contacts spanning several samples
+//     are solved twice (degree 128, then 512: see above).
 //     Each round is one coupled solve of its contacts (contact.hpp, "Cost"); from six contacts on,
 //     a rigid body's Jacobian is coloured (10 evaluations) with its far entries from the loads'
-//     monopoles. The same 50 bumps at material.alpha = 0: 49 contacts, 2 rounds, 1.6-2.6 s (a
+//     monopoles. The same 50 bumps at material.alpha = 0: 49 contacts, 1 round, 0.58-0.60 s (a
 //     contact's own datum by closed-form moments of the logarithm; between alpha = 0 and 1e-2 it is
 //     tanh-sinh, several times slower).
 //
@@ -105,11 +116,13 @@
 //   Any alpha in [0, 1) and beta; contacts with smooth edges and no declared corner inside (see
 //   THE INTERPOLANT; either shows as tension or not_converged). The data must extend beyond
 //   the contacts. A contact that must cover many samples (a long contact on a rough profile)
-//   needs a degree beyond solve_options::max_degree: not_converged with its residual. Rough
-//   (self-affine) profiles with tens to hundreds of contacts mostly end not_converged here (a
-//   contact's residual, a negative pressure, or the load continuation stopping short); periodic
-//   profiles are not solved here at all. Both are what rhabel/punch/profile_bem.hpp's
-//   boundary-element solver is for (first order, with error estimates).
+//   needs a degree beyond max(512, max_degree): not_converged with its residual. Rough (self-affine) profiles:
+//   the few-contact scenes above are ok and agree with the boundary-element solvers (C_f within
+//   1.6e-7); at heavier loads (tens of contacts, contacts closer than a panel of the seeding
+//   solve) the search can still end not ok (a penetration next to a contact, or the load
+//   continuation stopping short), and says so. Periodic profiles are not solved here at all.
+//   Both are what rhabel/punch/profile_bem.hpp's boundary-element solver is for (first order,
+//   with error estimates).
 #pragma once
 
 #include "rhabel/punch/contact.hpp"
