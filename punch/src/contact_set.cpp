@@ -441,13 +441,15 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
     next.t = t;
     next.sc = make_scene(m, runs, t * load);
     next.states = prepare_states(next.sc, cx);
-    start_split(m, runs, shares, next.states);
-    if (out.rounds == 1 && !start.seeds.empty())
+    if (out.rounds == 1 && !start.seeds.empty()) {
       for (auto& state : next.states.st) {  // each run its own load (runs may share a tip)
         const coarse_patch& p = start.seeds[state.scene_index];
         state.seed = std::pair{p.a - next.states.origin, p.b - next.states.origin};
         state.target_load = p.load * t;
       }
+    } else {
+      start_split(m, runs, shares, next.states);
+    }
     try {
       next.outcome = solve_states(next.sc, next.states, cx);
     } catch (const std::domain_error& e) {
@@ -628,11 +630,11 @@ profile_result report_profile(const profile_model& m, const context& cx, const s
   return out;
 }
 
-/// The search from the seeded start (predicted_start); when that does not end in a verified set,
-/// by the continuation from the highest tip (their rounds and iterations add up). Reported.
-profile_result search_and_report(const profile_model& m, const context& cx) {
+/// The search from the seeded start (`predicted`: predicted_start's); when that does not end in a
+/// verified set, by the continuation from the highest tip (their rounds and iterations add up).
+/// Reported.
+profile_result search_and_report(const profile_model& m, const context& cx, const std::optional<search_start>& predicted) {
   search_result sr;
-  const auto predicted = predicted_start(m, cx);
   if (predicted) sr = search_contact_set(m, cx, *predicted);
   if (!predicted || (!verified(sr, cx.options.acceptance) && !(sr.last && cx.out_of_time()))) {
     search_result again = search_contact_set(m, cx, continuation_start(m));
@@ -680,12 +682,15 @@ profile_result solve_profile(const profile_scene& s, const solve_options& option
         num(s.profile.z.front() == m.top ? s.profile.x.front() : s.profile.x.back()) +
         "): the first contact would leave the samples; extend them");
   const context cx = make_context(s.material, s.speed, options);
-  profile_result out = search_and_report(m, cx);
+  // The seeded start once (its coarse solve is up to half of a search: 0.21 s of 0.39 s for 50
+  // cosine bumps), for both searches below.
+  const auto predicted = predicted_start(m, cx);
+  profile_result out = search_and_report(m, cx, predicted);
   if (needs_degree(out, cx)) {
     // Again with the series to profile_degree (the clock and the interrupt shared).
     context wide = cx;
     wide.options.max_degree = profile_degree;
-    profile_result again = search_and_report(m, wide);
+    profile_result again = search_and_report(m, wide, predicted);
     again.diagnostics.rounds += out.diagnostics.rounds;
     again.diagnostics.iterations += out.diagnostics.iterations;
     out = std::move(again);

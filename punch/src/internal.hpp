@@ -79,8 +79,8 @@ struct indentor_state {
   double target_load = 0;  // in units of int g (the load divided by (pi/2) E_U)
   double height = 0;       // scene::body: the apex's height on the body [m]
   // The edges (in the states' frame) a coupled solve starts from instead of the isolated contact
-  // (general profiles only): the contact set search's seed from a boundary-element solve, or its
-  // last round's solution.
+  // (general profiles only): the first round of a sampled profile's contact search, seeded by its
+  // coarse boundary-element solve (contact_set.cpp).
   std::optional<std::pair<double, double>> seed;
   contact_density g;
   // A coupled solve in the boundary-layer basis: g as solved, series and poles, before
