@@ -44,7 +44,9 @@
 // those overlap (or Newton from them fails), by continuation in the load: all loads scaled by t (contacts then
 // shrink like t^(1/(2 - alpha)) (parabola) or t^(1/(1 - alpha)) (wedge) about their apexes and
 // separate), t raised to 1 in steps, each solve starting from the previous one, the stages below
-// t = 1 only to continuation_accuracy.
+// t = 1 only to continuation_accuracy. Independent parabolas and general profiles that no
+// continuation brings to the full loads (there may be no path with one interval per indentor:
+// coarse_bodies.hpp) start from the coarse boundary-element solve of all of them at once.
 //   The Newton iteration is INEXACT: an evaluation solves the coupling correction only to 1e-3 of
 // the largest condition at the last point (at most 1e-5, at least the tolerance), so that the
 // correction's degree, which near contacts is what an evaluation costs, follows the progress
@@ -84,6 +86,8 @@
 // (contact.cpp) then checks the result independently (residual of (8), sign of the pressure, loads)
 // before it says ok.
 #include "coupled_problem.hpp"
+
+#include "coarse_bodies.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -376,6 +380,11 @@ bool loaded_form(const indentor_state& s, role r, const context& cx, bool body, 
   return s.k == kind::general && std::get<general_profile>(s.source->shape).corners.empty();
 }
 
+/// Whether every indentor is a parabola or a general profile (coarse_bodies' shapes).
+bool smooth_only(const std::vector<indentor_state>& st) {
+  return std::all_of(st.begin(), st.end(), [](const indentor_state& s) { return s.k == kind::parabola || s.k == kind::general; });
+}
+
 }  // namespace
 }  // namespace coupled
 
@@ -442,6 +451,25 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
     retry(pb, result, std::move(plain), again, [](const newton_result& second, const newton_result& first) {
       return second.converged || second.residual < first.residual;
     });
+  }
+  // Independent smooth indentors that no continuation reached: a start from the coarse solve of all
+  // of them on one grid (coarse_bodies.hpp), which needs no path in the load; Newton from there at
+  // the full loads. Nothing when that solve sees the contacts touch (a merge stands).
+  if (!pb.body_load && !result.converged && !result.lost && st.size() > 1 && smooth_only(st) && !cx.out_of_time()) {
+    std::vector<std::pair<double, double>> from;
+    for (std::size_t i = 0; i < st.size(); ++i) from.emplace_back(isolated.a[i], isolated.b[i]);
+    if (const auto start = coarse_bodies(st, from, cx)) {
+      edges seeded;
+      for (const auto& [a, b] : *start) seeded.a.push_back(a), seeded.b.push_back(b);
+      // Kept when it converged, or when it stalled nearer to it than the continuations got (a
+      // light contact's edge conditions may stall at ~1e-10 from a start whose edges are a panel
+      // off: that state, not_converged with its residuals, is closer to the answer than a merge
+      // met on the way).
+      retry(pb, result, pb, [&](problem& p) { p.load_factor = 1; return newton(p, seeded); },
+            [](const newton_result& second, const newton_result& first) {
+              return second.converged || (!second.merged && second.residual < first.residual);
+            });
+    }
   }
   // Independent indentors of unequal loads: continuation in the loads' ratios (also after a merge,
   // which the continuation in the load can meet on its way with the ratios kept).

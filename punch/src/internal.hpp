@@ -9,7 +9,8 @@
 //                      state of coupled_problem.hpp: coupled_fixed.cpp the linear solve on the
 //                      union of the contact intervals for given edges, coupled_newton.cpp Newton-
 //                      Broyden on all edge conditions, coupled_solve.cpp the starts
-//                      (continuations in the load, the heights and the loads' ratio) and the result;
+//                      (continuations in the load, the heights and the loads' ratio, and the
+//                      coarse solve of all indentors at once of coarse_bodies.cpp) and the result;
 //   fields.cpp         edge intensities, peak, Riemann-Hilbert samples, the displacement kernel;
 //   surface.hpp        the surface displacement (displacement grid, penetration check);
 //   report.cpp         the report of a solved contact: residual of (8), status, sampled fields;
@@ -19,7 +20,8 @@
 //                      the spline and bumps of profile_curve.hpp;
 //   panel_grid.cpp     the boundary-element discretisation of a profile (finite: Toeplitz;
 //                      periodic: the regularised circulant) and its active set, shared by
-//                      coarse_contact.cpp and profile_bem.cpp;
+//                      coarse_contact.cpp and profile_bem.cpp (and its finite kernel by
+//                      coarse_bodies.cpp: several independent indentors on one grid);
 //   profile_bem.cpp    a sampled profile by the boundary-element method (solve_profile_bem):
 //                      grids refined until the extrapolated loads and C_f meet the acceptance.
 // A new shape: its forcing in shapes.cpp (own_slope, own_forcing), its isolated contact in

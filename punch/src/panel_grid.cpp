@@ -84,6 +84,19 @@ double periodic_panel_kernel::operator()(double h, double sigma) const {
   return s + tail;
 }
 
+std::vector<double> finite_panel_kernel(std::size_t n, double length, const context& cx) {
+  const double h = 1.0 / static_cast<double>(n), theta = collocation_theta;
+  const double scale = cx.gamma_factor * std::pow(length, cx.alpha);
+  const double c1 = cx.par.one_minus_kappa_over_alpha();
+  std::vector<double> kernel(2 * n - 1);
+  const auto last = static_cast<std::ptrdiff_t>(n) - 1;
+  for (std::ptrdiff_t m = -last; m <= last; ++m) {  // m = j - i: panel [m h, (m + 1) h] from theta h
+    const double k = static_cast<double>(m);
+    kernel[static_cast<std::size_t>(m + last)] = scale * panel_integral((k - theta) * h, (k + 1 - theta) * h, cx.alpha, cx.kappa, c1);
+  }
+  return kernel;
+}
+
 panel_grid make_panel_grid(const profile_curve& curve, std::size_t n, const context& cx, double top) {
   panel_grid gr;
   gr.n = n;
@@ -91,14 +104,13 @@ panel_grid make_panel_grid(const profile_curve& curve, std::size_t n, const cont
   gr.periodic = curve.period() > 0;
   gr.lo = curve.lo();
   gr.length = gr.periodic ? curve.period() : curve.hi() - curve.lo();
-  const double h = gr.h, alpha = cx.alpha, theta = collocation_theta;
-  const double scale = cx.gamma_factor * std::pow(gr.length, alpha);
-  const double kappa = cx.kappa, c1 = cx.par.one_minus_kappa_over_alpha();
-  gr.kernel.resize(2 * n - 1);
-  const auto last = static_cast<std::ptrdiff_t>(n) - 1;
+  const double theta = collocation_theta;
   if (gr.periodic) {
     // Circulant: A(i, j) = c((i - j) mod n), c(m) the periodic kernel at sigma = (m + theta) h.
-    const periodic_panel_kernel W(alpha, kappa, c1);
+    const double h = gr.h, scale = cx.gamma_factor * std::pow(gr.length, cx.alpha);
+    const periodic_panel_kernel W(cx.alpha, cx.kappa, cx.par.one_minus_kappa_over_alpha());
+    gr.kernel.resize(2 * n - 1);
+    const auto last = static_cast<std::ptrdiff_t>(n) - 1;
     std::vector<double> c(n);
     for (std::size_t m = 0; m < n; ++m) {
       if (m % 65536 == 0) cx.check_time();  // ~0.1 s of kernel values between checks
@@ -107,17 +119,14 @@ panel_grid make_panel_grid(const profile_curve& curve, std::size_t n, const cont
     for (std::ptrdiff_t m = -last; m <= last; ++m)  // m = j - i
       gr.kernel[static_cast<std::size_t>(m + last)] = c[static_cast<std::size_t>((-m + static_cast<std::ptrdiff_t>(n)) % static_cast<std::ptrdiff_t>(n))];
   } else {
-    for (std::ptrdiff_t m = -last; m <= last; ++m) {  // m = j - i: panel [m h, (m + 1) h] from theta h
-      const double k = static_cast<double>(m);
-      gr.kernel[static_cast<std::size_t>(m + last)] = scale * panel_integral((k - theta) * h, (k + 1 - theta) * h, alpha, kappa, c1);
-    }
+    gr.kernel = finite_panel_kernel(n, gr.length, cx);
   }
   gr.product = std::make_unique<toeplitz_product>(gr.kernel, n, gr.periodic);
   gr.z.resize(n);
   gr.rise.resize(n);
   double at_edge = curve.value(gr.edge(0));  // z at the panel's lower edge, carried to the next
   for (std::size_t i = 0; i < n; ++i) {
-    gr.z[i] = curve.value(gr.lo + gr.length * (static_cast<double>(i) + theta) * h) - top;
+    gr.z[i] = curve.value(gr.lo + gr.length * (static_cast<double>(i) + theta) * gr.h) - top;
     const double next = curve.value(gr.edge(i + 1));
     gr.rise[i] = next - at_edge;
     at_edge = next;

@@ -60,6 +60,10 @@ struct panel_grid {
   double edge(std::size_t k) const { return lo + length * static_cast<double>(k) * h; }
 };
 
+/// The finite (Toeplitz) kernel of n panels over a window of the given length: A(i, j) =
+/// out[j - i + n - 1] (see the top of the file); also coarse_bodies.cpp's.
+std::vector<double> finite_panel_kernel(std::size_t n, double length, const context& cx);
+
 /// The grid of n panels over the curve's window (periodic when curve.period() > 0); `top` = max z.
 panel_grid make_panel_grid(const profile_curve& curve, std::size_t n, const context& cx, double top);
 

@@ -99,9 +99,12 @@
 //     conditions: both intensity factors vanish; then re-solved in the bounded class), which
 //     keeps the banded Jacobian of many contacts accurate. Started from the isolated contacts, or, when those
 //     overlap (or Newton from them fails), by continuation in the load (all loads times t, contacts shrinking
-//     about their apexes, t raised to 1); independent indentors of unequal loads, when both fail, by
-//     continuation in the loads' ratio (every load equal to the largest, then each brought to its own:
-//     a light contact on the surface a heavy one shaped). The contacts' order along x is found, not assumed (above
+//     about their apexes, t raised to 1); independent parabolas and smooth general profiles, when
+//     both fail, from a coarse boundary-element solve of all of them at once (each indentor its own
+//     level and load, no path in the load: docs/theory.md section 7), and independent indentors of
+//     unequal loads, when that fails too, by continuation in the loads' ratio (every load equal to
+//     the largest, then each brought to its own: a light contact on the surface a heavy one shaped).
+//     The contacts' order along x is found, not assumed (above
 //     alpha = 1/2 a blunt indentor's contact can lie ahead of a sharper one's). A gap below
 //     1e-6 of the smaller contact that a step keeps closing ends the iteration: contacts_merge
 //     when the step closes it, not_converged otherwise (gaps below 3e-3 L are solved with poles
@@ -111,7 +114,8 @@
 //     two-parabola solution (trailing contact independent; tests/punch/test_coupled.cpp) to 1e-9 L
 //     at gaps 1, 0.1, 0.01 L; the boundary-element oracle of tests/punch/bem_oracle.hpp (its own
 //     error ~1e-5 L) within twice its error bar for two parabolas at alpha 0, 0.25, 0.7, beta 0,
-//     0.3, two of loads 100 : 1 at alpha 0.4, and for parabola-wedge-parabola and flat-flat-parabola rows (test_coupled_bem.cpp);
+//     0.3, two of loads 100 : 1 at alpha 0.4, three at alpha 0.6 whose contacts lie in another
+//     order than their apexes, and for parabola-wedge-parabola and flat-flat-parabola rows (test_coupled_bem.cpp);
 //     mirror symmetry of identical elastic frictionless indentors to 1e-9, and to 1e-10 L at gaps
 //     of ~8e-6 and ~3e-6 L; the coupling decaying
 //     like distance^(alpha - 1); the rigid approaches (indentor_result::approach) against the
