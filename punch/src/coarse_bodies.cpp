@@ -44,6 +44,10 @@ constexpr double coarse_within = 0.1, fine_within = 0.01;
 // coarse_bodies.hpp start with two indentors carrying nothing: one sweep, then Newton in 4 steps.)
 constexpr std::size_t max_sweeps = 30, max_rounds = 4;
 constexpr double carried_share = 0.01, bracket_step = 1e-3, jump_within = 0.25;
+// Indentors at most: each costs a column of the levels' Jacobian (an evaluation of the loads) and
+// a level of the sweeps, and 512 panels resolve no more than a few tens of contacts anyway (fewer
+// than min_owned_panels each gives no start).
+constexpr std::size_t max_bodies = 16;
 // Panels an indentor needs on the second window for its interval to be a start (fewer: the grid
 // does not resolve it, and no start is better than a wrong one).
 constexpr std::size_t min_owned_panels = 6;
@@ -385,6 +389,7 @@ std::optional<std::vector<std::pair<double, double>>> intervals(const body_grid&
 std::optional<std::vector<std::pair<double, double>>> coarse_bodies(const std::vector<indentor_state>& st,
                                                                     const std::vector<std::pair<double, double>>& isolated,
                                                                     const context& cx) try {
+  if (st.size() > max_bodies) return std::nullopt;
   std::vector<double> load;
   double lo = std::numeric_limits<double>::infinity(), hi = -lo;
   for (std::size_t k = 0; k < st.size(); ++k) {

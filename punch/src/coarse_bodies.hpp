@@ -2,7 +2,8 @@
 // one boundary-element grid, the start of solve_coupled when its continuations fail (internal to
 // punch/src).
 //
-// WHAT IT COMPUTES. Indentors k = 0 .. K-1 (smooth shapes: parabolas, general profiles), each
+// WHAT IT COMPUTES. Indentors k = 0 .. K-1 (parabolas; the grid needs a profile defined
+// everywhere on its window, which a sampled profile is not), each
 // pressed with its own load P_k and free to take its own level D_k, on one surface. Unknowns: the
 // density g >= 0 on the panels of a window (panel_grid.hpp's discretisation, finite), which
 // indentor owns each loaded panel, and the levels:
@@ -50,12 +51,13 @@
 
 namespace rhabel::punch::detail {
 
-/// The start of a coupled solve of the independent indentors st (every one a parabola or a
-/// general profile; target_load their loads) from the coarse solve above: one interval [a, b] per
+/// The start of a coupled solve of the independent indentors st (every one a parabola;
+/// target_load their loads) from the coarse solve above: one interval [a, b] per
 /// indentor, in the states' frame, in the order of st. Nothing when an indentor's panels do not
 /// form one interval, when two indentors' panels touch (their contacts merge at this resolution),
-/// when an indentor has fewer than min_owned_panels panels (not resolved), or when the loads are
-/// not matched. `isolated`: each indentor's isolated contact (the first window and start).
+/// when an indentor has fewer than min_owned_panels panels (not resolved), when the loads are
+/// not matched, or for more than max_bodies (16) indentors. `isolated`: each indentor's isolated
+/// contact (the first window and start).
 /// Each active-set step checks solve_options::time_limit; out of time, nothing.
 std::optional<std::vector<std::pair<double, double>>> coarse_bodies(const std::vector<indentor_state>& st,
                                                                     const std::vector<std::pair<double, double>>& isolated,

@@ -44,8 +44,8 @@
 // those overlap (or Newton from them fails), by continuation in the load: all loads scaled by t (contacts then
 // shrink like t^(1/(2 - alpha)) (parabola) or t^(1/(1 - alpha)) (wedge) about their apexes and
 // separate), t raised to 1 in steps, each solve starting from the previous one, the stages below
-// t = 1 only to continuation_accuracy. Independent parabolas and general profiles that no
-// continuation brings to the full loads (there may be no path with one interval per indentor:
+// t = 1 only to continuation_accuracy. Independent parabolas that no continuation brings to the
+// full loads (there may be no path with one interval per indentor:
 // coarse_bodies.hpp) start from the coarse boundary-element solve of all of them at once.
 //   The Newton iteration is INEXACT: an evaluation solves the coupling correction only to 1e-3 of
 // the largest condition at the last point (at most 1e-5, at least the tolerance), so that the
@@ -380,9 +380,9 @@ bool loaded_form(const indentor_state& s, role r, const context& cx, bool body, 
   return s.k == kind::general && std::get<general_profile>(s.source->shape).corners.empty();
 }
 
-/// Whether every indentor is a parabola or a general profile (coarse_bodies' shapes).
-bool smooth_only(const std::vector<indentor_state>& st) {
-  return std::all_of(st.begin(), st.end(), [](const indentor_state& s) { return s.k == kind::parabola || s.k == kind::general; });
+/// Whether every indentor is a parabola (coarse_bodies' shapes).
+bool parabolas_only(const std::vector<indentor_state>& st) {
+  return std::all_of(st.begin(), st.end(), [](const indentor_state& s) { return s.k == kind::parabola; });
 }
 
 }  // namespace
@@ -452,10 +452,10 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
       return second.converged || second.residual < first.residual;
     });
   }
-  // Independent smooth indentors that no continuation reached: a start from the coarse solve of all
+  // Independent parabolas that no continuation reached: a start from the coarse solve of all
   // of them on one grid (coarse_bodies.hpp), which needs no path in the load; Newton from there at
   // the full loads. Nothing when that solve sees the contacts touch (a merge stands).
-  if (!pb.body_load && !result.converged && !result.lost && st.size() > 1 && smooth_only(st) && !cx.out_of_time()) {
+  if (!pb.body_load && !result.converged && !result.lost && st.size() > 1 && parabolas_only(st) && !cx.out_of_time()) {
     std::vector<std::pair<double, double>> from;
     for (std::size_t i = 0; i < st.size(); ++i) from.emplace_back(isolated.a[i], isolated.b[i]);
     if (const auto start = coarse_bodies(st, from, cx)) {

@@ -99,8 +99,7 @@
 //     conditions: both intensity factors vanish; then re-solved in the bounded class), which
 //     keeps the banded Jacobian of many contacts accurate. Started from the isolated contacts, or, when those
 //     overlap (or Newton from them fails), by continuation in the load (all loads times t, contacts shrinking
-//     about their apexes, t raised to 1); independent parabolas and smooth general profiles, when
-//     both fail, from a coarse boundary-element solve of all of them at once (each indentor its own
+//     about their apexes, t raised to 1); up to 16 independent parabolas, when both fail, from a coarse boundary-element solve of all of them at once (each indentor its own
 //     level and load, no path in the load: docs/theory.md section 7), and independent indentors of
 //     unequal loads, when that fails too, by continuation in the loads' ratio (every load equal to
 //     the largest, then each brought to its own: a light contact on the surface a heavy one shaped).
