@@ -225,24 +225,55 @@ bool level_alone(const body_grid& gr, const std::vector<double>& load, std::size
   return false;
 }
 
-/// The levels at which every indentor carries its load: Newton's method on (P_k(D) - P_k)/P_k,
-/// the Jacobian by forward differences (a step of level_step of the profiles' span), each step
-/// halved until the largest relative mismatch falls; from D and s (the contact set pressed at D),
-/// both updated. False when the mismatch does not fall below load_match.
+/// The relative mismatch of the loads, P_k(D)/P_k - 1.
+Eigen::VectorXd mismatch(const pressed& p, const std::vector<double>& load) {
+  Eigen::VectorXd F(static_cast<Index>(load.size()));
+  for (std::size_t k = 0; k < load.size(); ++k) F[static_cast<Index>(k)] = p.load[k] / load[k] - 1;
+  return F;
+}
+
+/// Newton's method on the mismatch F (D and s updated, F theirs) until every load is within
+/// load_match: the Jacobian by forward differences (a step of level_step of the span), each step
+/// halved until |F| falls. False when an evaluation fails; true when it stops, converged or not.
+bool newton_levels(const body_grid& gr, const std::vector<double>& load, Eigen::VectorXd& D, pressed& s,
+                   Eigen::VectorXd& F, double span, const context& cx) {
+  const auto K = static_cast<Index>(load.size());
+  for (std::size_t iteration = 0; iteration < max_level_iterations; ++iteration) {
+    if (F.cwiseAbs().maxCoeff() <= load_match) return true;
+    Eigen::MatrixXd J(K, K);
+    const double delta = level_step * span;
+    for (Index k = 0; k < K; ++k) {
+      pressed t = s;
+      Eigen::VectorXd Dk = D;
+      Dk[k] += delta;
+      if (!press(gr, Dk, t, span, cx)) return false;
+      J.col(k) = (mismatch(t, load) - F) / delta;
+    }
+    const Eigen::VectorXd step = J.fullPivLu().solve(-F);
+    if (!step.allFinite()) return true;
+    bool fell = false;
+    for (double t = 1; t > 1.0 / 1024 && !fell; t /= 2) {
+      pressed trial = s;
+      const Eigen::VectorXd Dt = D + t * step;
+      if (!press(gr, Dt, trial, span, cx)) continue;
+      const Eigen::VectorXd Ft = mismatch(trial, load);
+      if (Ft.norm() < F.norm()) D = Dt, s = std::move(trial), F = Ft, fell = true;
+    }
+    if (!fell) return true;  // stalled (at a kink or a jump of the loads)
+  }
+  return true;
+}
+
+/// The levels at which every indentor carries its load within `within` (relative), from D (s: the
+/// contact set to start the first press from), both updated: rounds of Gauss-Seidel sweeps (each
+/// level alone) and Newton's method (newton_levels). The first round sweeps only the indentors
+/// that carry (almost) nothing, where Newton has no derivative to follow; after Newton stalls (the
+/// loads are piecewise smooth in the levels, and jump where a panel changes hands), every level
+/// off by more than `within`. False when the loads are not matched.
 bool match_loads(const body_grid& gr, const std::vector<double>& load, Eigen::VectorXd& D, pressed& s, double span,
                  double within, const context& cx) {
-  const auto K = static_cast<Index>(load.size());
-  const auto mismatch = [&](const pressed& p) {
-    Eigen::VectorXd F(K);
-    for (Index k = 0; k < K; ++k) F[k] = p.load[static_cast<std::size_t>(k)] / load[static_cast<std::size_t>(k)] - 1;
-    return F;
-  };
   if (!press(gr, D, s, span, cx)) return false;
-  Eigen::VectorXd F = mismatch(s);
-  // Rounds of Gauss-Seidel sweeps (each level alone) and Newton's method. The first round sweeps
-  // only the indentors that carry (almost) nothing, where Newton has no derivative to follow;
-  // after Newton stalls (the loads are piecewise smooth in the levels: a panel joining or leaving
-  // the contact set is a kink), every level off by more than sweep_within.
+  Eigen::VectorXd F = mismatch(s, load);
   for (std::size_t round = 0; round < max_rounds; ++round) {
     for (std::size_t sweep = 0; sweep < max_sweeps; ++sweep) {
       bool swept = false;
@@ -250,35 +281,13 @@ bool match_loads(const body_grid& gr, const std::vector<double>& load, Eigen::Ve
         const double f = F[static_cast<Index>(k)];
         if (round == 0 ? f >= carried_share - 1 : std::abs(f) <= within) continue;
         if (!level_alone(gr, load, k, D, s, span, within / 4, cx)) return false;
-        F = mismatch(s);
+        F = mismatch(s, load);
         swept = true;
       }
       if (!swept) break;
     }
-    for (std::size_t iteration = 0; iteration < max_level_iterations; ++iteration) {
-      if (F.cwiseAbs().maxCoeff() <= load_match) return true;
-      Eigen::MatrixXd J(K, K);
-      const double delta = level_step * span;
-      for (Index k = 0; k < K; ++k) {
-        pressed t = s;
-        Eigen::VectorXd Dk = D;
-        Dk[k] += delta;
-        if (!press(gr, Dk, t, span, cx)) return false;
-        J.col(k) = (mismatch(t) - F) / delta;
-      }
-      const Eigen::VectorXd step = J.fullPivLu().solve(-F);
-      if (!step.allFinite()) break;
-      bool fell = false;
-      for (double t = 1; t > 1.0 / 1024 && !fell; t /= 2) {
-        pressed trial = s;
-        const Eigen::VectorXd Dt = D + t * step;
-        if (!press(gr, Dt, trial, span, cx)) continue;
-        const Eigen::VectorXd Ft = mismatch(trial);
-        if (Ft.norm() < F.norm()) D = Dt, s = std::move(trial), F = Ft, fell = true;
-      }
-      if (!fell) break;
-    }
-    if (F.cwiseAbs().maxCoeff() <= within) return true;  // stalled at a jump, but near enough
+    if (!newton_levels(gr, load, D, s, F, span, cx)) return false;
+    if (F.cwiseAbs().maxCoeff() <= within) return true;
   }
   return false;
 }
