@@ -150,22 +150,17 @@ bool press(const body_grid& gr, const Eigen::VectorXd& D, pressed& s, double spa
     bool changed = false;
     for (Index c = 0; c < m; ++c)
       if (g[c] < 0) s.active[idx[static_cast<std::size_t>(c)]] = 0, changed = true;
-    if (!changed) {
-      for (std::size_t i = 0; i < gr.n; ++i) {
-        if (s.active[i]) continue;
-        double w = 0;
-        for (Index c = 0; c < m; ++c) w += gr.A(i, idx[static_cast<std::size_t>(c)]) * g[c];
-        if (w - phi[i] < -owner_floor * span) s.active[i] = 1, changed = true;
-      }
+    if (changed) continue;
+    // None negative: the surface once, every panel it leaves below phi joins the set.
+    s.w.assign(gr.n, 0.0);
+    for (std::size_t i = 0; i < gr.n; ++i) {
+      for (Index c = 0; c < m; ++c) s.w[i] += gr.A(i, idx[static_cast<std::size_t>(c)]) * g[c];
+      if (!s.active[i] && s.w[i] - phi[i] < -owner_floor * span) s.active[i] = 1, changed = true;
     }
-    if (!changed) {
-      s.w.assign(gr.n, 0.0);
-      for (std::size_t i = 0; i < gr.n; ++i)
-        for (Index c = 0; c < m; ++c) s.w[i] += gr.A(i, idx[static_cast<std::size_t>(c)]) * g[c];
-      s.load.assign(K, 0.0);
-      for (Index c = 0; c < m; ++c) s.load[static_cast<std::size_t>(s.owner[idx[static_cast<std::size_t>(c)]])] += gr.h * g[c];
-      return true;
-    }
+    if (changed) continue;
+    s.load.assign(K, 0.0);
+    for (Index c = 0; c < m; ++c) s.load[static_cast<std::size_t>(s.owner[idx[static_cast<std::size_t>(c)]])] += gr.h * g[c];
+    return true;
   }
   return false;
 }
