@@ -12,18 +12,26 @@ namespace {
 
 // The first grid: every panel active (its LU: 256^3 flops).
 constexpr std::size_t first_panels = 256;
-// Panels at most: the finest grid has one panel per sample up to this many (a predictor needs no
-// more). Products and the penetration check go through the FFT (toeplitz_product.hpp), O(n log n)
-// each: at 2^17 panels ~9 ms a product and ~16 MB of FFT buffers (measured, one core, -O3).
-constexpr std::size_t max_panels = std::size_t{1} << 17;
+// Panels at most. Products and the penetration check go through the FFT (toeplitz_product.hpp),
+// O(n log n) each: at 2^17 panels ~9 ms a product and ~16 MB of FFT buffers (measured, one core,
+// -O3). WHY 2^19: at 2^17 a 16000-sample self-affine profile had 8 panels a sample, and the seeded
+// search of its 35 contacts at load 1e-3 lost its way (not ok after 45-60 s); at 2^19 it is ok in
+// 7 s.
+constexpr std::size_t max_panels = std::size_t{1} << 19;
+// A contact of fewer panels than this refines the grid on towards fine_panels. WHY 4: the contacts
+// narrower than a sample on a rough profile have 1-3 panels at 8 a sample and need the finer grid
+// (contact_set.cpp, seed_panels); at 16, the 50 cosine bumps' smallest contacts refined too (0.4 s
+// became 2.0 s) and gained nothing.
+constexpr std::size_t resolved_patch = 4;
 
 }  // namespace
 
 std::vector<coarse_patch> coarse_contacts(const profile_curve& curve, double load, const context& cx,
-                                          std::size_t panels) {
+                                          std::size_t panels, std::size_t fine_panels) {
   const auto [lo, hi] = std::minmax_element(curve.z().begin(), curve.z().end());
   const double top = *hi, span = *hi - *lo;
   panels = std::clamp(panels, first_panels, max_panels);
+  fine_panels = std::clamp(fine_panels, panels, max_panels);
   std::size_t n = first_panels;
   std::vector<char> active(n, 1);
   Eigen::VectorXd g;
@@ -35,8 +43,12 @@ std::vector<coarse_patch> coarse_contacts(const profile_curve& curve, double loa
     gr = make_panel_grid(curve, n, cx, top);
     double D = 0;
     if (!settle(gr, load, span, active, g, idx, D, cx, steps, n == first_panels ? first_grid_steps : refined_grid_steps, ws)) return {};
-    if (n == panels) break;
-    const std::size_t next = std::min(4 * n, panels);
+    if (n >= panels) {
+      std::size_t narrowest = n;
+      for (const auto& [s, e] : runs_of(idx)) narrowest = std::min(narrowest, static_cast<std::size_t>(e - s));
+      if (n >= fine_panels || narrowest >= resolved_patch) break;
+    }
+    const std::size_t next = std::min(4 * n, n < panels ? panels : fine_panels);
     active = refine_active(active, next);
     n = next;
   }

@@ -72,9 +72,16 @@ constexpr std::size_t max_drops = 2;
 // into not_converged). Smaller coarse contacts there are left to the search and its clearance
 // check.
 constexpr double end_share = 1e-3;
-// Panels a sample of the coarse solve that seeds the search (coarse_contact.hpp clamps them to
-// 2^17): its edges start the first round's coupled solve.
+// Panels a sample of the coarse solve that seeds the search, and up to how many it refines while
+// a contact has fewer than 4 panels (coarse_contact.hpp; at most 2^19 panels): its edges start the
+// first round's coupled solve. WHY refined: a contact narrower than a sample has only a few panels
+// at 8 a sample, and its level condition starts far off (self-affine profiles, 1000 / 4000
+// samples, seeds 1-3, loads 5e-4 .. 2e-3 at acceptance 1e-6: 10 of 14 ok at 8 panels a sample, 12
+// at 32, and 0.45-0.6 s where 8 took 1.8-3.3 s for those whose seeded Newton then converges
+// without offset_continuation). WHY not 32 everywhere: the wide contacts of smooth bumps need no
+// more than 8, and 32 made 50 cosine bumps (4000 samples) 1.6 s instead of 0.4 s.
 constexpr std::size_t seed_panels = 8;
+constexpr std::size_t seed_panels_fine = 32;
 // The degree to which a search whose contacts missed the acceptance at solve_options::max_degree
 // is solved again (needs_degree).
 constexpr std::size_t profile_degree = 512;
@@ -191,6 +198,7 @@ scene make_scene(const profile_model& m, const std::vector<run>& runs, double lo
     general_profile gp;
     const profile_curve* curve = &m.curve;
     gp.slope = [curve, apex](double u) { return curve->slope(apex + u); };
+    gp.value = [curve, apex](double u) { return curve->value(apex + u); };
     gp.search_lo = x[m.bumps[r.first].first] - apex;
     gp.search_hi = x[m.bumps[r.last].last] - apex;
     for (const double c : m.curve.corners())
@@ -382,7 +390,7 @@ std::optional<search_start> predicted_start(const profile_model& m, const contex
   const double load = m.source->load / cx.pressure_scale;
   std::vector<coarse_patch> patches;
   try {
-    patches = coarse_contacts(m.curve, load, cx, seed_panels * m.curve.x().size());
+    patches = coarse_contacts(m.curve, load, cx, seed_panels * m.curve.x().size(), seed_panels_fine * m.curve.x().size());
   } catch (const time_limit_reached&) {
     return std::nullopt;  // the search's first round runs anyway: it has a result to report
   }

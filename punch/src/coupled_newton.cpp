@@ -124,6 +124,7 @@ evaluation evaluate(const problem& pb, const unknowns& u, const std::vector<doub
       ev.r[static_cast<Eigen::Index>(k)] = load;
     }
   }
+  if (pb.offset.size() == ev.r.size()) ev.r -= pb.offset;
   return ev;
 }
 
@@ -708,5 +709,13 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
 }
 
 }  // namespace
+
+/// (The start's evaluation of newton, without its steps.)
+Eigen::VectorXd edge_conditions(const problem& pb, const edges& x) {
+  newton_state s(pb);
+  if (!newton_start(s, x) && !s.out.converged)
+    throw std::domain_error(s.out.failure.empty() ? "the edge conditions could not be evaluated" : s.out.failure);
+  return s.ev.r;
+}
 
 }  // namespace rhabel::punch::detail::coupled

@@ -170,6 +170,9 @@ struct problem {
   // > the requested tolerance: the accuracy to which an evaluation solves the correction (an
   // inexact Newton step far from the solution; see newton_iteration).
   double accuracy = 0;
+  // offset_continuation: subtracted from the conditions (in the order of newton's unknowns;
+  // empty: none), so that a start x0 solves the conditions minus (1 - s) times its own.
+  Eigen::VectorXd offset;
 };
 
 inline bool is_loaded(const problem& pb, std::size_t i) { return i < pb.loaded.size() && pb.loaded[i]; }
@@ -223,6 +226,9 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
 /// Newton-Broyden on the edge conditions from `start`; any failure of a contact's own solve is a
 /// failed result.
 newton_result newton(const problem& pb, const edges& start);
+/// The edge conditions at x, in the order of newton's unknowns (pb.offset subtracted), evaluated
+/// to a trusted accuracy as newton's start is.
+Eigen::VectorXd edge_conditions(const problem& pb, const edges& x);
 /// scene::body: the level approach_i + height_i of every contact (equal at the solution).
 std::vector<double> body_levels(const std::vector<indentor_state>& states, const std::vector<contact_density>& g,
                                 const context& cx, double height_factor);

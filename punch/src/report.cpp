@@ -348,9 +348,10 @@ void report_fields(const std::vector<indentor_state>& st, std::size_t i, const c
 
 // The status of one contact from its evidence (contact.hpp, status_code): the residual, the error
 // estimate, the sign of the pressure (at 64 interior points and the check points, relative to the
-// mean pressure) and the load. Keeps the solver's note (st.status) in front of the findings.
+// mean pressure) and the load. Keeps the solver's note (st.status) in front of the findings. Its
+// messages give abscissae in the scene's coordinates (the solve's plus origin).
 void judge(indentor_result& r, const indentor_state& st, const std::vector<double>& points, double pressure_scale,
-           double acceptance, std::pair<double, double> gap) {
+           double acceptance, std::pair<double, double> gap, double origin) {
   std::ostringstream why;
   why.precision(3);
   status_code code = status_code::ok;
@@ -383,7 +384,7 @@ void judge(indentor_result& r, const indentor_state& st, const std::vector<doubl
     if (lowest < -acceptance * std::abs(mean)) {
       std::ostringstream os;
       os.precision(3);
-      os << "negative pressure " << pressure_scale * lowest << " at x = " << where << " (" << lowest / mean
+      os << "negative pressure " << pressure_scale * lowest << " at x = " << where + origin << " (" << lowest / mean
          << " of the mean pressure)";
       fail(status_code::tension, os.str());
     }
@@ -391,7 +392,7 @@ void judge(indentor_result& r, const indentor_state& st, const std::vector<doubl
   if (gap.first < -acceptance) {
     std::ostringstream os;
     os.precision(3);
-    os << "the surface penetrates the indentor at x = " << gap.second << " (by " << -gap.first
+    os << "the surface penetrates the indentor at x = " << gap.second + origin << " (by " << -gap.first
        << " of the profile's span next to the contact): the contact set is not the physical one";
     fail(status_code::penetration, os.str());
   }
@@ -440,7 +441,7 @@ indentor_result report_contact(const std::vector<indentor_state>& st, std::size_
     r.residual = contact_residual(st, i, cx, heights, points);
   }
   judge(r, st[i], points, cx.pressure_scale, options.acceptance,
-        several ? worst_gap(heights, st, i) : std::pair<double, double>{0.0, 0.0});
+        several ? worst_gap(heights, st, i) : std::pair<double, double>{0.0, 0.0}, origin);
   report_fields(st, i, cx, heights, origin, r);
   return r;
 }

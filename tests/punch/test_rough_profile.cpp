@@ -92,9 +92,10 @@ TEST_CASE("self-affine profiles: ok agrees with the boundary-element oracle, any
       if (bp::sanitizer_build && !(seed == 3 && load == 3e-4)) continue;  // the oracle: minutes under ASan
       ok += check_scene(1000, seed, load).ok ? 1 : 0;
     }
-  // Measured: all three seeds at 3e-4 and seed 3 at 1e-3 are ok (3 to 5 patches, C_f within
-  // twice the oracle's bar); seed 1 at 1e-3 ends not ok (10 contacts, three of which say the
-  // surface penetrates the profile next to them: the seeded set is not the physical one); seed 2
-  // at 1e-3 is refused (contacts at x = 0).
-  CHECK(ok >= (bp::sanitizer_build ? 1u : 4u));
+  // Measured: all three seeds at 3e-4 and seeds 1 and 3 at 1e-3 are ok (3 to 10 patches, C_f
+  // within twice the oracle's bar); seed 2 at 1e-3 is refused (contacts at x = 0). Seed 1 at 1e-3
+  // is the case of a spline's rise between contacts: integrated from its slope by one Gauss rule
+  // across the knots, the levels of its contacts were off by ~4e-5 of the span, and three of its
+  // ten contacts reported a penetration that the oracle does not see.
+  CHECK(ok >= (bp::sanitizer_build ? 1u : 5u));
 }
