@@ -82,9 +82,12 @@ constexpr double end_share = 1e-3;
 // more than 8, and 32 made 50 cosine bumps (4000 samples) 1.6 s instead of 0.4 s.
 constexpr std::size_t seed_panels = 8;
 constexpr std::size_t seed_panels_fine = 32;
-// The degree to which a search whose contacts missed the acceptance at solve_options::max_degree
-// is solved again (needs_degree).
-constexpr std::size_t profile_degree = 512;
+// The degrees to which a search whose contacts missed the acceptance at solve_options::max_degree
+// is solved again, in turn (needs_degree). WHY 1024 too: a contact over a few samples of a
+// self-affine profile converges like degree^-2 (the spline's f''' jumps at the knots): residual of
+// (8) 1.8e-6 at 511 and 4.2e-7 at 1023 (4000 samples, seed 1, load 1e-3: ok in 6.6 s; 8.3e-7 for
+// seed 3, 4.0 s); 2048 took over a minute for 21 contacts.
+constexpr std::size_t profile_degrees[] = {512, 1024};
 
 [[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(std::string(who) + ": " + what); }
 
@@ -658,16 +661,25 @@ profile_result search_and_report(const profile_model& m, const context& cx, cons
 }
 
 /// Whether a result missed the acceptance only because a contact's series stopped at
-/// solve_options::max_degree (below profile_degree), with time left to solve again. WHY: a contact
+/// solve_options::max_degree (below `degree`), with time left to solve again. WHY: a contact
 /// spanning several samples carries the spline's C2 joints, so its series converges algebraically
 /// (a self-affine profile's contact over ~10 samples: residual of (8) 5e-6 at degree 127, 2e-8 at
 /// 511), while the contacts of smooth bumps need no more than the default (50 cosine bumps: 0.55 s
 /// at 128, 11 s when every contact may go to 512 chasing the tolerance).
-bool needs_degree(const profile_result& r, const context& cx) {
-  if (r.diagnostics.code == status_code::ok || cx.options.max_degree >= profile_degree || cx.out_of_time()) return false;
-  return std::any_of(r.contacts.begin(), r.contacts.end(), [&](const indentor_result& c) {
+/// Beyond the first of profile_degrees, only a search that reached the full load without
+/// penetrations and whose every failing contact is such a one runs again (a 16000-sample profile
+/// that ended at 1/4 of its load spent its remaining 40 s of --time-limit 60 at degree 1024).
+bool needs_degree(const profile_result& r, const context& cx, std::size_t degree) {
+  if (r.diagnostics.code == status_code::ok || cx.options.max_degree >= degree || cx.out_of_time()) return false;
+  const auto capped = [&](const indentor_result& c) {
     return c.degree + 1 >= cx.options.max_degree && c.residual > cx.options.acceptance;
-  });
+  };
+  if (degree > profile_degrees[0]) {
+    if (r.diagnostics.load_fraction < 1 || !r.penetrations.empty()) return false;
+    for (const auto& c : r.contacts)
+      if (c.code != status_code::ok && !capped(c)) return false;
+  }
+  return std::any_of(r.contacts.begin(), r.contacts.end(), capped);
 }
 
 }  // namespace
@@ -694,10 +706,11 @@ profile_result solve_profile(const profile_scene& s, const solve_options& option
   // cosine bumps), for both searches below.
   const auto predicted = predicted_start(m, cx);
   profile_result out = search_and_report(m, cx, predicted);
-  if (needs_degree(out, cx)) {
-    // Again with the series to profile_degree (the clock and the interrupt shared).
-    context wide = cx;
-    wide.options.max_degree = profile_degree;
+  context wide = cx;
+  for (const std::size_t degree : profile_degrees) {
+    if (!needs_degree(out, wide, degree)) continue;
+    // Again with the series to `degree` (the clock and the interrupt shared).
+    wide.options.max_degree = degree;
     profile_result again = search_and_report(m, wide, predicted);
     again.diagnostics.rounds += out.diagnostics.rounds;
     again.diagnostics.iterations += out.diagnostics.iterations;

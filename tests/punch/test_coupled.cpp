@@ -497,6 +497,35 @@ TEST_CASE("indentors on one rigid body: the loads' split, the common approach, c
     CHECK(std::abs((q.indentors[0].approach - q.indentors[1].approach) - 0.05) < 1e-8);
     CHECK(std::abs(q.indentors[0].a - r.indentors[0].a) < 1e-8 * L);
   }
+  SUBCASE("general profiles with and without their value give the parabolas' body solve") {
+    // The levels of a body compare the profile at different contacts: a general profile's rise
+    // from its `value` (a constant offset of which must not matter), else from its slope (exact
+    // here: the slope is linear). A sign or offset error in either moves the split of the load.
+    const material m{0.3, 1.0, 0.3, 0.0};
+    scene s = two(m, indentor{parabolic{1.0}, 1.0, 0.0}, indentor{parabolic{1.0}, 1.0, 3.0});
+    s.indentors[1].height = 0.05;
+    s.body = rigid_body{1.0};
+    const auto r = solve(s);
+    REQUIRE(r.diagnostics.code == status_code::ok);
+    const double L = r.indentors[0].contact_length;
+    for (const bool with_value : {false, true}) {
+      CAPTURE(with_value);
+      scene g = s;
+      for (auto& ind : g.indentors) {
+        general_profile gp;
+        gp.slope = [](double u) { return -u; };  // R = 1
+        if (with_value) gp.value = [](double u) { return 7.0 - u * u / 2; };
+        ind.shape = gp;
+      }
+      const auto q = solve(g);
+      REQUIRE(q.diagnostics.code == status_code::ok);
+      for (std::size_t k = 0; k < 2; ++k) {
+        CHECK(std::abs(q.indentors[k].load - r.indentors[k].load) < level_tol);
+        CHECK(std::abs(q.indentors[k].a - r.indentors[k].a) < 1e-8 * L);
+        CHECK(std::abs(q.indentors[k].b - r.indentors[k].b) < 1e-8 * L);
+      }
+    }
+  }
   SUBCASE("an indentor raised above the surface is contact_lost, never ok") {
     scene s = two(material{0.0, 1.0, 0.3, 0.0}, indentor{parabolic{1.0}, 1.0, 0.0}, indentor{parabolic{1.0}, 1.0, 3.0});
     s.indentors[1].height = 5.0;  // far above what a unit load presses into the surface

@@ -84,7 +84,9 @@
 //   misses the acceptance only because a contact's series stopped there with its residual of
 //   (8) above the acceptance (a contact spanning several samples of a rough profile: the
 //   spline's C2 joints make its series converge algebraically, measured residual 5e-6 at degree
-//   127 and 2e-8 at 511), the search runs again with the series to degree 512, on the same clock.
+//   127 and 2e-8 at 511; a contact over ~3 samples, 1.8e-6 at 511 and 4.2e-7 at 1023), the
+//   search runs again with the series to degree 512, and then 1024 when one still misses it
+//   there, on the same clock.
 //   So `ok` means: every contact passes contact.hpp's checks (residual of (8) against the
 //   spline, non-negative pressure, loads adding up to P, equal levels), and the surface clears
 //   the profile at every checked sample to acceptance x (max z - min z).
@@ -112,7 +114,7 @@
 //       self_affine_profile.py 4000 1 2e-3 (35)                              2     12-15 s
 //       self_affine_profile.py 16000 1 1e-3 (35)                             2     7-9 s
 //     The coarse solve takes 0.01-0.21 s of that (0.21 s of the 50 bumps' 0.39 s); the self-affine contacts spanning several samples
-//     are solved twice (degree 128, then 512: see above).
+//     are solved twice (degree 128, then 512: see above), or three times (then 1024).
 //     Each round is one coupled solve of its contacts (contact.hpp, "Cost"); from six contacts on,
 //     a rigid body's Jacobian is coloured (10 evaluations) with its far entries from the loads'
 //     monopoles. The same 50 bumps at material.alpha = 0: 49 contacts, 1 round, 0.58-0.60 s (a
@@ -123,7 +125,7 @@
 //   Any alpha in [0, 1) and beta; contacts with smooth edges and no declared corner inside (see
 //   THE INTERPOLANT; either shows as tension or not_converged). The data must extend beyond
 //   the contacts. A contact that must cover many samples (a long contact on a rough profile)
-//   needs a degree beyond max(512, max_degree): not_converged with its residual. Rough (self-affine) profiles:
+//   needs a degree beyond max(1024, max_degree): not_converged with its residual. Rough (self-affine) profiles:
 //   of self_affine_profile.py's 36 finite windows at 1000, 4000 and 16000 samples, seeds 1-3,
 //   loads 5e-4, 1e-3, 2e-3, 3e-3 (acceptance 1e-6, --time-limit 60; studies/scenes/
 //   rough_matrix.py), 15 are refused (contacts at an end of the samples) and 15 of the other 21
