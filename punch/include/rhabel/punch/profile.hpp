@@ -104,14 +104,14 @@
 //     4e-9 .. 3.5e-8 (the residual of the contacts of examples/rough_profile.json: 8e-10 .. 5e-8).
 //   * Cost (`rhabel solve --acceptance 1e-6 --threads 1`, diagnostics.seconds, one quiet core):
 //       scene (samples, contacts)                                      rounds   time
-//       examples/rough_profile.json (2000, 6)                               1     0.08 s
+//       examples/rough_profile.json (2000, 6)                               1     0.10-0.12 s
 //       studies/scenes/cosine_profile.py 10 (800, 6)                        1     0.05 s
-//       cosine_profile.py 25 (2000, 14)                                     1     0.18-0.19 s
-//       cosine_profile.py 50 (4000, 29)                                     1     0.38-0.39 s
-//       cosine_profile.py 100 20 0.25 (2000, 45)                            1     0.55 s
+//       cosine_profile.py 25 (2000, 14)                                     1     0.19-0.20 s
+//       cosine_profile.py 50 (4000, 29)                                     1     0.41-0.43 s
+//       cosine_profile.py 100 20 0.25 (2000, 45)                            1     0.61 s
 //       self_affine_profile.py 1000 SEED 5e-4, seeds 1-3 (3-6)            1-2     0.05-0.30 s
 //       self_affine_profile.py 4000 SEED 5e-4, seeds 1-3 (6-11)             2     0.56-0.84 s
-//       self_affine_profile.py 4000 1 2e-3 (35)                              2     12-15 s
+//       self_affine_profile.py 4000 1 2e-3 (35)                              2     12 s
 //       self_affine_profile.py 16000 1 1e-3 (35)                             2     7-9 s
 //     The coarse solve takes 0.01-0.21 s of that (0.21 s of the 50 bumps' 0.39 s); the self-affine contacts spanning several samples
 //     are solved twice (degree 128, then 512: see above), or three times (then 1024).
@@ -128,11 +128,11 @@
 //   needs a degree beyond max(1024, max_degree): not_converged with its residual. Rough (self-affine) profiles:
 //   of self_affine_profile.py's 36 finite windows at 1000, 4000 and 16000 samples, seeds 1-3,
 //   loads 5e-4, 1e-3, 2e-3, 3e-3 (acceptance 1e-6, --time-limit 60; studies/scenes/
-//   rough_matrix.py), 15 are refused (contacts at an end of the samples) and 15 of the other 21
-//   are ok (3 to 35 contacts, 0.08-13 s; those of tests/punch/test_rough_profile.cpp agree with
-//   the boundary-element oracle); 3 miss the acceptance by one contact across spline knots
-//   (residual of (8) 1.4e-6 .. 8e-6 at degree 511: the spline's joints make its series converge
-//   like degree^-2), and 3 end short of the load (1/16 to 1/4 of it, in 1-40 s; the status says
+//   rough_matrix.py), 15 are refused (contacts at an end of the samples) and 17 of the other 21
+//   are ok (3 to 35 contacts, 0.08-12 s; those of tests/punch/test_rough_profile.cpp agree with
+//   the boundary-element oracle); one misses the acceptance by a contact across spline knots
+//   (residual of (8) 1.1e-6 at degree 1023: the spline's joints make its series converge like
+//   degree^-2), and 3 end short of the load (1/16 to 1/4 of it, in 1-44 s; the status says
 //   which load was reached and where the profile penetrates). Periodic profiles are not solved
 //   here at all.
 //   Both are what rhabel/punch/profile_bem.hpp's boundary-element solver is for (first order,
