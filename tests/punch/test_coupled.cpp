@@ -67,6 +67,15 @@ struct boundary_pair {
 };
 
 scene two(const material& m, indentor first, indentor second) { return scene{m, 1.0, {first, second}}; }
+
+/// Two parabolas R = 1 at alpha 0.3 on one rigid body with unit load, 3 apart, the second raised by
+/// 0.05: the trailing one sits in the leading one's wake and carries less.
+scene raised_pair() {
+  scene s = two(material{0.3, 1.0, 0.3, 0.0}, indentor{parabolic{1.0}, 1.0, 0.0}, indentor{parabolic{1.0}, 1.0, 3.0});
+  s.indentors[1].height = 0.05;
+  s.body = rigid_body{1.0};
+  return s;
+}
 }  // namespace
 
 TEST_CASE("alpha = 1/2: two parabolas against the semi-closed solution (trailing one independent)") {
@@ -475,11 +484,7 @@ TEST_CASE("indentors on one rigid body: the loads' split, the common approach, c
     CHECK(std::abs(*r.body_approach - r.indentors[1].approach) < level_tol);
   }
   SUBCASE("the per-indentor solve with the body's loads has the body's relative offsets") {
-    // alpha 0.3: the trailing indentor sits in the leading one's wake; a raised one carries less.
-    const material m{0.3, 1.0, 0.3, 0.0};
-    scene s = two(m, indentor{parabolic{1.0}, 1.0, 0.0}, indentor{parabolic{1.0}, 1.0, 3.0});
-    s.indentors[1].height = 0.05;
-    s.body = rigid_body{1.0};
+    const scene s = raised_pair();
     const auto r = solve(s);
     REQUIRE(r.diagnostics.code == status_code::ok);
     CHECK(r.indentors[1].load < r.indentors[0].load);
@@ -501,10 +506,7 @@ TEST_CASE("indentors on one rigid body: the loads' split, the common approach, c
     // The levels of a body compare the profile at different contacts: a general profile's rise
     // from its `value` (a constant offset of which must not matter), else from its slope (exact
     // here: the slope is linear). A sign or offset error in either moves the split of the load.
-    const material m{0.3, 1.0, 0.3, 0.0};
-    scene s = two(m, indentor{parabolic{1.0}, 1.0, 0.0}, indentor{parabolic{1.0}, 1.0, 3.0});
-    s.indentors[1].height = 0.05;
-    s.body = rigid_body{1.0};
+    const scene s = raised_pair();
     const auto r = solve(s);
     REQUIRE(r.diagnostics.code == status_code::ok);
     const double L = r.indentors[0].contact_length;
