@@ -212,6 +212,38 @@ newton_result attempt(problem& pb, const edges& isolated) {
   return result;
 }
 
+/// A continuation in one parameter s of the problem, from a solution r at s = 0 to s = 1:
+/// stage(s) is the problem at s, each stage's Newton starts from the last solution, the step in s
+/// grows by 1.5 (up to max_step) after a success and halves after a failure, and ends(t, s, step)
+/// says whether a failed stage t ends it (t is then the result, not converged). p ends as the
+/// problem of the last stage tried; the result is converged only at s = 1.
+template <class Stage, class Ends>
+newton_result continue_to_one(problem& p, newton_result r, double step, double max_step, Stage stage, Ends ends) {
+  std::size_t total = r.iterations;
+  double s = 0;
+  while (r.converged && s < 1) {
+    const double s_next = std::min(1.0, s + step);
+    problem q = stage(s_next);
+    auto t = newton(q, r.x);
+    total += t.iterations;
+    if (t.converged) {
+      r = std::move(t);
+      s = s_next;
+      step = std::min(max_step, 1.5 * step);
+    } else if (ends(t, s_next, step)) {
+      r = std::move(t);
+      r.converged = false;
+    } else {
+      step /= 2;
+      continue;
+    }
+    p = std::move(q);
+    if (!r.converged) break;
+  }
+  r.iterations = total;
+  return r;
+}
+
 /// scene::body, when Newton from the isolated contacts fails (typically one indentor set much
 /// higher than the others): continuation in the heights, from all at one level (height factor 0)
 /// to theirs, each Newton solve starting from the last; the contact of an indentor that the rising
@@ -219,36 +251,22 @@ newton_result attempt(problem& pb, const edges& isolated) {
 newton_result height_continuation(problem& pb, const edges& isolated) {
   problem p = pb;
   p.height_factor = 0;
-  newton_result r = attempt(p, isolated);
-  std::size_t total = r.iterations;
-  double step = 0.25;
-  while (r.converged && p.height_factor < 1) {
-    problem q = p;
-    q.height_factor = std::min(1.0, p.height_factor + step);
-    auto t = newton(q, r.x);
-    total += t.iterations;
-    if (t.converged) {
-      r = std::move(t);
-      p = q;
-      step = std::min(0.5, 1.5 * step);
-    } else if (t.lost || step < 1e-3) {
-      r = std::move(t);
-      p = q;
-      break;
-    } else {
-      step /= 2;
-    }
-  }
-  r.iterations = total;
-  if (r.converged && p.height_factor < 1) r.converged = false;
+  newton_result r = continue_to_one(
+      p, attempt(p, isolated), 0.25, 0.5,
+      [&](double s) {
+        problem q = p;  // the last stage solved (attempt's at s = 0: its load factor)
+        q.height_factor = s;
+        return q;
+      },
+      [](const newton_result& t, double, double step) { return t.lost.has_value() || step < 1e-3; });
   pb = p;
   return r;
 }
 
 /// A seeded start (contact_set.cpp: the edges of a coarse boundary-element solve) from which
 /// Newton failed: the Newton homotopy F(x) - (1 - s) F(x0) = 0 from s = 0 (solved by the start
-/// x0) to s = 1, each stage's Newton from the last solution, the step in s halved on a failure
-/// (offset_failures failed stages in all end it) and grown by 1.5 after a success. WHY: the seeds'
+/// x0) to s = 1, each stage's Newton from the last solution (continue_to_one; offset_failures
+/// failed stages in all end it). WHY: the seeds'
 /// edges are known to a panel, so a light contact's level row can start at ~40 of its unit
 /// (self-affine profile, 4000 samples, 35 contacts); Newton's first step from there shrank it to
 /// nothing ("a contact vanishes"), while the path in s keeps every stage near its start. The
@@ -268,31 +286,22 @@ newton_result offset_continuation(problem& pb, const edges& start) {
     r.residual = std::numeric_limits<double>::infinity();
     return r;
   }
+  r.converged = true;  // x0 solves the stage s = 0
   const Eigen::VectorXd full = p.offset;
   const double requested = pb.accuracy;
-  double s = 0, step = 0.25;
-  std::size_t failures = 0, total = 0;
-  for (;;) {
-    problem q = p;
-    const double s_next = std::min(1.0, s + step);
-    q.offset = (1 - s_next) * full;
-    q.accuracy = s_next < 1 ? std::max(requested, continuation_accuracy) : requested;  // a stage only starts the next
-    auto t = newton(q, r.x);
-    total += t.iterations;
-    if (t.converged) {
-      r = std::move(t);
-      s = s_next;
-      step = std::min(1.0, 1.5 * step);
-      if (s == 1) break;
-    } else if (t.merged || (t.lost && s_next == 1) || ++failures > offset_failures || pb.cx->out_of_time()) {
-      r = std::move(t);
-      r.converged = false;
-      break;
-    } else {
-      step /= 2;
-    }
-  }
-  r.iterations = total;
+  std::size_t failures = 0;
+  r = continue_to_one(
+      p, std::move(r), 0.25, 1.0,
+      [&](double s) {
+        problem q = p;
+        q.offset = (1 - s) * full;
+        q.accuracy = s < 1 ? std::max(requested, continuation_accuracy) : requested;  // a stage only starts the next
+        return q;
+      },
+      [&](const newton_result& t, double s, double) {
+        return t.merged.has_value() || (t.lost.has_value() && s == 1) || ++failures > offset_failures ||
+               pb.cx->out_of_time();
+      });
   p.offset = Eigen::VectorXd();
   p.accuracy = requested;
   pb = p;
