@@ -46,7 +46,9 @@
 // separate), t raised to 1 in steps, each solve starting from the previous one, the stages below
 // t = 1 only to continuation_accuracy. Independent parabolas that no continuation brings to the
 // full loads (there may be no path with one interval per indentor:
-// coarse_bodies.hpp) start from the coarse boundary-element solve of all of them at once.
+// coarse_bodies.hpp) start from the coarse boundary-element solve of all of them at once. Seeded
+// contacts (a sampled profile's, from its coarse solve) from which Newton fails follow the Newton
+// homotopy from the seeds' own conditions (offset_continuation).
 //   The Newton iteration is INEXACT: an evaluation solves the coupling correction only to 1e-3 of
 // the largest condition at the last point (at most 1e-5, at least the tolerance), so that the
 // correction's degree, which near contacts is what an evaluation costs, follows the progress

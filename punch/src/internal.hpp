@@ -9,8 +9,9 @@
 //                      state of coupled_problem.hpp: coupled_fixed.cpp the linear solve on the
 //                      union of the contact intervals for given edges, coupled_newton.cpp Newton-
 //                      Broyden on all edge conditions, coupled_solve.cpp the starts
-//                      (continuations in the load, the heights and the loads' ratio, and the
-//                      coarse solve of all indentors at once of coarse_bodies.cpp) and the result;
+//                      (continuations in the load, the heights, the loads' ratio and the offset
+//                      from seeds, and the coarse solve of all indentors at once of
+//                      coarse_bodies.cpp) and the result;
 //   fields.cpp         edge intensities, peak, Riemann-Hilbert samples, the displacement kernel;
 //   surface.hpp        the surface displacement (displacement grid, penetration check);
 //   report.cpp         the report of a solved contact: residual of (8), status, sampled fields;
