@@ -563,7 +563,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
     out.code = status_code::contact_lost;
     std::size_t named = 0;
     if (seeded) {
-      // From seeds (a coarse solve's or the last round's contacts, near the physical ones) the
+      // From seeds (a sampled profile's coarse contacts, near the physical ones) the
       // contact that shrank is the one named; the equal split's levels mean nothing there (the
       // seeds' densities are not solved), and naming by them dropped the same real contact
       // round after round (16000-sample profile: 9 of 17 rounds).

@@ -245,7 +245,7 @@ struct general_profile {
   /// the rise of the profile between two points (the levels of indentors on a rigid body, the
   /// penetration check) is its difference, exact; else the integral of `slope` by Gauss-Legendre
   /// between the corners, which converges slowly where `slope` has kinks it does not list (a
-  /// spline's knots: its error reached 4e-5 of a self-affine profile's span over ~3 knots).
+  /// spline's knots: up to ~4e-5 of a self-affine profile's span over ~3 knots).
   std::function<double(double)> value;
   double search_lo = -1;                ///< the leading edge is sought in (search_lo, search_hi) [m]
   double search_hi = 1;                 ///< idem for the trailing edge [m]
