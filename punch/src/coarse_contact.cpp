@@ -27,7 +27,7 @@ constexpr std::size_t resolved_patch = 4;
 }  // namespace
 
 std::vector<coarse_patch> coarse_contacts(const profile_curve& curve, double load, const context& cx,
-                                          std::size_t panels, std::size_t fine_panels) {
+                                          std::size_t panels, std::size_t fine_panels, point_sources* sources) {
   const auto [lo, hi] = std::minmax_element(curve.z().begin(), curve.z().end());
   const double top = *hi, span = *hi - *lo;
   panels = std::clamp(panels, first_panels, max_panels);
@@ -51,6 +51,13 @@ std::vector<coarse_patch> coarse_contacts(const profile_curve& curve, double loa
     const std::size_t next = std::min(4 * n, n < panels ? panels : fine_panels);
     active = refine_active(active, next);
     n = next;
+  }
+  if (sources) {
+    *sources = {};
+    for (std::size_t c = 0; c < idx.size(); ++c) {
+      sources->t.push_back(gr.lo + gr.length * (static_cast<double>(idx[c]) + 0.5) * gr.h);
+      sources->w.push_back(gr.h * g[static_cast<Eigen::Index>(c)]);
+    }
   }
   std::vector<coarse_patch> out;
   for (const auto& [s, e] : runs_of(idx)) {

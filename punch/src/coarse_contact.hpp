@@ -17,6 +17,7 @@
 #pragma once
 
 #include "internal.hpp"
+#include "periodic_images.hpp"
 #include "profile_curve.hpp"
 
 #include <cstddef>
@@ -33,7 +34,10 @@ struct coarse_patch {
 /// The contacts of the coarse solve in the order of x, on `panels` panels, refined on (by 4 at a
 /// time) up to `fine_panels` while a contact has fewer than 4 panels (both clamped to 256 ..
 /// 2^19); empty when its active set did not settle (the caller then searches without it).
+/// With `sources`: the finest grid's active panels as point sources too (midpoints, h g: units of
+/// int g; periodic_images.hpp).
 std::vector<coarse_patch> coarse_contacts(const profile_curve& curve, double load, const context& cx,
-                                          std::size_t panels, std::size_t fine_panels);
+                                          std::size_t panels, std::size_t fine_panels,
+                                          point_sources* sources = nullptr);
 
 }  // namespace rhabel::punch::detail

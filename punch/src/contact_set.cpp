@@ -14,6 +14,7 @@
 #include "coarse_contact.hpp"
 #include "internal.hpp"
 #include "profile_curve.hpp"
+#include "profile_search.hpp"
 #include "surface.hpp"
 
 #include <algorithm>
@@ -173,8 +174,10 @@ struct profile_model {
   std::vector<bump> bumps;
   double top = 0, span = 0;  // max z and max z - min z
 
-  explicit profile_model(const profile_scene& s) : source(&s), curve(s.profile), bumps(find_bumps(s.profile.z)) {
-    const auto [lo, hi] = std::minmax_element(s.profile.z.begin(), s.profile.z.end());
+  explicit profile_model(const profile_scene& s) : profile_model(s, profile_curve(s.profile)) {}
+  /// s's profile given by `c` (its samples c.x(), c.z()).
+  profile_model(const profile_scene& s, profile_curve c) : source(&s), curve(std::move(c)), bumps(find_bumps(curve.z())) {
+    const auto [lo, hi] = std::minmax_element(curve.z().begin(), curve.z().end());
     top = *hi;
     span = *hi - *lo;
   }
@@ -385,6 +388,8 @@ void refuse_end_contacts(const profile_model& m, const std::vector<coarse_patch>
   }
 }
 
+std::optional<search_start> start_from(const profile_model& m, const std::vector<coarse_patch>& patches);
+
 /// The coarse solve's contacts (coarse_contact.hpp) at the full load, each the run of bumps whose
 /// tips it covers (two may share a bump: a bump's flank can carry a contact of its own), with its
 /// coarse edges and load as the seed of the first round; empty when the coarse solve did not
@@ -398,6 +403,12 @@ std::optional<search_start> predicted_start(const profile_model& m, const contex
     return std::nullopt;  // the search's first round runs anyway: it has a result to report
   }
   refuse_end_contacts(m, patches, load);
+  return start_from(m, patches);
+}
+
+/// The first round's runs and seeds from contacts (absolute edges, loads in units of int g): each
+/// the run of bumps whose tips it covers (predicted_start).
+std::optional<search_start> start_from(const profile_model& m, const std::vector<coarse_patch>& patches) {
   if (patches.empty()) return std::nullopt;
   const auto& x = m.curve.x();
   search_start out;
@@ -644,7 +655,7 @@ profile_result report_profile(const profile_model& m, const context& cx, const s
 /// The search from the seeded start (`predicted`: predicted_start's); when that does not end in a
 /// verified set, by the continuation from the highest tip (their rounds and iterations add up).
 /// Reported.
-profile_result search_and_report(const profile_model& m, const context& cx, const std::optional<search_start>& predicted) {
+window_solution search_and_report(const profile_model& m, const context& cx, const std::optional<search_start>& predicted) {
   search_result sr;
   if (predicted) sr = search_contact_set(m, cx, *predicted);
   if (!predicted || (!verified(sr, cx.options.acceptance) && !(sr.last && cx.out_of_time()))) {
@@ -657,7 +668,11 @@ profile_result search_and_report(const profile_model& m, const context& cx, cons
   // Not even the highest tip alone at 16^-12 of the load: no contact interval (as solve for one
   // indentor without one).
   if (!sr.last) throw std::domain_error(std::string(who) + ": no contact found: " + sr.failure);
-  return report_profile(m, cx, sr);
+  window_solution out;
+  out.result = report_profile(m, cx, sr);
+  out.origin = sr.last->states.origin;
+  for (const auto& state : sr.last->states.st) out.densities.push_back(state.g);
+  return out;
 }
 
 /// Whether a result missed the acceptance only because a contact's series stopped at
@@ -682,7 +697,45 @@ bool needs_degree(const profile_result& r, const context& cx, std::size_t degree
   return std::any_of(r.contacts.begin(), r.contacts.end(), capped);
 }
 
+/// The search from `predicted` (the seeded start once: its coarse solve is up to half of a
+/// search, 0.21 s of 0.39 s for 50 cosine bumps), and again with the series to each of
+/// profile_degrees while needs_degree (the clock and the interrupt shared).
+window_solution solve_model(const profile_model& m, const context& cx, const std::optional<search_start>& predicted) {
+  window_solution out = search_and_report(m, cx, predicted);
+  context wide = cx;
+  for (const std::size_t degree : profile_degrees) {
+    if (!needs_degree(out.result, wide, degree)) continue;
+    wide.options.max_degree = degree;
+    window_solution again = search_and_report(m, wide, predicted);
+    again.result.diagnostics.rounds += out.result.diagnostics.rounds;
+    again.result.diagnostics.iterations += out.result.diagnostics.iterations;
+    out = std::move(again);
+  }
+  return out;
+}
+
 }  // namespace
+
+window_solution search_window(const profile_scene& window, const profile_curve& curve, const context& cx,
+                              const std::vector<coarse_patch>& seeds) {
+  const profile_model m(window, curve);
+  if (m.bumps.empty() || first_runs(m).empty())
+    throw std::domain_error(std::string(who) + ": the profile corrected by the other periods has no tip inside the window");
+  return solve_model(m, cx, seeds.empty() ? predicted_start(m, cx) : start_from(m, seeds));
+}
+
+/// The body's C_f, mean pressure and contact fraction from the contacts (profile_result).
+void body_totals(profile_result& r, const profile_scene& s) {
+  double load = 0, moment = 0, width = 0;
+  for (const auto& c : r.contacts) load += c.load, moment += c.load * c.hysteretic_friction, width += c.contact_length;
+  r.hysteretic_friction = load > 0 ? moment / load : 0.0;
+  r.total_friction = r.hysteretic_friction + s.material.coulomb;
+  const double length = s.profile.period > 0 ? s.profile.period : s.profile.x.back() - s.profile.x.front();
+  r.mean_pressure = s.load / length;
+  if (!(s.profile.period > 0)) r.window_start = s.profile.x.front();
+  r.contact_fraction = width / length;
+}
+
 }  // namespace detail
 
 profile_result solve_profile(const profile_scene& s, const solve_options& options) {
@@ -690,9 +743,14 @@ profile_result solve_profile(const profile_scene& s, const solve_options& option
   const auto start = std::chrono::steady_clock::now();
   validate_profile(s, who);
   validate_options(options, who);
-  if (s.profile.period > 0)
-    bad("profile.period = " + num(s.profile.period) + ": the spectral contact search solves finite windows; a "
-        "periodic profile is solved by the boundary-element solver (rhabel::punch::solve_profile_bem)");
+  if (s.profile.period > 0) {
+    const context cx = make_context(s.material, s.speed, options);
+    profile_result out = solve_periodic_profile(s, cx);
+    cx.throw_if_interrupted(who);
+    body_totals(out, s);
+    out.diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return out;
+  }
   const profile_model m(s);
   if (m.bumps.empty())
     bad("profile.z has no local maximum inside the data (its highest samples are at an end): extend the samples "
@@ -702,20 +760,8 @@ profile_result solve_profile(const profile_scene& s, const solve_options& option
         num(s.profile.z.front() == m.top ? s.profile.x.front() : s.profile.x.back()) +
         "): the first contact would leave the samples; extend them");
   const context cx = make_context(s.material, s.speed, options);
-  // The seeded start once (its coarse solve is up to half of a search: 0.21 s of 0.39 s for 50
-  // cosine bumps), for both searches below.
-  const auto predicted = predicted_start(m, cx);
-  profile_result out = search_and_report(m, cx, predicted);
-  context wide = cx;
-  for (const std::size_t degree : profile_degrees) {
-    if (!needs_degree(out, wide, degree)) continue;
-    // Again with the series to `degree` (the clock and the interrupt shared).
-    wide.options.max_degree = degree;
-    profile_result again = search_and_report(m, wide, predicted);
-    again.diagnostics.rounds += out.diagnostics.rounds;
-    again.diagnostics.iterations += out.diagnostics.iterations;
-    out = std::move(again);
-  }
+  profile_result out = solve_model(m, cx, predicted_start(m, cx)).result;
+  body_totals(out, s);
   out.diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;
 }

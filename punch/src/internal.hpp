@@ -23,6 +23,10 @@
 //                      periodic: the regularised circulant) and its active set, shared by
 //                      coarse_contact.cpp and profile_bem.cpp (and its finite kernel by
 //                      coarse_bodies.cpp: several independent indentors on one grid);
+//   periodic_profile.cpp a periodic profile by the spectral search (solve_profile with a
+//                      period): one period as a finite window (contact_set.cpp's search_window,
+//                      profile_search.hpp) with the other periods' displacement of
+//                      periodic_images.cpp, by fixed-point passes;
 //   profile_bem.cpp    a sampled profile by the boundary-element method (solve_profile_bem):
 //                      grids refined until the extrapolated loads and C_f meet the acceptance.
 // A new shape: its forcing in shapes.cpp (own_slope, own_forcing), its isolated contact in

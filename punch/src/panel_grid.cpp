@@ -84,6 +84,31 @@ double periodic_panel_kernel::operator()(double h, double sigma) const {
   return s + tail;
 }
 
+std::pair<double, double> periodic_panel_kernel::images(double v) const {
+  // Psi(u) = E(u) ahead (u > 0), kappa E(-u) + c1 behind; E(u) = (1 - u^alpha)/alpha (-log u at
+  // alpha = 0), E'(u) = -u^(alpha - 1).
+  auto e = [&](double u) { return alpha_ == 0 ? -std::log(u) : -std::expm1(alpha_ * std::log(u)) / alpha_; };
+  double value = 0, slope = 0;
+  for (int j = -near_images; j <= near_images; ++j) {
+    if (j == 0) continue;
+    const double u = v + j;
+    if (u > 0) {
+      value += e(u);
+      slope -= std::pow(u, alpha_ - 1);
+    } else {
+      value += kappa_ * e(-u) + c1_;
+      slope += kappa_ * std::pow(-u, alpha_ - 1);
+    }
+  }
+  // sum_k coef_k v^k by Horner (coef_0 = 0).
+  double p = 0, dp = 0;
+  for (int k = taylor_terms; k >= 1; --k) {
+    dp = dp * v + p;
+    p = p * v + coef_[static_cast<std::size_t>(k)];
+  }
+  return {value + p * v, slope + dp * v + p};
+}
+
 std::vector<double> finite_panel_kernel(std::size_t n, double length, const context& cx) {
   const double h = 1.0 / static_cast<double>(n), theta = collocation_theta;
   const double scale = cx.gamma_factor * std::pow(length, cx.alpha);

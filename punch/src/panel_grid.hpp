@@ -74,6 +74,11 @@ class periodic_panel_kernel {
  public:
   periodic_panel_kernel(double alpha, double kappa, double one_minus_kappa_over_alpha);
   double operator()(double h, double sigma) const;
+  /// The images' part of a unit POINT load at t seen at sigma, v = t - sigma in (-1, 1): the sum
+  /// over j != 0 of Psi(v + j) (regularised as above, up to the same constant) and its
+  /// derivative in v. Smooth on (-1, 1) (the nearest image, j = -+1, is singular at v = +-1):
+  /// periodic_images.hpp adds it to a finite window's direct kernel.
+  std::pair<double, double> images(double v) const;
 
  private:
   double alpha_, kappa_, c1_;

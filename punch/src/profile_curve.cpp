@@ -9,7 +9,8 @@
 
 namespace rhabel::punch::detail {
 
-profile_curve::profile_curve(const sampled_profile& p) : x_(p.x), z_(p.z), corners_(p.corners), period_(p.period) {
+profile_curve::profile_curve(const sampled_profile& p)
+    : x_(p.x), z_(p.z), corners_(p.corners), period_(p.period), wrap_(p.period), wrap_lo_(p.x.front()) {
   if (period_ > 0) {
     // One periodic piece through the closing knot (x_0 + period, z_0) (corners are refused with a
     // period: validate_profile).
@@ -43,6 +44,19 @@ profile_curve::profile_curve(const sampled_profile& p) : x_(p.x), z_(p.z), corne
   }
 }
 
+profile_curve::profile_curve(const profile_curve& periodic, std::size_t first, std::function<double(double)> c,
+                             std::function<double(double)> dc)
+    : period_(0), wrap_(periodic.wrap_), wrap_lo_(periodic.wrap_lo_), correction_(std::move(c)),
+      correction_slope_(std::move(dc)), pieces_(periodic.pieces_) {
+  const auto& x = periodic.x_;
+  const std::size_t n = x.size();
+  for (std::size_t k = 0; k <= n; ++k) {
+    const std::size_t i = (first + k) % n;
+    x_.push_back(x[i] + (first + k >= n ? wrap_ : 0.0));
+  }
+  for (const double at : x_) z_.push_back(value(at));
+}
+
 const profile_curve::piece& profile_curve::piece_at(double x) const {
   // The piece whose upper end is the first >= x (a corner belongs to the piece on its left for the
   // value, which both pieces share; the slope there is one-sided either way).
@@ -52,13 +66,17 @@ const profile_curve::piece& profile_curve::piece_at(double x) const {
 }
 
 double profile_curve::reduce(double x) const {
-  if (period_ <= 0) return x;
-  const double r = x - period_ * std::floor((x - x_.front()) / period_);
-  return std::clamp(r, x_.front(), x_.front() + period_);
+  if (wrap_ <= 0) return x;
+  const double r = x - wrap_ * std::floor((x - wrap_lo_) / wrap_);
+  return std::clamp(r, wrap_lo_, wrap_lo_ + wrap_);
 }
 
 double profile_curve::value(double x) const {
-  x = reduce(x);
+  if (correction_) return spline_value(reduce(x)) - correction_(x);
+  return spline_value(reduce(x));
+}
+
+double profile_curve::spline_value(double x) const {
   const piece& pc = piece_at(x);
   // Linear continuation beyond the data with the end slope (gsl_spline_eval refuses x outside).
   const double at = std::clamp(x, pc.lo, pc.hi);
@@ -67,9 +85,10 @@ double profile_curve::value(double x) const {
 }
 
 double profile_curve::slope(double x) const {
+  const double correction = correction_slope_ ? correction_slope_(x) : 0.0;
   x = reduce(x);
   const piece& pc = piece_at(x);
-  return gsl_spline_eval_deriv(pc.spline.get(), std::clamp(x, pc.lo, pc.hi), nullptr);
+  return gsl_spline_eval_deriv(pc.spline.get(), std::clamp(x, pc.lo, pc.hi), nullptr) - correction;
 }
 
 std::vector<bump> find_bumps(const std::vector<double>& z) {

@@ -14,6 +14,7 @@
 #include <gsl/gsl_spline.h>
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -23,6 +24,12 @@ class profile_curve {
  public:
   /// p validated (solve_profile's validate_profile).
   explicit profile_curve(const sampled_profile& p);
+  /// The periodic curve `periodic` over one period from its sample `first` on, as a finite
+  /// window: samples x_first .. x_{n-1}, x_0 + period .. x_first + period (n + 1), its values
+  /// those of the periodic spline minus a correction c (and its slope dc), both functions of the
+  /// window's abscissa (periodic_profile.cpp: the images' displacement). period() is 0.
+  profile_curve(const profile_curve& periodic, std::size_t first, std::function<double(double)> c,
+                std::function<double(double)> dc);
   double value(double x) const;
   double slope(double x) const;
   double lo() const { return x_.front(); }
@@ -39,10 +46,15 @@ class profile_curve {
     std::shared_ptr<gsl_spline> spline;
   };
   const piece& piece_at(double x) const;
+  double spline_value(double x) const;  // x reduced
   /// x reduced into [x_0, x_0 + period) (periodic profiles; x itself otherwise).
   double reduce(double x) const;
   std::vector<double> x_, z_, corners_;
   double period_ = 0;
+  // The spline's period and first knot (period_ or, for a window of a periodic curve, its
+  // source's), and the window's correction (empty: none).
+  double wrap_ = 0, wrap_lo_ = 0;
+  std::function<double(double)> correction_, correction_slope_;
   std::vector<piece> pieces_;
 };
 

@@ -86,8 +86,9 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
         scene file's directory with load_scene) and optional ``"corners"``: a sampled rigid
         profile whose contacts are found.
         Optional ``"period"`` (> 0: the profile repeats, samples in [x_0, x_0 + period), the load
-        is per period) and ``"solver"``: ``"spectral"`` (finite windows; the default without a
-        period) or ``"boundary_element"`` (finite or periodic; the default with a period), and for
+        is per period) and ``"solver"``: ``"spectral"`` (the contact search with Jacobi series
+        per contact, finite or periodic; the default without a period) or
+        ``"boundary_element"`` (finite or periodic; the default with a period), and for
         the latter ``"max_panels"`` (the finest grid, 256 .. 8388608, ~130 bytes a panel; default
         2^21).
 
@@ -192,7 +193,11 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
           {``min``, ``at``} (the smallest gap between surface and profile at the samples outside
           the contacts, relative to max z - min z), ``penetrations`` (where the profile
           penetrates the surface outside the contacts found: the contacts a result that is not
-          ok is missing), ``diagnostics.rounds`` and ``diagnostics.load_fraction`` (the fraction
+          ok is missing), ``hysteretic_friction`` and ``total_friction`` of the body (C_f: the
+          contacts' load-weighted mean), ``mean_pressure`` (load per window or period length),
+          ``contact_fraction``, with a period ``window`` [x_c, x_c + period] (the period in
+          whose abscissae the contacts are reported: it starts in the widest gap),
+          ``diagnostics.rounds`` and ``diagnostics.load_fraction`` (the fraction
           of the body's load the contacts carry; below 1 only with a status that is not ok).
         - With ``profile.solver = "boundary_element"``: ``patches`` (each ``contact`` (a, b),
           ``edge_error`` (one panel), ``load`` and ``hysteretic_friction`` as {``value``,

@@ -384,17 +384,16 @@ profile_spec parse_profile(const json& value, const std::string& base_dir) {
     p.corners = number_array(*it, "profile.corners", "abscissa of a slope jump");
   if (const auto it = value.find("period"); it != value.end())
     p.period = number(*it, "profile.period", positive, "the period: the samples lie in [x_0, x_0 + period)");
-  // The solver: the spectral contact search (finite windows) or the boundary-element method
-  // (finite or periodic; the only one for a period).
+  // The solver: the spectral contact search or the boundary-element method, both finite or
+  // periodic; the boundary-element method by default with a period (it takes any load and any
+  // number of patches; the spectral search is the accurate one where it succeeds: README).
   const std::string solver = optional_string(value, "profile", "solver");
   if (solver.empty()) {
     p.boundary_element = p.period > 0;
   } else if (solver == "boundary_element") {
     p.boundary_element = true;
   } else if (solver == "spectral") {
-    if (p.period > 0)
-      fail_scene("profile.solver = \"spectral\" solves finite windows only; a profile.period needs \"boundary_element\" "
-                 "(or no profile.solver)");
+    p.boundary_element = false;
   } else {
     fail_scene("profile.solver = \"" + solver.substr(0, 40) + "\" is not a solver (known: spectral, boundary_element)");
   }

@@ -251,6 +251,11 @@ run_outcome run_profile(const scene_spec& spec, const run_request& request, cons
     contacts.push_back(std::move(item));
   }
   doc["contacts"] = std::move(contacts);
+  doc["hysteretic_friction"] = r.hysteretic_friction;
+  doc["total_friction"] = r.total_friction;
+  doc["mean_pressure"] = r.mean_pressure;
+  doc["contact_fraction"] = r.contact_fraction;
+  if (spec.profile->period > 0) doc["window"] = {r.window_start, r.window_start + spec.profile->period};
   add_surface(out, std::move(r.surface_x), std::move(r.surface));
   if (!std::isnan(r.clearance)) doc["clearance"] = {{"min", r.clearance}, {"at", r.clearance_at}};
   doc["penetrations"] = r.penetrations;

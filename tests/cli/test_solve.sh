@@ -203,10 +203,35 @@ cf = r["hysteretic_friction"]
 assert 0 < cf["error"] < 1e-4 * 1 and 0 < cf["value"] < 1, cf
 assert r["scene"]["profile"]["solver"] == "boundary_element"
 PY
-# --grid has no fields to sample there; profile.solver "spectral" with a period; an unknown solver
+# --- a periodic profile by the spectral search: Westergaard's elastic sinusoid ----------------
+# z = -(Delta/2)(1 - cos(2 pi x/lambda)), alpha 0, E* = 1: the contact half-width a at the mean
+# pressure p = (pi Delta/(2 lambda)) sin^2(pi a/lambda) (a closed form sharing nothing with rhabel).
+"$py" - "$rhabel" <<'PY' || fail "periodic spectral: Westergaard (see above)"
+import json, math, subprocess, sys
+lam, delta, n, share = 2.0, 0.01, 400, 0.3
+x = [-0.5 + lam * i / n for i in range(n)]
+z = [-delta / 2 * (1 - math.cos(2 * math.pi * v / lam)) for v in x]
+p_mean = share * math.pi * delta / (2 * lam)
+scene = {"material": {"alpha": 0.0, "E1": 1.0, "nu": 0.0, "coulomb": 0.0}, "speed": 1.0, "body": {"load": p_mean * lam},
+         "profile": {"x": x, "z": z, "period": lam, "solver": "spectral"}}
+out = subprocess.run([sys.argv[1], "solve", "-", "--acceptance", "1e-6"], input=json.dumps(scene),
+                     capture_output=True, text=True)
+assert out.returncode == 0, out.stderr
+r = json.loads(out.stdout)
+assert r["diagnostics"]["status"] == "ok", r["diagnostics"]
+(c,) = r["contacts"]
+a = lam / math.pi * math.asin(math.sqrt(share))
+lo, hi = r["window"]
+assert abs(hi - lo - lam) < 1e-12 and lo <= c["contact"][0] < c["contact"][1] <= hi, (r["window"], c["contact"])
+# Edges to the residual the spline allows at the default degree (~1e-7; measured 2.6e-8 lambda).
+assert abs(math.remainder(c["contact"][0] + a, lam)) < 5e-7 * lam and abs(math.remainder(c["contact"][1] - a, lam)) < 5e-7 * lam
+assert abs(r["hysteretic_friction"]) < 1e-9 and abs(r["mean_pressure"] / p_mean - 1) < 1e-15
+assert r["scene"]["profile"]["solver"] == "spectral"
+PY
+# --grid has no fields to sample there; an unknown solver
 "$rhabel" solve "$src/examples/rough_periodic.json" --grid 11 > "$tmp/stdout" 2> "$tmp/err"; rc=$?
 [ "$rc" -eq 2 ] && [ ! -s "$tmp/stdout" ] && grep -q "boundary-element solver reports its patches only" "$tmp/err" || fail "periodic --grid: rc $rc, $(cat "$tmp/err")"
-for bad in '"period": 4, "max_panels": 100|profile.max_panels = 100 is outside the valid range' '"period": 4, "max_panels": 300.5|profile.max_panels = 300.5 must be a whole number' '"max_panels": 1000|the spectral solver has none' '"period": 4, "max_panels": "many"|profile.max_panels must be a number' '"period": 4, "solver": "spectral"|a profile.period needs' '"solver": "bem"|is not a solver' '"period": -1|profile.period = -1 is outside' '"period": 3|the samples must lie in'; do
+for bad in '"period": 4, "max_panels": 100|profile.max_panels = 100 is outside the valid range' '"period": 4, "max_panels": 300.5|profile.max_panels = 300.5 must be a whole number' '"max_panels": 1000|the spectral solver has none' '"period": 4, "max_panels": "many"|profile.max_panels must be a number' '"solver": "bem"|is not a solver' '"period": -1|profile.period = -1 is outside' '"period": 3|the samples must lie in'; do
   field="${bad%%|*}"; message="${bad#*|}"
   printf '%s' '{"material": {"alpha": 0.3, "E1": 1e6, "nu": 0.5, "coulomb": 0}, "speed": 1, "body": {"load": 1}, "profile": {"x": [0, 1, 2, 3], "z": [0, 1, 0, -1], '"$field"'}}' > "$tmp/p.json"
   "$rhabel" solve "$tmp/p.json" > "$tmp/stdout" 2> "$tmp/err"; rc=$?

@@ -91,6 +91,22 @@
 //   spline, non-negative pressure, loads adding up to P, equal levels), and the surface clears
 //   the profile at every checked sample to acceptance x (max z - min z).
 //
+// PERIODIC PROFILES (sampled_profile::period > 0; docs/theory.md section 10)
+//   The samples are one period of a profile that repeats (the periodic cubic spline), the load is
+//   per period and every period loads the half-space. The search runs on a window of one period
+//   that starts at the sample nearest the middle of the widest gap between the contacts of a
+//   coarse periodic boundary-element solve; there the other periods add a displacement w_img that
+//   is smooth on the window (their contacts are beyond its ends), so the window is the finite
+//   problem above with the profile z - w_img. w_img depends on the solution: it is computed from
+//   the coarse solve first, then from each solve's densities, and the window is solved again
+//   (seeded by the last contacts) until w_img's slope changes by at most a tenth of the acceptance
+//   on every contact (measured: one or two passes; the first pass's change is 1e-10 .. 5e-8 of the
+//   data on self-affine profiles). The reported residual of (8) of a contact is the window's plus
+//   that last change: the periodic equation's. C_f = int z' p / int p with the profile's own
+//   slope. The contacts, tips and penetrations are abscissae of the window [window_start,
+//   window_start + period], which may extend beyond the samples' period. A load that leaves no gap
+//   (full contact over the period) is refused (std::domain_error naming body.load).
+//
 // MEASURED (alpha 0.3 unless said; tolerance 1e-8 .. 1e-10, acceptance 1e-6)
 //   * A parabola sampled 100 times per unit on [-3, 3]: edges, load and C_f of the parabolic
 //     indentor's closed-form path to 1e-9 (tests/punch/test_profile.cpp, alpha 0, 0.3, 0.7).
@@ -133,10 +149,14 @@
 //   the boundary-element oracle); one misses the acceptance by a contact across spline knots
 //   (residual of (8) 1.1e-6 at degree 1023: the spline's joints make its series converge like
 //   degree^-2), and 3 end short of the load (1/16 to 1/4 of it, in 1-44 s; the status says
-//   which load was reached and where the profile penetrates). Periodic profiles are not solved
-//   here at all.
-//   Both are what rhabel/punch/profile_bem.hpp's boundary-element solver is for (first order,
-//   with error estimates).
+//   which load was reached and where the profile penetrates). The same 36 as periodic profiles
+//   (rough_matrix.py --periodic): 30 ok (12, 9 and 9 of the 12 of each size; 3 to 65 contacts,
+//   0.15-33 s), each with the boundary-element solver's patches and C_f within its estimate (those
+//   of tests/punch/test_rough_profile.cpp against the boundary-element oracle); four end short of
+//   the load, one contact_lost, one not_converged at the time limit.
+//   Scenes the search does not solve, and many hundreds of patches, are what
+//   rhabel/punch/profile_bem.hpp's boundary-element solver is for (first order, with error
+//   estimates).
 #pragma once
 
 #include "rhabel/punch/contact.hpp"
@@ -155,7 +175,8 @@ struct sampled_profile {
   std::vector<double> corners;  ///< abscissae of slope jumps: each one of x[1] .. x[n-2]
   /// > 0: the profile repeats with this period [m]; the samples lie in [x_0, x_0 + period) and
   /// the interpolant is the periodic cubic spline closed by (x_0 + period, z_0) (no corners).
-  /// Solved by solve_profile_bem (rhabel/punch/profile_bem.hpp); solve_profile refuses it.
+  /// Solved by solve_profile (the spectral search on one period: see "PERIODIC PROFILES" above)
+  /// or by solve_profile_bem (rhabel/punch/profile_bem.hpp).
   double period = 0;
 };
 
@@ -181,6 +202,20 @@ struct profile_result {
   /// The body's approach: the rigid approach of the profile's highest sample (approach of a
   /// contact + max z - z(tip)); in the Psi datum of contact.hpp (differences are meaningful).
   double body_approach = 0;
+  /// Where the contacts' abscissae are reported: a finite window's x_0; a periodic profile's
+  /// window of one period [window_start, window_start + period], which starts at the sample
+  /// nearest the middle of the widest gap between contacts (the contacts, tips, clearance_at and
+  /// penetrations are abscissae in it; subtract the period from those beyond x_0 + period for
+  /// the samples' period) [m].
+  double window_start = 0;
+  /// The body's C_f: int z' p / int p over all contacts (of one period when periodic), from the
+  /// contacts' loads and C_f; total_friction = that + material.coulomb.
+  double hysteretic_friction = 0;
+  double total_friction = 0;
+  /// body.load / the window's length (x_n - x_0; periodic: the period) [Pa], and the contacts'
+  /// total length over it.
+  double mean_pressure = 0;
+  double contact_fraction = 0;
   /// Smallest clearance w - z + const found at the checked samples outside the contacts,
   /// relative to max z - min z (negative: the profile penetrates the surface there).
   double clearance = 0;
