@@ -5,6 +5,8 @@
 
 #include "rhabel/abel.hpp"
 
+#include <boost/math/special_functions/chebyshev.hpp>
+
 #include <algorithm>
 #include <cmath>
 #include <deque>
@@ -17,16 +19,6 @@ constexpr std::size_t image_first_panels = 16;
 // the window's ends, at the gap to the nearest contact: a table that needs finer panels than
 // this has a contact at an end of the window).
 constexpr double image_smallest_panel = 1e-9;
-
-double image_clenshaw(const std::array<double, image_field::points>& c, double y) {
-  double b1 = 0, b2 = 0;
-  for (std::size_t j = c.size(); j-- > 1;) {
-    const double b0 = 2 * y * b1 - b2 + c[j];
-    b2 = b1;
-    b1 = b0;
-  }
-  return y * b1 - b2 + c[0];
-}
 
 }  // namespace
 
@@ -84,8 +76,9 @@ image_field::image_field(const point_sources& src, double lo, double period, con
       for (std::size_t k = 0; k < P; ++k) cosine[k] = std::cos(pi * static_cast<double>(j) * (static_cast<double>(k) + 0.5) / P);
       double cv = 0, cs = 0;
       for (std::size_t k = 0; k < P; ++k) cv += v[k] * cosine[k], cs += s[k] * cosine[k];
-      out.value[j] = (j == 0 ? 1.0 : 2.0) * cv / P;
-      out.slope[j] = (j == 0 ? 1.0 : 2.0) * cs / P;
+      // Boost's Clenshaw sum takes c_0 / 2: every coefficient is 2/P of its cosine sum.
+      out.value[j] = 2 * cv / P;
+      out.slope[j] = 2 * cs / P;
     }
     const double tail_v = std::max(std::abs(out.value[P - 1]), std::abs(out.value[P - 2]));
     const double tail_s = std::max(std::abs(out.slope[P - 1]), std::abs(out.slope[P - 2]));
@@ -117,14 +110,14 @@ double image_field::value(double x) const {
   if (panels_.empty()) return 0;
   x = std::clamp(x, lo_, hi_);
   const panel& p = panel_at(x);
-  return image_clenshaw(p.value, (2 * x - p.lo - p.hi) / (p.hi - p.lo));
+  return boost::math::chebyshev_clenshaw_recurrence(p.value.data(), p.value.size(), (2 * x - p.lo - p.hi) / (p.hi - p.lo));
 }
 
 double image_field::slope(double x) const {
   if (panels_.empty()) return 0;
   x = std::clamp(x, lo_, hi_);
   const panel& p = panel_at(x);
-  return image_clenshaw(p.slope, (2 * x - p.lo - p.hi) / (p.hi - p.lo));
+  return boost::math::chebyshev_clenshaw_recurrence(p.slope.data(), p.slope.size(), (2 * x - p.lo - p.hi) / (p.hi - p.lo));
 }
 
 }  // namespace rhabel::punch::detail
