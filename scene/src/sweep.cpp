@@ -427,17 +427,11 @@ std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format forma
       set("total_friction", number_text(r->total_friction));
       set("contact_fraction", number_text(r->contact_fraction.value));
     } else if (const auto* p = std::get_if<punch::profile_result>(&outcome.solved)) {
-      // The spectral search: load-weighted over the contacts.
-      double load = 0, moment = 0, total = 0, width = 0;
-      for (const auto& c : p->contacts) {
-        load += c.load;
-        moment += c.load * c.hysteretic_friction;
-        total += c.load * c.total_friction;
-        width += c.contact_length;
-      }
+      // The spectral search: the body's values (load-weighted over the contacts; per period).
       set("contacts", std::to_string(p->contacts.size()));
-      if (load > 0) set("C_f", number_text(moment / load)), set("total_friction", number_text(total / load));
-      set("contact_fraction", number_text(width / (scene.profile->x.back() - scene.profile->x.front())));
+      if (!p->contacts.empty())
+        set("C_f", number_text(p->hysteretic_friction)), set("total_friction", number_text(p->total_friction));
+      set("contact_fraction", number_text(p->contact_fraction));
     } else {
       const auto& r = std::get<punch::scene_result>(outcome.solved);
       for (std::size_t i = 0; i < r.indentors.size(); ++i) {
