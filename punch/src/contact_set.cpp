@@ -73,16 +73,6 @@ constexpr std::size_t max_drops = 2;
 // into not_converged). Smaller coarse contacts there are left to the search and its clearance
 // check.
 constexpr double end_share = 1e-3;
-// Panels a sample of the coarse solve that seeds the search, and up to how many it refines while
-// a contact has fewer than 4 panels (coarse_contact.hpp; at most 2^19 panels): its edges start the
-// first round's coupled solve. WHY refined: a contact narrower than a sample has only a few panels
-// at 8 a sample, and its level condition starts far off (self-affine profiles, 1000 / 4000
-// samples, seeds 1-3, loads 5e-4 .. 2e-3 at acceptance 1e-6: 10 of 14 ok at 8 panels a sample, 12
-// at 32, and 0.45-0.6 s where 8 took 1.8-3.3 s for those whose seeded Newton then converges
-// without offset_continuation). WHY not 32 everywhere: the wide contacts of smooth bumps need no
-// more than 8, and 32 made 50 cosine bumps (4000 samples) 1.6 s instead of 0.4 s.
-constexpr std::size_t seed_panels = 8;
-constexpr std::size_t seed_panels_fine = 32;
 // The degrees to which a search whose contacts missed the acceptance at solve_options::max_degree
 // is solved again, in turn (needs_degree). WHY 1024 too: a contact over a few samples of a
 // self-affine profile converges like degree^-2 (the spline's f''' jumps at the knots): residual of
@@ -388,24 +378,6 @@ void refuse_end_contacts(const profile_model& m, const std::vector<coarse_patch>
   }
 }
 
-std::optional<search_start> start_from(const profile_model& m, const std::vector<coarse_patch>& patches);
-
-/// The coarse solve's contacts (coarse_contact.hpp) at the full load, each the run of bumps whose
-/// tips it covers (two may share a bump: a bump's flank can carry a contact of its own), with its
-/// coarse edges and load as the seed of the first round; empty when the coarse solve did not
-/// settle. Refuses a scene whose contacts reach an end of the samples.
-std::optional<search_start> predicted_start(const profile_model& m, const context& cx) {
-  const double load = m.source->load / cx.pressure_scale;
-  std::vector<coarse_patch> patches;
-  try {
-    patches = coarse_contacts(m.curve, load, cx, seed_panels * m.curve.x().size(), seed_panels_fine * m.curve.x().size());
-  } catch (const time_limit_reached&) {
-    return std::nullopt;  // the search's first round runs anyway: it has a result to report
-  }
-  refuse_end_contacts(m, patches, load);
-  return start_from(m, patches);
-}
-
 /// The first round's runs and seeds from contacts (absolute edges, loads in units of int g): each
 /// the run of bumps whose tips it covers (predicted_start).
 std::optional<search_start> start_from(const profile_model& m, const std::vector<coarse_patch>& patches) {
@@ -432,6 +404,22 @@ std::optional<search_start> start_from(const profile_model& m, const std::vector
   }
   if (out.runs.empty()) return std::nullopt;
   return out;
+}
+
+/// The coarse solve's contacts (coarse_contact.hpp) at the full load, each the run of bumps whose
+/// tips it covers (two may share a bump: a bump's flank can carry a contact of its own), with its
+/// coarse edges and load as the seed of the first round; empty when the coarse solve did not
+/// settle. Refuses a scene whose contacts reach an end of the samples.
+std::optional<search_start> predicted_start(const profile_model& m, const context& cx) {
+  const double load = m.source->load / cx.pressure_scale;
+  std::vector<coarse_patch> patches;
+  try {
+    patches = coarse_contacts(m.curve, load, cx, seed_panels * m.curve.x().size(), seed_panels_fine * m.curve.x().size());
+  } catch (const time_limit_reached&) {
+    return std::nullopt;  // the search's first round runs anyway: it has a result to report
+  }
+  refuse_end_contacts(m, patches, load);
+  return start_from(m, patches);
 }
 
 /// The active-set search from `start`, with load continuation when start.t < 1 (profile.hpp, "THE
@@ -671,7 +659,8 @@ window_solution search_and_report(const profile_model& m, const context& cx, con
   window_solution out;
   out.result = report_profile(m, cx, sr);
   out.origin = sr.last->states.origin;
-  for (const auto& state : sr.last->states.st) out.densities.push_back(state.g);
+  out.densities.resize(sr.last->states.st.size());
+  for (const auto& state : sr.last->states.st) out.densities[state.scene_index] = state.g;
   return out;
 }
 

@@ -22,26 +22,33 @@ constexpr double image_smallest_panel = 1e-9;
 
 }  // namespace
 
-point_sources density_sources(const std::vector<contact_density>& g, double origin) {
+point_sources density_sources(const contact_density& d, double origin) {
   point_sources out;
-  for (const contact_density& d : g) {
-    if (d.line_load) {
-      out.t.push_back(d.jacobi.lo + origin);
-      out.w.push_back(d.line_weight);
-      continue;
-    }
-    // Exact for the series times a polynomial of its degree + 64 (the kernel is analytic on the
-    // contact with its singularities beyond the window's ends).
-    const auto rule_ptr = abel::cached_gauss_jacobi_rule<double>(
-        std::max<std::size_t>(d.jacobi.coefficients.size() + 64, 96), d.jacobi.del, d.jacobi.gam);
-    const auto& rule = *rule_ptr;
-    std::vector<double> values(rule.size());
-    d.jacobi.series_evaluator().evaluate(rule.x.data(), values.data(), rule.size());
-    for (std::size_t q = 0; q < rule.size(); ++q) {
-      out.t.push_back(origin + (rule.x_minus_lo[q] <= rule.hi_minus_x[q] ? d.jacobi.lo + d.length() * rule.x_minus_lo[q] / 2
-                                                                         : d.jacobi.hi - d.length() * rule.hi_minus_x[q] / 2));
-      out.w.push_back(values[q] * rule.weight[q] * d.length() / 2);
-    }
+  if (d.line_load) {
+    out.t.push_back(d.jacobi.lo + origin);
+    out.w.push_back(d.line_weight);
+    return out;
+  }
+  // Exact for the series times a polynomial of its degree + 64 (the kernel is analytic on the
+  // contact with its singularities beyond the window's ends).
+  const auto rule_ptr = abel::cached_gauss_jacobi_rule<double>(
+      std::max<std::size_t>(d.jacobi.coefficients.size() + 64, 96), d.jacobi.del, d.jacobi.gam);
+  const auto& rule = *rule_ptr;
+  std::vector<double> values(rule.size());
+  d.jacobi.series_evaluator().evaluate(rule.x.data(), values.data(), rule.size());
+  for (std::size_t q = 0; q < rule.size(); ++q) {
+    out.t.push_back(origin + (rule.x_minus_lo[q] <= rule.hi_minus_x[q] ? d.jacobi.lo + d.length() * rule.x_minus_lo[q] / 2
+                                                                       : d.jacobi.hi - d.length() * rule.hi_minus_x[q] / 2));
+    out.w.push_back(values[q] * rule.weight[q] * d.length() / 2);
+  }
+  return out;
+}
+
+point_sources joined(const std::vector<point_sources>& parts) {
+  point_sources out;
+  for (const auto& p : parts) {
+    out.t.insert(out.t.end(), p.t.begin(), p.t.end());
+    out.w.insert(out.w.end(), p.w.begin(), p.w.end());
   }
   return out;
 }
@@ -52,8 +59,12 @@ image_field::image_field(const point_sources& src, double lo, double period, con
   const periodic_panel_kernel kernel(cx.alpha, cx.kappa, cx.par.one_minus_kappa_over_alpha());
   const double scale = cx.gamma_factor * std::pow(period, cx.alpha), slope_scale = scale / period;
   constexpr std::size_t P = points;
-  std::array<double, P> node{}, cosine{};
+  // The nodes x_k = cos(pi (k + 1/2)/P) and T_j(x_k) = cos(pi j (k + 1/2)/P).
+  std::array<double, P> node{};
+  std::array<std::array<double, P>, P> cosine{};
   for (std::size_t k = 0; k < P; ++k) node[k] = std::cos(pi * (static_cast<double>(k) + 0.5) / P);
+  for (std::size_t j = 0; j < P; ++j)
+    for (std::size_t k = 0; k < P; ++k) cosine[j][k] = std::cos(pi * static_cast<double>(j) * (static_cast<double>(k) + 0.5) / P);
   // One panel's coefficients from its values at the nodes.
   auto fit = [&](double a, double b, panel& out) {
     cx.check_time();
@@ -73,9 +84,8 @@ image_field::image_field(const point_sources& src, double lo, double period, con
       s[k] = -slope_scale * slope;  // d/dx of R((t - x)/period)
     }
     for (std::size_t j = 0; j < P; ++j) {
-      for (std::size_t k = 0; k < P; ++k) cosine[k] = std::cos(pi * static_cast<double>(j) * (static_cast<double>(k) + 0.5) / P);
       double cv = 0, cs = 0;
-      for (std::size_t k = 0; k < P; ++k) cv += v[k] * cosine[k], cs += s[k] * cosine[k];
+      for (std::size_t k = 0; k < P; ++k) cv += v[k] * cosine[j][k], cs += s[k] * cosine[j][k];
       // Boost's Clenshaw sum takes c_0 / 2: every coefficient is 2/P of its cosine sum.
       out.value[j] = 2 * cv / P;
       out.slope[j] = 2 * cs / P;

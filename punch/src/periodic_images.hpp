@@ -33,8 +33,12 @@ struct point_sources {
   std::vector<double> t, w;
 };
 
-/// The contacts' densities (Jacobi series) as point sources, absolute abscissae (origin added).
-point_sources density_sources(const std::vector<contact_density>& g, double origin);
+/// A contact's density (its Jacobi series, or a line load) as point sources, absolute abscissae
+/// (origin added).
+point_sources density_sources(const contact_density& d, double origin);
+
+/// All of `parts` as one set of sources.
+point_sources joined(const std::vector<point_sources>& parts);
 
 class image_field {
  public:

@@ -35,9 +35,6 @@ constexpr std::size_t max_passes = 40;
 // to each contact's data): the residual of the periodic equation then exceeds the window's by at
 // most that.
 constexpr double pass_fraction = 0.1;
-// The coarse start's panels a sample, refined up to the finer count while a contact has fewer
-// than 4 panels (as contact_set.cpp's seed_panels, seed_panels_fine, which give the reasons).
-constexpr std::size_t periodic_seed_panels = 8, periodic_seed_panels_fine = 32;
 // The table of w_img to this fraction of max |z'| (slope) and of max z - min z (value).
 constexpr double table_accuracy = 1e-13;
 
@@ -95,15 +92,11 @@ std::vector<coarse_patch> window_patches(std::vector<coarse_patch> patches, doub
 /// solved densities), each contact's residual of (8) gains the change of w_img's slope on it
 /// relative to its data (then it is the periodic equation's residual); returns the largest change.
 double add_images(profile_result& r, const image_field& used, const image_field* next, const profile_curve& window,
-                  const profile_curve& periodic, const std::vector<contact_density>& g, double origin) {
+                  const profile_curve& periodic, const std::vector<point_sources>& sources) {
   double worst = 0;
   for (std::size_t k = 0; k < r.contacts.size(); ++k) {
     indentor_result& c = r.contacts[k];
-    // Its density: the one with the nearest leading edge.
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < g.size(); ++i)
-      if (std::abs(g[i].a() + origin - c.a) < std::abs(g[best].a() + origin - c.a)) best = i;
-    const point_sources src = density_sources({g[best]}, origin);
+    const point_sources& src = sources[k];  // its density's (window_solution: in the contacts' order)
     double moment = 0, load = 0;
     for (std::size_t q = 0; q < src.t.size(); ++q) moment += src.w[q] * used.slope(src.t[q]), load += src.w[q];
     const double coulomb = c.total_friction - c.hysteretic_friction;
@@ -153,7 +146,7 @@ profile_result solve_periodic_profile(const profile_scene& s, const context& cx)
   std::shared_ptr<const image_field> field = std::make_shared<image_field>();
   std::size_t first = 0;
   try {
-    patches = coarse_contacts(curve, load, cx, periodic_seed_panels * x.size(), periodic_seed_panels_fine * x.size(), &sources);
+    patches = coarse_contacts(curve, load, cx, seed_panels * x.size(), seed_panels_fine * x.size(), &sources);
     double widest = 0;
     first = cut_sample(x, period, patches, widest);
     if (widest < period / static_cast<double>(x.size())) {
@@ -189,16 +182,18 @@ profile_result solve_periodic_profile(const profile_scene& s, const context& cx)
     rounds += sol.result.diagnostics.rounds;
     iterations += sol.result.diagnostics.iterations;
     out = std::move(sol.result);
+    // Each contact's density as point sources, once: its C_f correction and the next w_img.
+    std::vector<point_sources> sources_of;
+    for (const auto& d : sol.densities) sources_of.push_back(density_sources(d, sol.origin));
     std::shared_ptr<const image_field> next;
     if (out.diagnostics.code == status_code::ok) {
       try {
-        next = std::make_shared<image_field>(density_sources(sol.densities, sol.origin), lo, period, cx, value_accuracy,
-                                             slope_accuracy);
+        next = std::make_shared<image_field>(joined(sources_of), lo, period, cx, value_accuracy, slope_accuracy);
       } catch (const time_limit_reached&) {
         stopped = cx.time_limit_message() + " before the other periods' displacement of the solution was evaluated";
       }
     }
-    change = add_images(out, *field, next.get(), wc, curve, sol.densities, sol.origin);
+    change = add_images(out, *field, next.get(), wc, curve, sources_of);
     if (!next) break;
     if (change <= pass_fraction * cx.options.acceptance) break;
     if (pass == max_passes) {

@@ -7,12 +7,24 @@
 #include "internal.hpp"
 #include "profile_curve.hpp"
 
+#include <cstddef>
 #include <vector>
 
 namespace rhabel::punch::detail {
 
-/// A searched window: its reported result and the reported contacts' densities (abscissae in the
-/// states' frame: add `origin` for the window's).
+// Panels a sample of the coarse solve that seeds the search (finite and periodic), and up to how
+// many it refines while a contact has fewer than 4 panels (coarse_contact.hpp; at most 2^19
+// panels): its edges start the first round's coupled solve. WHY refined: a contact narrower than a sample has only a few panels
+// at 8 a sample, and its level condition starts far off (self-affine profiles, 1000 / 4000
+// samples, seeds 1-3, loads 5e-4 .. 2e-3 at acceptance 1e-6: 10 of 14 ok at 8 panels a sample, 12
+// at 32, and 0.45-0.6 s where 8 took 1.8-3.3 s for those whose seeded Newton then converges
+// without offset_continuation). WHY not 32 everywhere: the wide contacts of smooth bumps need no
+// more than 8, and 32 made 50 cosine bumps (4000 samples) 1.6 s instead of 0.4 s.
+inline constexpr std::size_t seed_panels = 8;
+inline constexpr std::size_t seed_panels_fine = 32;
+
+/// A searched window: its reported result and the reported contacts' densities, densities[k] that
+/// of result.contacts[k] (abscissae in the states' frame: add `origin` for the window's).
 struct window_solution {
   profile_result result;
   std::vector<contact_density> densities;

@@ -429,8 +429,9 @@ std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format forma
     } else if (const auto* p = std::get_if<punch::profile_result>(&outcome.solved)) {
       // The spectral search: the body's values (load-weighted over the contacts; per period).
       set("contacts", std::to_string(p->contacts.size()));
-      if (!p->contacts.empty())
-        set("C_f", number_text(p->hysteretic_friction)), set("total_friction", number_text(p->total_friction));
+      double load = 0;
+      for (const auto& c : p->contacts) load += c.load;
+      if (load > 0) set("C_f", number_text(p->hysteretic_friction)), set("total_friction", number_text(p->total_friction));
       set("contact_fraction", number_text(p->contact_fraction));
     } else {
       const auto& r = std::get<punch::scene_result>(outcome.solved);
