@@ -144,6 +144,9 @@ struct problem {
   std::optional<double> body_load;
   double height_factor = 1;          // scene::body continuation: every height times this
   bool full_jacobian = false;        // scene::body: every column differenced (no body_far_model)
+  // > 0: an iteration that stalls (no step descends, or a flat run) with every condition at most
+  // this, evaluated to a tenth of it, has converged to the floor of its evaluations (newton).
+  double stall_floor = 0;
   std::vector<double> start_length;  // the isolated contacts' lengths (a body's vanishing contact)
   double load_factor = 1;  // continuation: every load times this
   // ratio_continuation: contact i's load times load_weights[i] as well (empty: 1).
@@ -216,7 +219,8 @@ struct newton_result {
 };
 
 /// The Jacobian's band (coupled_newton.cpp, jacobian): up to full_width contacts every column is
-/// differenced; more are coloured by their rank along x modulo full_width (Curtis-Powell-Reid).
+/// differenced; more are coloured (Curtis-Powell-Reid), each contact near those within full_width/2
+/// ranks along x and those within a few lengths (colouring).
 constexpr std::size_t full_width = 5;
 
 // The stages (see the top of the file).

@@ -52,7 +52,8 @@
 //   there, rounds at the full load P:
 //     1. solve the current contacts on one rigid body (contact.hpp's coupled solve: every contact a
 //        general profile with smooth edges, loads unknown, total load P, equal rigid levels),
-//        started from the last round's loads;
+//        each contact's Newton iteration started from its edges in the last converged round (the
+//        coarse ones in the first);
 //     2. a contact that vanishes in that solve (status contact_lost) is dropped; two contacts that
 //        meet (contacts_merge) become one contact over both basins; a contact that reaches beyond
 //        its basins takes the next basin in;
@@ -60,9 +61,13 @@
 //        within 1/64 of a contact's length of its edges, where the surface's quadrature is not
 //        resolved and the edge conditions hold anyway): where the profile penetrates the surface
 //        by more than acceptance x (max z - min z), the basins of the deepest penetrations (within
-//        a factor 4 of the deepest) are added as new contacts.
+//        a factor 4 of the deepest) are added as new contacts, each started from a quarter of a
+//        sample spacing about its deepest sample; so is a penetration on a basin that has a
+//        contact, more than a sample spacing from it (a flank's contact of its own).
 //   The coarse set is first-order accurate: a contact carrying a few percent of its neighbours'
-//   load may be missing or extra, and costs one more round. When these rounds do not end in a
+//   load may be missing or extra, and costs one more round. A contact spanning spline knots that
+//   misses the acceptance at the series' degree is solved again at degree 512, then 1024, from
+//   the contacts found. When these rounds do not end in a
 //   verified set (or the coarse solve's active set does not settle), the search starts again by
 //   load continuation: from the highest tip alone at 1/256 of P, the load raised by 4 after each
 //   round that settles (the set grown at t is the start at 4 t), then rounds at P.
@@ -144,16 +149,16 @@
 //   needs a degree beyond max(1024, max_degree): not_converged with its residual. Rough (self-affine) profiles:
 //   of self_affine_profile.py's 36 finite windows at 1000, 4000 and 16000 samples, seeds 1-3,
 //   loads 5e-4, 1e-3, 2e-3, 3e-3 (acceptance 1e-6, --time-limit 60; studies/scenes/
-//   rough_matrix.py), 15 are refused (contacts at an end of the samples) and 17 of the other 21
-//   are ok (3 to 35 contacts, 0.08-12 s; those of tests/punch/test_rough_profile.cpp agree with
+//   rough_matrix.py), 15 are refused (contacts at an end of the samples) and 20 of the other 21
+//   are ok (3 to 64 contacts, 0.08-14 s; those of tests/punch/test_rough_profile.cpp agree with
 //   the boundary-element oracle); one misses the acceptance by a contact across spline knots
-//   (residual of (8) 1.1e-6 at degree 1023: the spline's joints make its series converge like
-//   degree^-2), and 3 end short of the load (1/16 to 1/4 of it, in 1-44 s; the status says
-//   which load was reached and where the profile penetrates). The same 36 as periodic profiles
-//   (rough_matrix.py --periodic): 30 ok (12, 9 and 9 of the 12 of each size; 3 to 65 contacts,
-//   0.15-33 s), each with the boundary-element solver's patches and C_f within its estimate (those
-//   of tests/punch/test_rough_profile.cpp against the boundary-element oracle); four end short of
-//   the load, one contact_lost, one not_converged at the time limit.
+//   (residual of (8) 1.15e-6 at degree 1023: the spline's joints make its series converge like
+//   degree^-2). A search that ends short of the load says which load was reached and where the
+//   profile penetrates. The same 36 as periodic profiles (rough_matrix.py --periodic): 34 ok (12,
+//   11 and 11 of the 12 of each size; 3 to 85 contacts, 0.1-46 s), each with the
+//   boundary-element solver's patches and C_f within its estimate (those of
+//   tests/punch/test_rough_profile.cpp against the boundary-element oracle); two not_converged at
+//   the time limit (their coupled iteration stalls near two contacts 3 % of a length apart).
 //   Scenes the search does not solve, and many hundreds of patches, are what
 //   rhabel/punch/profile_bem.hpp's boundary-element solver is for (first order, with error
 //   estimates).
