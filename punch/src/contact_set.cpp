@@ -10,8 +10,8 @@
 // coarse boundary-element solve's at the full load (coarse_contact.hpp, predicted_start), and
 // every round of that seeded search starts each contact's Newton iteration from its edges in the
 // last converged round (run::seed); when its rounds do not end in a verified set, the search
-// starts again from the highest tip alone by load continuation (continuation_start). The last round's solve is reported with contact.cpp's checks
-// plus the clearance at every sample.
+// starts again from the highest tip alone by load continuation (continuation_start). The last
+// round's solve is reported with contact.cpp's checks plus the clearance at every sample.
 #include "coarse_contact.hpp"
 #include "internal.hpp"
 #include "profile_curve.hpp"
@@ -571,7 +571,8 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
       for (const auto& [tip, share] : shares) smallest = std::min(smallest, share);
       for (std::size_t b = 0; b < m.bumps.size(); ++b)
         if (candidate[b] && out.clear.depth[b] >= add_fraction * deepest)
-          runs.push_back({b, b, seeded ? std::optional(new_seed(m, out.clear.deepest_at[b], smallest / 4)) : std::nullopt});
+          runs.push_back(
+              {b, b, seeded ? std::optional(new_seed(m, out.clear.deepest_at[b], smallest / 4)) : std::nullopt});
       std::sort(runs.begin(), runs.end(), [&](const run& p, const run& q) {
         return p.first != q.first ? p.first < q.first : p.seed && q.seed && p.seed->a < q.seed->a;
       });

@@ -487,7 +487,8 @@ Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x,
         if (trailing && j == 0) {  // the total load: the load changes each moved contact owns
           for (std::size_t o = 0; o < n; ++o)
             if (owner[o] < u.state.size())
-              J(row, static_cast<Eigen::Index>(owner[o])) += c.dload[o] / (pb.load_factor * *pb.body_load) / h[owner[o]];
+              J(row, static_cast<Eigen::Index>(owner[o])) +=
+                  c.dload[o] / (pb.load_factor * *pb.body_load) / h[owner[o]];
           continue;
         }
         // The load changes of the contacts not near j act on its row by their monopoles: out of
