@@ -762,11 +762,7 @@ window_solution solve_model(const profile_model& m, const context& cx, const std
     if (!needs_degree(out.result, wide, degree)) continue;
     wide.options.max_degree = degree;
     std::optional<search_start> start = predicted;
-    if (out.result.diagnostics.load_fraction == 1 && out.result.penetrations.empty()) {
-      std::vector<coarse_patch> solved;
-      for (const auto& g : out.densities) solved.push_back({g.a() + out.origin, g.b() + out.origin, g.integral()});
-      start = start_from(m, solved);
-    }
+    if (out.result.diagnostics.load_fraction == 1 && out.result.penetrations.empty()) start = start_from(m, out.contacts());
     window_solution again = search_and_report(m, wide, start);
     again.result.diagnostics.rounds += out.result.diagnostics.rounds;
     again.result.diagnostics.iterations += out.result.diagnostics.iterations;

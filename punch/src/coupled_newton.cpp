@@ -798,13 +798,11 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
   } catch (const time_limit_reached& e) {
     s.out.failure = e.what();
     s.out.merged.reset();
-    s.out.residual = s.ev.r.lpNorm<Eigen::Infinity>();
-    s.out.sol = std::move(s.ev.sol);
-    return std::move(s.out);
   }
   s.out.residual = s.ev.r.lpNorm<Eigen::Infinity>();
   // Stalled at the floor of the evaluations (problem::stall_floor): converged; the caller's
-  // independent checks (the residual of (8), loads, pressure) judge the result.
+  // independent checks (the residual of (8), loads, pressure) judge the result. (Not when out of
+  // time, as after time_limit_reached: the time limit is reported.)
   if (!s.out.converged && !s.out.merged && !s.out.lost && pb.stall_floor > 0 && s.out.residual <= pb.stall_floor &&
       s.ev_accuracy <= 0.1 * pb.stall_floor && !pb.cx->out_of_time()) {
     s.out.converged = true;

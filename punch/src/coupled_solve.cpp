@@ -149,6 +149,11 @@ double gap_ratio(const problem& pb, const edges& x, bool movable_only = false) {
 /// 1e-4 the alpha = 0.9 scene's stage at 1/64 of the load closed the gap (contacts_merge).
 constexpr double continuation_accuracy = 1e-6;
 
+/// Whether a contact starts from a seed (a sampled profile's coarse or solved contacts).
+bool any_seeded(const std::vector<indentor_state>& st) {
+  return std::any_of(st.begin(), st.end(), [](const indentor_state& s) { return s.seed.has_value(); });
+}
+
 /// Newton directly from the isolated contacts when they do not overlap, else (or when that fails)
 /// by continuation in the load; pb.load_factor ends at the last load factor solved.
 newton_result attempt(problem& pb, const edges& isolated) {
@@ -168,9 +173,7 @@ newton_result attempt(problem& pb, const edges& isolated) {
   // nothing like the contacts at a small one (at 4^-10 of the load the body rests on its highest
   // tips: the first step lost a contact, which then barred the retries; 4000-sample self-affine
   // profile, 32 seeds). The seeded retries (offset_continuation, full Jacobian) start from them.
-  if (pb.body_load && gap_ratio(pb, isolated) > 0 &&
-      std::any_of(st.begin(), st.end(), [](const indentor_state& s) { return s.seed.has_value(); }))
-    return result;
+  if (pb.body_load && gap_ratio(pb, isolated) > 0 && any_seeded(st)) return result;
   // Continuation in the load from a t at which the scaled isolated contacts are well apart.
   // (Only gaps that the load changes count; t >= 4^-10: a contact ~1e-3 of its full size.)
   double t = 1;
@@ -474,8 +477,8 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   // load 2e-3, degree 1024 from the contacts solved at 512: the largest condition 5.8e-7 at the
   // start, no step descended from it, and the retries spent 55 s (the residual of (8) there: 5.1e-7,
   // within the acceptance 1e-6).
-  if (std::any_of(st.begin(), st.end(), [](const indentor_state& s) { return s.seed.has_value(); }))
-    pb.stall_floor = cx.options.acceptance;
+  const bool seeded = any_seeded(st);
+  if (seeded) pb.stall_floor = cx.options.acceptance;
   edges isolated;
   for (auto& s : st) {
     s.solved.reset();  // set below for a result in the boundary-layer basis
@@ -513,7 +516,6 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
     retry(pb, result, bounded_form(pb), again,
           [](const newton_result& second, const newton_result& first) { return second.converged || !first.merged; });
   // A seeded start from which Newton failed: the homotopy from the seeds' own conditions.
-  const bool seeded = std::any_of(st.begin(), st.end(), [](const indentor_state& s) { return s.seed.has_value(); });
   if (seeded && !result.converged && !result.merged)
     retry(pb, result, pb, [&](problem& p) { return offset_continuation(p, isolated); },
           [](const newton_result& second, const newton_result&) { return second.converged; });

@@ -204,8 +204,7 @@ profile_result solve_periodic_profile(const profile_scene& s, const context& cx)
       stopped = cx.time_limit_message() + " after " + std::to_string(pass) + " passes";
       break;
     }
-    seeds.clear();
-    for (const auto& d : sol.densities) seeds.push_back({d.a() + sol.origin, d.b() + sol.origin, d.integral()});
+    seeds = sol.contacts();
     field = std::move(next);
   }
   out.window_start = lo;

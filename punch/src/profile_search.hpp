@@ -29,6 +29,12 @@ struct window_solution {
   profile_result result;
   std::vector<contact_density> densities;
   double origin = 0;
+  /// The solved contacts as seeds of another search: absolute edges, loads in units of int g.
+  std::vector<coarse_patch> contacts() const {
+    std::vector<coarse_patch> out;
+    for (const auto& g : densities) out.push_back({g.a() + origin, g.b() + origin, g.integral()});
+    return out;
+  }
 };
 
 /// The contact search of solve_profile on the finite window `window` (material, speed, load; its
