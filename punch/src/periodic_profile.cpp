@@ -90,7 +90,9 @@ std::vector<coarse_patch> window_patches(std::vector<coarse_patch> patches, doub
 /// solved with). C_f = int z' p / int p with z' = (z - w_img)' + w_img' on the contact; the
 /// approach w - (z - z(tip)) and the displacements gain w_img. With `next` (the w_img of the
 /// solved densities), each contact's residual of (8) gains the change of w_img's slope on it
-/// relative to its data (then it is the periodic equation's residual); returns the largest change.
+/// relative to its data (then it is the periodic equation's residual), and the level mismatch
+/// gains the largest change of w_img between neighbouring contacts (relative to the span);
+/// returns the largest change of either.
 double add_images(profile_result& r, const image_field& used, const image_field* next, const profile_curve& window,
                   const profile_curve& periodic, const std::vector<point_sources>& sources) {
   double worst = 0;
@@ -114,6 +116,17 @@ double add_images(profile_result& r, const image_field& used, const image_field*
       }
       const double relative = data > 0 ? change / data : change;
       c.residual += relative;
+      worst = std::max(worst, relative);
+    }
+  }
+  if (next) {
+    // The levels move with w_img too: its change between neighbouring contacts' leading edges,
+    // relative to the profile's span, joins the window's level mismatch.
+    const auto [zlo, zhi] = std::minmax_element(periodic.z().begin(), periodic.z().end());
+    const auto moved = [&](double at) { return next->value(at) - used.value(at); };
+    for (std::size_t k = 1; k < r.contacts.size(); ++k) {
+      const double relative = std::abs(moved(r.contacts[k].a) - moved(r.contacts[k - 1].a)) / (*zhi - *zlo);
+      r.level_mismatch += relative;
       worst = std::max(worst, relative);
     }
   }
@@ -217,7 +230,15 @@ profile_result solve_periodic_profile(const profile_scene& s, const context& cx)
     std::ostringstream os;
     os.precision(3);
     os << "the other periods' displacement was not converged: " << (stopped.empty() ? "" : stopped + "; ")
-       << "its slope changed by " << change << " of the data in the last pass";
+       << "its slope or level changed by " << change << " of the data in the last pass";
+    out.diagnostics.code = status_code::not_converged;
+    out.diagnostics.status = os.str();
+  }
+  if (out.diagnostics.code == status_code::ok && out.level_mismatch > cx.options.acceptance) {
+    std::ostringstream os;
+    os.precision(3);
+    os << "the contacts' levels differ from the body's by up to " << out.level_mismatch
+       << " of max z - min z with the other periods' displacement (at x = " << out.level_mismatch_at << ")";
     out.diagnostics.code = status_code::not_converged;
     out.diagnostics.status = os.str();
   }

@@ -191,7 +191,9 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
           highest sample inside it, and the fields above but ``shape``/``name``), ``surface``,
           ``clearance``
           {``min``, ``at``} (the smallest gap between surface and profile at the samples outside
-          the contacts, relative to max z - min z), ``penetrations`` (where the profile
+          the contacts, relative to max z - min z), ``level_mismatch`` {``max``, ``at``} (the
+          largest mismatch of neighbouring contacts' levels on the rigid body, relative to
+          max z - min z), ``penetrations`` (where the profile
           penetrates the surface outside the contacts found: the contacts a result that is not
           ok is missing), ``hysteretic_friction`` and ``total_friction`` of the body (C_f: the
           contacts' load-weighted mean), ``mean_pressure`` (load per window or period length),

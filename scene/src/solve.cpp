@@ -258,6 +258,7 @@ run_outcome run_profile(const scene_spec& spec, const run_request& request, cons
   if (spec.profile->period > 0) doc["window"] = {r.window_start, r.window_start + spec.profile->period};
   add_surface(out, std::move(r.surface_x), std::move(r.surface));
   if (!std::isnan(r.clearance)) doc["clearance"] = {{"min", r.clearance}, {"at", r.clearance_at}};
+  if (!std::isnan(r.level_mismatch)) doc["level_mismatch"] = {{"max", r.level_mismatch}, {"at", r.level_mismatch_at}};
   doc["penetrations"] = r.penetrations;
   end_document(out, spec, request, r.diagnostics);
   out.solved = std::move(r);

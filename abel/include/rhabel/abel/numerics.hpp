@@ -101,31 +101,70 @@ struct chebyshev_grid {
   }
 };
 
+/// A process-wide thread-safe cache of immutable tables keyed by `Key`, built by `build` on first
+/// use (outside the lock: two threads may build the same table once each; both are identical).
+/// Emptied when the entries' sizes (size() of each table) add up to more than `max_total`, so
+/// memory stays bounded when the keys sweep a continuum.
+template <class Table, class Key, class Build>
+std::shared_ptr<const Table> cached_table(const Key& key, Build&& build, std::size_t max_total) {
+  static std::mutex mutex;
+  static std::map<Key, std::shared_ptr<const Table>> cache;
+  static std::size_t total = 0;
+  {
+    const std::lock_guard<std::mutex> lock(mutex);
+    const auto it = cache.find(key);
+    if (it != cache.end()) return it->second;
+  }
+  auto table = std::make_shared<const Table>(build());
+  const std::lock_guard<std::mutex> lock(mutex);
+  if (total + table->size() > max_total) cache.clear(), total = 0;
+  const auto [it, inserted] = cache.emplace(key, std::move(table));
+  if (inserted) total += it->second->size();
+  return it->second;
+}
+
 /// Chebyshev coefficients a_0..a_{m-1} of the interpolant of values f_j at chebyshev_grid(m).
-/// T_k(x_j) = cos(pi k (2j+1)/(2m)) is taken from a table of cos(pi r/(2m)) by reducing
-/// k (2j+1) modulo 4m: every entry is a correctly rounded cosine (no recurrence drift). The index
-/// advances by 2k modulo 4m from j to j + 1 (a subtraction, not an integer division per term:
-/// the same entries, ~2x faster at m = 195).
+/// T_k(x_j) = cos(pi k (2j+1)/(2m)) is taken from a table of cos(pi r/(2m)) at r = k (2j+1)
+/// modulo 4m: every entry is a correctly rounded cosine (no recurrence drift). The m x m matrix
+/// of those entries is built once per m (cached_table, up to 2^23 entries in all: the solvers
+/// use a few m, each up to ~1000), so that a call passes over contiguous rows, four at a time (m =
+/// 513: 241 -> ~80 us); each sum takes the same products in the same order as entry by entry.
 template <class Real>
 std::vector<Real> chebyshev_coefficients(const std::vector<Real>& f) {
   using std::cos;
   const std::size_t m = f.size();
-  const Real pi = boost::math::constants::pi<Real>();
-  std::vector<Real> table(4 * m);
-  for (std::size_t r = 0; r < 4 * m; ++r) table[r] = cos(pi * Real(r) / Real(2 * m));
-  std::vector<Real> a(m, Real(0));
-  const std::size_t period = 4 * m;
-  for (std::size_t k = 0; k < m; ++k) {
-    Real sum = 0;
-    const std::size_t step = (2 * k) % period;
-    std::size_t index = k % period;  // k (2j + 1) mod 4m at j = 0
+  const auto matrix = cached_table<std::vector<Real>>(m, [m] {
+    const Real pi = boost::math::constants::pi<Real>();
+    const std::size_t period = 4 * m;
+    std::vector<Real> table(period);
+    for (std::size_t r = 0; r < period; ++r) table[r] = cos(pi * Real(r) / Real(2 * m));
+    std::vector<Real> out(m * m);
+    for (std::size_t k = 0; k < m; ++k)
+      for (std::size_t j = 0; j < m; ++j) out[k * m + j] = table[(k * (2 * j + 1)) % period];
+    return out;
+  }, std::size_t(1) << 23);
+  std::vector<Real> sums(m, Real(0));
+  // Four rows at a time: four independent sums, each still in the order of j.
+  std::size_t k = 0;
+  for (; k + 4 <= m; k += 4) {
+    const Real *r0 = matrix->data() + k * m, *r1 = r0 + m, *r2 = r1 + m, *r3 = r2 + m;
+    Real s0 = 0, s1 = 0, s2 = 0, s3 = 0;
     for (std::size_t j = 0; j < m; ++j) {
-      sum += f[j] * table[index];
-      index += step;
-      if (index >= period) index -= period;
+      s0 += f[j] * r0[j];
+      s1 += f[j] * r1[j];
+      s2 += f[j] * r2[j];
+      s3 += f[j] * r3[j];
     }
-    a[k] = sum * (k == 0 ? Real(1) : Real(2)) / Real(m);
+    sums[k] = s0, sums[k + 1] = s1, sums[k + 2] = s2, sums[k + 3] = s3;
   }
+  for (; k < m; ++k) {
+    const Real* row = matrix->data() + k * m;
+    Real sum = 0;
+    for (std::size_t j = 0; j < m; ++j) sum += f[j] * row[j];
+    sums[k] = sum;
+  }
+  std::vector<Real> a(m);
+  for (std::size_t i = 0; i < m; ++i) a[i] = sums[i] * (i == 0 ? Real(1) : Real(2)) / Real(m);
   return a;
 }
 

@@ -56,14 +56,19 @@
 //        coarse ones in the first);
 //     2. a contact that vanishes in that solve (status contact_lost) is dropped; two contacts that
 //        meet (contacts_merge) become one contact over both basins; a contact that reaches beyond
-//        its basins takes the next basin in;
+//        its basins takes the next basin in (shared with the contact there while the two stay
+//        apart);
 //     3. otherwise the surface displacement is evaluated at every sample outside the contacts (not
 //        within 1/64 of a contact's length of its edges, where the surface's quadrature is not
 //        resolved and the edge conditions hold anyway): where the profile penetrates the surface
 //        by more than acceptance x (max z - min z), the basins of the deepest penetrations (within
 //        a factor 4 of the deepest) are added as new contacts, each started from a quarter of a
 //        sample spacing about its deepest sample; so is a penetration on a basin that has a
-//        contact, more than a sample spacing from it (a flank's contact of its own).
+//        contact, more than a sample spacing from it (a flank's contact of its own);
+//     4. a contact whose pressure is negative inside (below -acceptance x its mean) starts the
+//        next round without the part where it is negative: its edge moved there when that part
+//        reaches the edge, else as two contacts either side of it (the edge conditions also have
+//        such a root where the physical solution has a gap; at most twice a tip).
 //   The coarse set is first-order accurate: a contact carrying a few percent of its neighbours'
 //   load may be missing or extra, and costs one more round. A contact spanning spline knots that
 //   misses the acceptance at the series' degree is solved again at degree 512, then 1024, from
@@ -93,8 +98,10 @@
 //   search runs again with the series to degree 512, and then 1024 when one still misses it
 //   there, on the same clock.
 //   So `ok` means: every contact passes contact.hpp's checks (residual of (8) against the
-//   spline, non-negative pressure, loads adding up to P, equal levels), and the surface clears
-//   the profile at every checked sample to acceptance x (max z - min z).
+//   spline, non-negative pressure, loads adding up to P), the levels of neighbouring contacts
+//   evaluated afresh from the reported pressures agree with the profile's rise between them
+//   (profile_result::level_mismatch), and the surface clears the profile at every checked sample,
+//   both to acceptance x (max z - min z).
 //
 // PERIODIC PROFILES (sampled_profile::period > 0; docs/theory.md section 10)
 //   The samples are one period of a profile that repeats (the periodic cubic spline), the load is
@@ -225,6 +232,12 @@ struct profile_result {
   /// relative to max z - min z (negative: the profile penetrates the surface there).
   double clearance = 0;
   double clearance_at = 0;  ///< where that clearance is [m]
+  /// The contacts lie on one rigid body: the largest |w(a_i) - w(a_(i-1)) - (z(a_i) - z(a_(i-1)))|
+  /// over neighbouring contacts' leading edges a_i, w the surface displacement of the reported
+  /// pressures (evaluated afresh from them), z the profile, relative to max z - min z; ok needs it
+  /// within the acceptance. NaN when the last round had no solved state to check.
+  double level_mismatch = 0;
+  double level_mismatch_at = 0;  ///< the leading edge of the contact where it is [m]
   /// Where the profile penetrates the surface outside the contacts found by more than the
   /// acceptance (x (max z - min z)): the deepest sample of each such bump, deepest first, at most
   /// 16 [m]. Contacts the search is missing; empty when the surface clears the profile (or the
