@@ -499,24 +499,28 @@ coarse_patch new_seed(const profile_model& m, double at, double load) {
   return {std::max(at - h / 8, m.curve.lo()), std::min(at + h / 8, m.curve.hi()), load};
 }
 
-/// Where the pressure of a contact is negative, when its lowest is below -tol of its mean
-/// (report.cpp's judge: 64 interior points): the run of those points with a negative pressure
-/// about the lowest, [first, last] in abscissae of the solve; else nothing.
-std::optional<std::pair<double, double>> tension_in(const contact_density& g, double tol) {
+/// The part of a contact where its pressure is negative, when its lowest is below -tol of its
+/// mean (at report.cpp's pressure_probes, as the judge): the run of probes with a negative
+/// pressure about the lowest, [lo, hi] in abscissae of the solve, and whether it reaches the
+/// first or the last probe.
+struct negative_part {
+  double lo = 0, hi = 0;
+  bool at_lo = false, at_hi = false;
+};
+std::optional<negative_part> tension_in(const contact_density& g, double tol) {
   if (g.line_load || !(g.length() > 0)) return std::nullopt;
-  constexpr int points = 64;
-  std::vector<double> t(points), v(points);
-  int lowest = 0;
-  for (int k = 0; k < points; ++k) {
-    t[k] = g.a() + g.length() * (1 - std::cos(pi * (k + 0.5) / points)) / 2;
+  const std::vector<double> t = pressure_probes(g);
+  std::vector<double> v(t.size());
+  std::size_t lowest = 0;
+  for (std::size_t k = 0; k < t.size(); ++k) {
     v[k] = g.value(t[k]);
     if (v[k] < v[lowest]) lowest = k;
   }
   if (!(v[lowest] < -tol * std::abs(g.integral() / g.length()))) return std::nullopt;
-  int first = lowest, last = lowest;
+  std::size_t first = lowest, last = lowest;
   while (first > 0 && v[first - 1] < 0) --first;
-  while (last + 1 < points && v[last + 1] < 0) ++last;
-  return std::pair{t[first], t[last]};
+  while (last + 1 < t.size() && v[last + 1] < 0) ++last;
+  return negative_part{t[first], t[last], first == 0, last + 1 == t.size()};
 }
 
 /// A seeded round's contacts whose pressure is negative inside start again (runs' seeds; at most
@@ -535,15 +539,13 @@ bool repair_tension(const profile_model& m, const scene_states& ss, std::vector<
     const auto negative = tension_in(state.g, tol);
     run& r = runs[state.scene_index];
     if (!negative || !r.seed || repairs[m.tip(r)]++ >= max_drops) continue;
-    coarse_patch& seed = *r.seed;
-    const double lo = negative->first + ss.origin, hi = negative->second + ss.origin, L = seed.b - seed.a;
-    const double end = L * (1 - std::cos(pi * 0.5 / 64)) / 2;  // the outermost probe's distance
-    const bool at_lo = lo <= seed.a + 1.01 * end, at_hi = hi >= seed.b - 1.01 * end;
-    if (at_lo && at_hi) continue;  // negative all over: nothing to keep (the report says tension)
+    if (negative->at_lo && negative->at_hi) continue;  // negative all over: nothing to keep (the report says tension)
     changed = true;
-    if (at_hi) {
+    coarse_patch& seed = *r.seed;  // the contact's edges (absolute) and load, from this round
+    const double lo = negative->lo + ss.origin, hi = negative->hi + ss.origin, L = seed.b - seed.a;
+    if (negative->at_hi) {
       seed.b = lo;
-    } else if (at_lo) {
+    } else if (negative->at_lo) {
       seed.a = hi;
     } else {
       coarse_patch after{hi, seed.b, seed.load * (seed.b - hi) / (L - (hi - lo))};

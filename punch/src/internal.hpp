@@ -262,6 +262,10 @@ boost::math::quadrature::tanh_sinh<double>& tanh_sinh_rule();
 class surface;
 /// Moves a result computed relative to `origin` (solve's first apex) back to absolute abscissae.
 void shift(indentor_result& r, double origin);
+/// The 64 interior points (Chebyshev points of the first kind on [a, b], in the order of x) at
+/// which the sign of a contact's pressure is probed (the report's judge; the profile search's
+/// repair of a contact with tension).
+std::vector<double> pressure_probes(const contact_density& g);
 /// The result of contact i with its evidence and status; `several`: other indentors are present;
 /// `origin`: where the solve's x = 0 lies (its pressure_at takes absolute abscissae).
 indentor_result report_contact(const std::vector<indentor_state>& st, std::size_t i, const context& cx,

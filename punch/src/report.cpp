@@ -171,6 +171,12 @@ std::pair<double, double> worst_gap(const surface& heights, const std::vector<in
   return {span > 0 ? worst / span : worst, where};
 }
 
+std::vector<double> pressure_probes(const contact_density& g) {
+  std::vector<double> out(64);
+  for (int k = 0; k < 64; ++k) out[k] = g.a() + g.length() * (1 - std::cos(pi * (k + 0.5) / 64)) / 2;
+  return out;
+}
+
 // Moves a result computed relative to `origin` (solve's first apex) back to absolute abscissae.
 void shift(indentor_result& r, double origin) {
   if (origin == 0) return;
@@ -379,7 +385,7 @@ void judge(indentor_result& r, const indentor_state& st, const std::vector<doubl
       const double v = st.g.value(t);
       if (v < lowest) lowest = v, where = t;
     };
-    for (int k = 0; k < 64; ++k) probe(st.g.a() + st.g.length() * (1 - std::cos(pi * (k + 0.5) / 64)) / 2);
+    for (const double t : pressure_probes(st.g)) probe(t);
     for (double t : points) probe(t);
     if (lowest < -acceptance * std::abs(mean)) {
       std::ostringstream os;

@@ -87,7 +87,6 @@ struct jacobi_connection {
   std::vector<Real> entries;
   std::vector<std::size_t> start;
   std::size_t size() const { return entries.size(); }
-  const Real& operator()(std::size_t i, std::size_t j) const { return entries[start[i] + (j - i)]; }
 
   jacobi_connection(std::size_t m, const Real& p, const Real& q) : start(m) {
     // columns[j] = Chebyshev coefficients of P_j^(p,q), length j + 1.
