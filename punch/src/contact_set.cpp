@@ -9,9 +9,10 @@
 // are merged, bumps whose samples penetrate the deformed surface are added. The first set is the
 // coarse boundary-element solve's at the full load (coarse_contact.hpp, predicted_start), and
 // every round of that seeded search starts each contact's Newton iteration from its edges in the
-// last converged round (run::seed); when its rounds do not end in a verified set, the search
-// starts again from the highest tip alone by load continuation (continuation_start). The last
-// round's solve is reported with contact.cpp's checks plus the clearance at every sample.
+// last converged round (run::seed), at each series degree it needs (raise_degree); when these do
+// not end ok, the search starts again from the highest tip alone by load continuation
+// (continuation_start). The last round's solve is reported with contact.cpp's checks plus the
+// clearance at every sample.
 #include "coarse_contact.hpp"
 #include "internal.hpp"
 #include "profile_curve.hpp"
@@ -602,11 +603,18 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
     try {
       next.outcome = solve_states(next.sc, next.states, cx);
     } catch (const std::domain_error& e) {
-      // One contact whose edges are not found inside its basin (its contact would be larger):
-      // a smaller fraction of the load first.
-      if (runs.size() == 1 && shrinks < max_shrinks) {
+      // One contact whose edges are not found: before any fraction settled, a smaller fraction of
+      // the load; after, half the step as for a failed solve. WHY not a smaller fraction again:
+      // the search returns to the fraction that failed (1e5 samples: 1/1024 settled, 1/256
+      // settled, 1/64 failed, down to 1/1024, ... for 38 rounds and 250 s).
+      if (runs.size() == 1 && settled == 0 && shrinks < max_shrinks) {
         t /= shrink_factor;
         ++shrinks;
+        continue;
+      }
+      if (runs.size() == 1 && settled > 0 && t > settled * 1.01 && halvings < max_halvings) {
+        t = std::sqrt(t * settled);
+        ++halvings;
         continue;
       }
       out.failure = rename(e.what(), m, runs);
@@ -710,13 +718,6 @@ std::string penetration_list(const std::vector<double>& at) {
   return os.str();
 }
 
-/// Whether a search ended in a set the report will call ok: its last round solved and converged,
-/// and no sample penetrates.
-bool verified(const search_result& sr, double tol) {
-  return sr.last && sr.failure.empty() && sr.last->outcome.code == status_code::ok && !sr.clear.depth.empty() &&
-         !(sr.clear.worst < -tol) && !(sr.clear.level > tol);
-}
-
 /// The result of the last solved round with contact.cpp's evidence, the clearance, and the
 /// search's own failure when it had one.
 profile_result report_profile(const profile_model& m, const context& cx, const search_result& sr) {
@@ -796,22 +797,14 @@ profile_result report_profile(const profile_model& m, const context& cx, const s
   return out;
 }
 
-/// The search from the seeded start (`predicted`: predicted_start's); when that does not end in a
-/// verified set, by the continuation from the highest tip (their rounds and iterations add up).
-/// Reported.
-window_solution search_and_report(const profile_model& m, const context& cx, const std::optional<search_start>& predicted) {
-  search_result sr;
-  if (predicted) sr = search_contact_set(m, cx, *predicted);
-  if (!predicted || (!verified(sr, cx.options.acceptance) && !(sr.last && cx.out_of_time()))) {
-    search_result again = search_contact_set(m, cx, continuation_start(m));
-    again.rounds += sr.rounds;
-    again.iterations += sr.iterations;
-    sr = std::move(again);
-  }
+/// The search from `start` (a seeded start, or continuation_start), reported; empty when not
+/// even its first round could be solved.
+std::optional<window_solution> search_and_report(const profile_model& m, const context& cx, const search_start& start,
+                                                 std::string& failure) {
+  const search_result sr = search_contact_set(m, cx, start);
   cx.throw_if_interrupted(who);
-  // Not even the highest tip alone at 16^-12 of the load: no contact interval (as solve for one
-  // indentor without one).
-  if (!sr.last) throw std::domain_error(std::string(who) + ": no contact found: " + sr.failure);
+  failure = sr.failure;
+  if (!sr.last) return std::nullopt;
   window_solution out;
   out.result = report_profile(m, cx, sr);
   out.origin = sr.last->states.origin;
@@ -842,24 +835,56 @@ bool needs_degree(const profile_result& r, const context& cx, std::size_t degree
   return std::any_of(r.contacts.begin(), r.contacts.end(), capped);
 }
 
-/// The search from `predicted` (the seeded start once: its coarse solve is up to half of a
-/// search, 0.21 s of 0.39 s for 50 cosine bumps), and again with the series to each of
-/// profile_degrees while needs_degree (the clock and the interrupt shared), seeded by the last
-/// search's contacts when it reached the full load without penetrations. WHY: its set is the
-/// answer but for the degree; from the coarse seeds each degree repeated the rounds that found it
+/// `out` searched again with the series to each of profile_degrees while needs_degree (the clock
+/// and the interrupt shared; rounds and iterations add up), from its own contacts when it reached
+/// the full load without penetrations, else from `start`. WHY its contacts: its set is the answer
+/// but for the degree; from the coarse seeds each degree repeated the rounds that found it
 /// (self-affine, 1000 samples, seed 1, load 2e-3: two rounds of 4.6 s and 13 s at degree 1024).
-window_solution solve_model(const profile_model& m, const context& cx, const std::optional<search_start>& predicted) {
-  window_solution out = search_and_report(m, cx, predicted);
+window_solution raise_degree(const profile_model& m, const context& cx, window_solution out, const search_start& start) {
   context wide = cx;
   for (const std::size_t degree : profile_degrees) {
     if (!needs_degree(out.result, wide, degree)) continue;
     wide.options.max_degree = degree;
-    std::optional<search_start> start = predicted;
-    if (out.result.diagnostics.load_fraction == 1 && out.result.penetrations.empty()) start = start_from(m, out.contacts());
-    window_solution again = search_and_report(m, wide, start);
-    again.result.diagnostics.rounds += out.result.diagnostics.rounds;
-    again.result.diagnostics.iterations += out.result.diagnostics.iterations;
-    out = std::move(again);
+    search_start from = start;
+    if (out.result.diagnostics.load_fraction == 1 && out.result.penetrations.empty())
+      if (auto own = start_from(m, out.contacts())) from = std::move(*own);
+    std::string failure;
+    auto again = search_and_report(m, wide, from, failure);
+    if (!again) break;
+    again->result.diagnostics.rounds += out.result.diagnostics.rounds;
+    again->result.diagnostics.iterations += out.result.diagnostics.iterations;
+    out = std::move(*again);
+  }
+  return out;
+}
+
+/// The seeded search from `predicted` at each degree it needs (raise_degree); when that does not
+/// end ok, the continuation from the highest tip (then its degrees, from `predicted` below the
+/// full load). WHY the degrees first: a seeded round whose contacts span several samples stalls
+/// at the floor of its series (4000 samples, periodic, seed 3, load 3e-3: the largest edge
+/// condition 1e-3 at degree 128, ok at 512), and the continuation from one tip spent the time
+/// limit before the degree was raised.
+window_solution solve_model(const profile_model& m, const context& cx, const std::optional<search_start>& predicted) {
+  std::optional<window_solution> seeded;
+  std::string failure;
+  if (predicted) {
+    if (auto first = search_and_report(m, cx, *predicted, failure)) {
+      seeded = raise_degree(m, cx, std::move(*first), *predicted);
+      if (seeded->result.diagnostics.code == status_code::ok || cx.out_of_time()) return std::move(*seeded);
+    }
+  }
+  const search_start from_tip = continuation_start(m);
+  auto again = search_and_report(m, cx, from_tip, failure);
+  // Not even the highest tip alone at 16^-12 of the load: no contact interval (as solve for one
+  // indentor without one).
+  if (!again) {
+    if (seeded) return std::move(*seeded);
+    throw std::domain_error(std::string(who) + ": no contact found: " + failure);
+  }
+  window_solution out = raise_degree(m, cx, std::move(*again), predicted ? *predicted : from_tip);
+  if (seeded) {
+    out.result.diagnostics.rounds += seeded->result.diagnostics.rounds;
+    out.result.diagnostics.iterations += seeded->result.diagnostics.iterations;
   }
   return out;
 }

@@ -149,6 +149,27 @@ double gap_ratio(const problem& pb, const edges& x, bool movable_only = false) {
 /// 1e-4 the alpha = 0.9 scene's stage at 1/64 of the load closed the gap (contacts_merge).
 constexpr double continuation_accuracy = 1e-6;
 
+/// Seeded contacts (a sampled profile's) are solved to this fraction of the acceptance (when that
+/// is above the tolerance): the edges' Newton iteration stops at conditions below it, and the
+/// coupling correction is solved to it. WHY: the profile's evidence is judged at the acceptance
+/// (~1e-6 for sampled data), and its error terms here are a thousandth of that; the steps from
+/// 1e-9 to the default tolerance 1e-12 took 12 % of a 4000-sample search and kept a 16000-sample
+/// one from finishing within its minute (periodic, seed 3, load 3e-3: largest edge condition
+/// 5e-10 at the time limit).
+constexpr double seeded_accuracy = 1e-3;
+
+/// Whether a contact's series stopped at solve_options::max_degree with its tail above the
+/// acceptance: the edge conditions then have a floor above it, and no retry at this degree ends
+/// ok. WHY: a seeded round of a rough profile whose contacts span several samples stalled at the
+/// largest condition 1e-3 at degree 128, and its retries (the homotopy from the seeds) took 20 s
+/// of it before the profile search raised the degree (4000 samples, periodic, seed 3, load 3e-3;
+/// at 512 it is ok).
+bool series_capped(const fixed_solution& sol, const context& cx) {
+  return std::any_of(sol.g.begin(), sol.g.end(), [&](const contact_density& g) {
+    return g.jacobi.coefficients.size() >= cx.options.max_degree && g.tail > cx.options.acceptance;
+  });
+}
+
 /// Whether a contact starts from a seed (a sampled profile's coarse or solved contacts).
 bool any_seeded(const std::vector<indentor_state>& st) {
   return std::any_of(st.begin(), st.end(), [](const indentor_state& s) { return s.seed.has_value(); });
@@ -478,7 +499,10 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   // start, no step descended from it, and the retries spent 55 s (the residual of (8) there: 5.1e-7,
   // within the acceptance 1e-6).
   const bool seeded = any_seeded(st);
-  if (seeded) pb.stall_floor = cx.options.acceptance;
+  if (seeded) {
+    pb.stall_floor = cx.options.acceptance;
+    pb.accuracy = std::max(cx.options.tolerance, seeded_accuracy * cx.options.acceptance);
+  }
   edges isolated;
   for (auto& s : st) {
     s.solved.reset();  // set below for a result in the boundary-layer basis
@@ -511,16 +535,18 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   auto any = [](const auto& flags) { return std::any_of(flags.begin(), flags.end(), [](auto v) { return v != 0; }); };
   auto again = [&](problem& p) { return attempt(p, isolated); };
   newton_result result = attempt(pb, isolated);
+  // Seeded contacts whose series cannot reach the acceptance at this degree: no retries.
+  const bool capped = seeded && !result.converged && series_capped(result.sol, cx);
   // The loads-imposed iteration failed (or saw contacts merge): again in the bounded class.
   if (!result.converged && any(pb.loaded))
     retry(pb, result, bounded_form(pb), again,
           [](const newton_result& second, const newton_result& first) { return second.converged || !first.merged; });
   // A seeded start from which Newton failed: the homotopy from the seeds' own conditions.
-  if (seeded && !result.converged && !result.merged)
+  if (seeded && !result.converged && !result.merged && !capped)
     retry(pb, result, pb, [&](problem& p) { return offset_continuation(p, isolated); },
           [](const newton_result& second, const newton_result&) { return second.converged; });
   // A rigid body's coloured Jacobian (body_far_model) failed: again with every column differenced.
-  if (!result.converged && !result.merged && !result.lost && body_colouring(pb)) {
+  if (!result.converged && !result.merged && !result.lost && !capped && body_colouring(pb)) {
     problem full = pb;
     full.full_jacobian = true;
     retry(pb, result, std::move(full), again, [](const newton_result& second, const newton_result&) {
@@ -529,7 +555,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   }
   // A rigid body from an equal split failed: continuation in the heights (which finds a lost contact).
   const bool uneven = std::any_of(st.begin(), st.end(), [&](const indentor_state& s) { return s.height != st[0].height; });
-  if (pb.body_load && !result.converged && !result.merged && uneven)
+  if (pb.body_load && !result.converged && !result.merged && !capped && uneven)
     retry(pb, result, pb, [&](problem& p) { return height_continuation(p, isolated); },
           [](const newton_result& second, const newton_result&) { return second.converged || second.lost.has_value(); });
   // A split wedge whose apex left its contact (its contact moved onto one face) or that did not

@@ -297,6 +297,7 @@ struct solve_options {
   bool displacement = true;     ///< with grid_points > 0: also the displacement grid (the costlier one)
   sample_spacing spacing = sample_spacing::uniform;  ///< where the pressure samples lie (the displacement's are uniform)
   double tolerance = 1e-12;     ///< relative tolerance of the root finders and of the expansions
+                                ///< (a sampled profile's edges: max(tolerance, 1e-3 acceptance), profile.hpp)
   std::size_t max_degree = 128; ///< largest Jacobi degree of a density expansion (cost ~ degree^2);
                                 ///< the wedge's enriched solve may use up to max(2 max_degree + 1, 585) points
   /// Wedge below the boundary: build the apex singularity into the density (abel::solve_step's
