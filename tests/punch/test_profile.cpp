@@ -213,6 +213,36 @@ TEST_CASE("many bumps: the set of 25 cosine bumps, checked by the surface its pr
   CHECK(worst >= -check_tol * span);
 }
 
+TEST_CASE("an ok profile at acceptance 1e-6 lies within it of the same profile solved to 1e-9") {
+  // The search solves a sampled profile's edges to 1e-3 of the acceptance (profile.hpp), not to
+  // the tolerance: what it reports as ok must still be within the acceptance of the answer. The
+  // reference is the same search at acceptance 1e-9 (edges to the tolerance 1e-10, series to the
+  // degrees that acceptance needs). Edges relative to each contact's length, loads and C_f
+  // relative to the body's.
+  constexpr double acceptance = 1e-6;
+  const auto ps = cosine_bumps(25, 0.3);
+  auto o = profile_options();
+  o.acceptance = acceptance;
+  auto tight = o;
+  tight.acceptance = 1e-9;
+  const auto r = pu::solve_profile(ps, o);
+  const auto t = pu::solve_profile(ps, tight);
+  CAPTURE(r.diagnostics.status);
+  CAPTURE(t.diagnostics.status);
+  REQUIRE(r.diagnostics.code == pu::status_code::ok);
+  REQUIRE(t.diagnostics.code == pu::status_code::ok);
+  REQUIRE(r.contacts.size() == t.contacts.size());
+  for (std::size_t k = 0; k < r.contacts.size(); ++k) {
+    const auto& c = r.contacts[k];
+    const auto& d = t.contacts[k];
+    CAPTURE(k);
+    CHECK(std::abs(c.a - d.a) <= acceptance * d.contact_length);
+    CHECK(std::abs(c.b - d.b) <= acceptance * d.contact_length);
+    CHECK(std::abs(c.load - d.load) <= acceptance * ps.load);
+  }
+  CHECK(std::abs(r.hysteretic_friction - t.hysteretic_friction) <= acceptance * std::abs(t.hysteretic_friction));
+}
+
 TEST_CASE("a profile whose contacts would reach the end of its samples is refused") {
   // At alpha 0.7 the surface far ahead of the loads rises like d^0.7 above any bounded profile:
   // 50 cosine bumps put most of the load on the samples' first panel (the search ran 124 s into
