@@ -574,6 +574,14 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
   // settled: the last fraction at which the set settled (a failed step halves towards it).
   double t = start.t, settled = 0;
   std::size_t halvings = 0, shrinks = 0;
+  // A round that failed right after a load step: half the step (in log t), at most max_halvings
+  // times; false when there is no step to halve.
+  const auto halve_step = [&] {
+    if (!(settled > 0 && t > settled * 1.01 && halvings < max_halvings)) return false;
+    t = std::sqrt(t * settled);
+    ++halvings;
+    return true;
+  };
   const std::size_t max_rounds = 2 * m.bumps.size() + 40;
   for (;;) {
     if (out.rounds == max_rounds) {
@@ -612,11 +620,7 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
         ++shrinks;
         continue;
       }
-      if (runs.size() == 1 && settled > 0 && t > settled * 1.01 && halvings < max_halvings) {
-        t = std::sqrt(t * settled);
-        ++halvings;
-        continue;
-      }
+      if (runs.size() == 1 && halve_step()) continue;
       out.failure = rename(e.what(), m, runs);
       break;
     }
@@ -637,12 +641,7 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
       continue;
     }
     if (co.code != status_code::ok) {
-      // Failed right after a load step: half the step (in log t), at most max_halvings times.
-      if (settled > 0 && t > settled * 1.01 && halvings < max_halvings) {
-        t = std::sqrt(t * settled);
-        ++halvings;
-        continue;
-      }
+      if (halve_step()) continue;
       break;  // reported as it is
     }
     shares.clear();
