@@ -303,9 +303,9 @@ clearance_check check_clearance(const profile_model& m, const scene_states& ss, 
   clearance_check out;
   out.depth.assign(m.bumps.size(), 0.0);
   out.deepest_at.assign(m.bumps.size(), 0.0);
-  // The samples off the contacts, each with the nearest contact as its reference (its datum).
-  std::vector<std::vector<double>> xs(st.size());
-  std::vector<std::vector<std::size_t>> index(st.size());
+  // The samples off the contacts (in order), each with the nearest contact as its reference (its datum).
+  std::vector<double> xs;
+  std::vector<std::size_t> index, reference;
   for (std::size_t q = 0; q < x.size(); ++q) {
     const double s = x[q] - ss.origin;
     std::size_t nearest = 0;
@@ -318,8 +318,9 @@ clearance_check check_clearance(const profile_model& m, const scene_states& ss, 
       if (d < distance) distance = d, nearest = i;
     }
     if (skip) continue;
-    xs[nearest].push_back(s);
-    index[nearest].push_back(q);
+    xs.push_back(s);
+    index.push_back(q);
+    reference.push_back(nearest);
   }
   std::vector<std::size_t> bump_of(x.size(), 0);
   for (std::size_t b = 0; b < m.bumps.size(); ++b)
@@ -331,17 +332,15 @@ clearance_check check_clearance(const profile_model& m, const scene_states& ss, 
     const double mismatch = std::abs(heights.height(i - 1, a) - rise) / m.span;
     if (mismatch > out.level) out.level = mismatch, out.level_at = a + ss.origin;
   }
-  for (std::size_t i = 0; i < st.size(); ++i) {
-    if (xs[i].empty()) continue;
-    const auto w = heights.heights(i, xs[i]);
-    const double a_abs = st[i].g.a() + ss.origin, z_a = m.curve.value(a_abs);
-    for (std::size_t k = 0; k < xs[i].size(); ++k) {
-      const std::size_t q = index[i][k];
-      // w - w(a_i) >= z - z(a_i) where the surface clears the profile.
-      const double gap = (w[k] - (m.curve.z()[q] - z_a)) / m.span;
-      if (gap < out.worst) out.worst = gap, out.worst_at = x[q];
-      if (-gap > out.depth[bump_of[q]]) out.depth[bump_of[q]] = -gap, out.deepest_at[bump_of[q]] = x[q];
-    }
+  std::vector<double> z_a(st.size());
+  for (std::size_t i = 0; i < st.size(); ++i) z_a[i] = m.curve.value(st[i].g.a() + ss.origin);
+  const auto w = heights.heights(xs, reference);
+  for (std::size_t k = 0; k < xs.size(); ++k) {
+    const std::size_t q = index[k];
+    // w - w(a_i) >= z - z(a_i) where the surface clears the profile (i the sample's reference).
+    const double gap = (w[k] - (m.curve.z()[q] - z_a[reference[k]])) / m.span;
+    if (gap < out.worst) out.worst = gap, out.worst_at = x[q];
+    if (-gap > out.depth[bump_of[q]]) out.depth[bump_of[q]] = -gap, out.deepest_at[bump_of[q]] = x[q];
   }
   return out;
 }

@@ -127,9 +127,11 @@ class cross_field {
     if (const std::size_t separated = abel::separated_cross_nodes(gap / g.jacobi.half_length(), n); separated > 0)
       count = std::min(count, separated);
     nodes_ = abel::make_cross_nodes(g.jacobi, gap, right_of_, count);
-    const auto series = g.jacobi.series_evaluator();
+    // The series at all nodes in one call (the same sums bit for bit, interleaved: ~3 times
+    // faster than a call a node, which was 10 % of a 233-contact profile's search).
     weighted_.resize(nodes_.x.size());
-    for (std::size_t q = 0; q < nodes_.x.size(); ++q) weighted_[q] = nodes_.weight[q] * series(nodes_.x[q]);
+    g.jacobi.series_evaluator().evaluate(nodes_.x.data(), weighted_.data(), nodes_.x.size());
+    for (std::size_t q = 0; q < nodes_.x.size(); ++q) weighted_[q] *= nodes_.weight[q];
     if (g.has_apex) op_ = std::make_unique<abel::abel_operator<double>>(par, g.a(), g.b());
   }
   double operator()(double s) const {

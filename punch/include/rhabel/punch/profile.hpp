@@ -138,22 +138,23 @@
 //     the 14 contacts, both to 1.6e-4 of the span (the quadrature's error).
 //   * Residual of (8) against the spline for ten cosine bumps sampled 200 times per period:
 //     4e-9 .. 3.5e-8 (the residual of the contacts of examples/rough_profile.json: 8e-10 .. 5e-8).
-//   * Cost (`rhabel solve --acceptance 1e-6 --threads 1`, diagnostics.seconds, one quiet core):
+//   * Cost (`rhabel solve --acceptance 1e-6 --threads 1`, diagnostics.seconds, two runs, one core;
+//     another single-threaded run on the machine's second core):
 //       scene (samples, contacts)                                      rounds   time
-//       examples/rough_profile.json (2000, 6)                               1     0.10-0.12 s
-//       studies/scenes/cosine_profile.py 10 (800, 6)                        1     0.05 s
-//       cosine_profile.py 25 (2000, 14)                                     1     0.19-0.20 s
-//       cosine_profile.py 50 (4000, 29)                                     1     0.41-0.43 s
-//       cosine_profile.py 100 20 0.25 (2000, 45)                            1     0.61 s
-//       self_affine_profile.py 1000 SEED 5e-4, seeds 1-3 (3-6)            1-2     0.05-0.30 s
-//       self_affine_profile.py 4000 SEED 5e-4, seeds 1-3 (6-11)             2     0.56-0.84 s
-//       self_affine_profile.py 4000 1 2e-3 (35)                              2     12 s
-//       self_affine_profile.py 16000 1 1e-3 (35)                             2     7-9 s
-//     The coarse solve takes 0.01-0.21 s of that (0.21 s of the 50 bumps' 0.39 s); the self-affine contacts spanning several samples
+//       examples/rough_profile.json (2000, 6)                               1     0.09-0.11 s
+//       studies/scenes/cosine_profile.py 10 (800, 6)                        1     0.08-0.09 s
+//       cosine_profile.py 25 (2000, 14)                                     1     0.19 s
+//       cosine_profile.py 50 (4000, 29)                                     1     0.34 s
+//       cosine_profile.py 100 20 0.25 (2000, 45)                            1     0.40 s
+//       self_affine_profile.py 1000 SEED 5e-4, seeds 1-3 (3-6)            1-2     0.08-0.23 s
+//       self_affine_profile.py 4000 SEED 5e-4, seeds 1-3 (6-11)             2     0.35-0.38 s
+//       self_affine_profile.py 4000 1 2e-3 (35)                              2     1.0 s
+//       self_affine_profile.py 16000 1 1e-3 (35)                             2     1.45-1.48 s
+//     The coarse solve takes 0.01-0.21 s of that (0.21 s of the 50 bumps' 0.34 s); the self-affine contacts spanning several samples
 //     are solved twice (degree 128, then 512: see above), or three times (then 1024).
 //     Each round is one coupled solve of its contacts (contact.hpp, "Cost"); from six contacts on,
 //     a rigid body's Jacobian is coloured (10 evaluations) with its far entries from the loads'
-//     monopoles. The same 50 bumps at material.alpha = 0: 49 contacts, 1 round, 0.58-0.60 s (a
+//     monopoles. The same 50 bumps at material.alpha = 0: 49 contacts, 1 round, 1.3 s (a
 //     contact's own datum by closed-form moments of the logarithm; between alpha = 0 and 1e-2 it is
 //     tanh-sinh, several times slower).
 //
@@ -165,12 +166,12 @@
 //   of self_affine_profile.py's 36 finite windows at 1000, 4000 and 16000 samples, seeds 1-3,
 //   loads 5e-4, 1e-3, 2e-3, 3e-3 (acceptance 1e-6, --time-limit 60; studies/scenes/
 //   rough_matrix.py), 15 are refused (contacts at an end of the samples) and 20 of the other 21
-//   are ok (3 to 64 contacts, 0.07-4.2 s; those of tests/punch/test_rough_profile.cpp agree with
+//   are ok (3 to 64 contacts, 0.06-3.0 s; those of tests/punch/test_rough_profile.cpp agree with
 //   the boundary-element oracle); one misses the acceptance by a contact across spline knots
 //   (residual of (8) 1.15e-6 at degree 1023: the spline's joints make its series converge like
 //   degree^-2). A search that ends short of the load says which load was reached and where the
 //   profile penetrates. The same 36 as periodic profiles (rough_matrix.py --periodic): all 36 ok
-//   (3 to 85 contacts, 0.1-39 s), each with the boundary-element solver's patches and C_f within
+//   (3 to 85 contacts, 0.1-27 s), each with the boundary-element solver's patches and C_f within
 //   its estimate (those of tests/punch/test_rough_profile.cpp against the boundary-element
 //   oracle).
 //   Scenes the search does not solve, and many hundreds of patches, are what
