@@ -36,12 +36,12 @@ d::context make_context(double alpha) {
 }
 
 /// A flat-faced state (its rigid profile plays no part off the contacts) on [a, b] with a series
-/// of end exponents kappa and 1 - kappa (any in (-1, 1) will do here).
+/// of end exponents kappa and 1 - kappa (1 and 0 at alpha = 0; any above -1 will do here).
 d::indentor_state state(double a, double b, const std::vector<double>& c, const d::context& cx) {
   d::indentor_state s;
   s.k = d::kind::flat;
   s.apex = (a + b) / 2;
-  const double gam = cx.par.kappa(), del = 1 - cx.par.kappa();  // any exponents in (-1, 1)
+  const double gam = cx.par.kappa(), del = 1 - cx.par.kappa();  // any exponents above -1
   s.g.jacobi = {a, b, gam, del, c};
   s.g.nu = 1;
   return s;
