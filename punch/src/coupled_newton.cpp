@@ -2,6 +2,7 @@
 // conditions (newton; coupled_problem.hpp; the mathematics: "THE EDGES" and "A RIGID BODY" at the
 // top of coupled_solve.cpp).
 #include "coupled_problem.hpp"
+#include "newton_krylov.hpp"
 #include "parallel.hpp"
 #include "surface.hpp"
 
@@ -151,7 +152,22 @@ edges moved(const problem& pb, const unknowns& u, const edges& x, const Eigen::V
 /// closes it, else not_converged): contacts are not merged into one.
 constexpr double resolved_gap = 1e-6;
 
-/// Two neighbours whose gap the step (x + dx) would close while it is already below resolved_gap.
+/// Seeded contacts (problem::seeded, a sampled profile's): a gap narrower than this fraction of the
+/// smaller contact that a step narrows ends the iteration as a merge (contacts_merge); the profile
+/// search then solves the two as one contact, and splits it again where its pressure is negative
+/// (contact_set.cpp, repair_tension). WHY: abel::solve_union takes one coupling degree for all
+/// contacts, set by the narrowest gap; a 1e5-sample periodic profile whose two contacts (of 233)
+/// closed in to 1e-5 .. 3e-6 L raised it from 243 to 465 points a contact, 15 s an evaluation and
+/// 150 s a Jacobian, while the iteration still could not resolve the gap (traced in a scratch
+/// build). Not 1e-3: a pair of a 16000-sample periodic profile (seed 3, load 3e-3) closing to
+/// 6e-4 L is two contacts, and merged there the search split it again for its negative pressure
+/// (two more rounds: 27 s against 19 s).
+constexpr double seeded_merge_gap = 1e-4;
+
+/// The gap below which a narrowing pair ends the iteration (see above).
+double merge_gap(const problem& pb) { return pb.seeded ? seeded_merge_gap : resolved_gap; }
+
+/// Two neighbours whose gap the step (x + dx) would close while it is already below merge_gap.
 struct closing_gap {
   std::size_t first, second;
   double gap_ratio;
@@ -160,7 +176,7 @@ struct closing_gap {
 
 /// Largest t in (0, 1] such that x + t dx keeps every contact at least half as long and every gap
 /// at least a fifth as wide as now (the contacts' order is kept); `closing` reports a gap below
-/// resolved_gap that the step narrows.
+/// merge_gap that the step narrows.
 double step_limit(const problem& pb, const unknowns& u, const edges& x, const Eigen::VectorXd& dx,
                   std::optional<closing_gap>& closing) {
   const std::size_t n = pb.roles.size();
@@ -175,7 +191,7 @@ double step_limit(const problem& pb, const unknowns& u, const edges& x, const Ei
   for (const auto& [i, j, gap, L] : neighbour_pairs(x.a, x.b)) {
     const double dgap = da[j] - db[i];
     if (dgap < 0 && gap > 0) t = std::min(t, 0.8 * gap / -dgap);
-    if (dgap < 0 && gap < resolved_gap * L) closing = closing_gap{i, j, gap / L, gap + dgap <= 0};
+    if (dgap < 0 && gap < merge_gap(pb) * L) closing = closing_gap{i, j, gap / L, gap + dgap <= 0};
   }
   return t;
 }
@@ -194,6 +210,38 @@ std::string closing_message(const problem& pb, const closing_gap& c, const std::
 /// scene::body: a contact shorter than this fraction of its isolated length (at an equal share of
 /// the load) is taken as vanishing: its indentor would carry no load.
 constexpr double vanishing_length = 1e-3;
+
+/// Seeded contacts (problem::seeded) on a rigid body: a contact carrying less than this fraction
+/// of the mean load that the full Newton step would shrink past zero length vanishes at once (not
+/// only below vanishing_length). WHY: step_limit halves such a contact at every step while its
+/// condition, relative to its own load, stays where it was, and the iteration stalls before it is
+/// short enough (1e5-sample periodic profile, 233 contacts: a seed of one coarse panel, 1.9e-6
+/// long, halved 7 times in 7 steps at the largest condition 240 while its load fell from 0.1 to
+/// 3e-5 of the mean; then a new Jacobian grew it back). The profile search drops it and adds it
+/// back, once, if the surface penetrates there later. Not for other bodies: a body of three
+/// parabolas whose light one is pushed past zero by a first step far from the solution carries
+/// load at the solution (test_coupled.cpp).
+constexpr double vanishing_share = 1e-2;
+
+/// The contact that vanishing_share names (the least loaded one if several), if any.
+std::optional<std::size_t> starved_contact(const problem& pb, const unknowns& u, const edges& x,
+                                           const Eigen::VectorXd& dx, const fixed_solution& sol) {
+  if (!pb.body_load || !pb.seeded) return std::nullopt;
+  const std::size_t n = pb.roles.size();
+  std::vector<double> dL(n, 0.0);
+  for (std::size_t k = 0; k < u.state.size(); ++k)
+    dL[u.state[k]] += (u.trailing[k] ? 1.0 : -1.0) * dx[static_cast<Eigen::Index>(k)];
+  double total = 0;
+  for (const auto& g : sol.g) total += std::abs(g.integral());
+  const double mean = total / double(n);
+  std::optional<std::size_t> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double load = sol.g[i].integral();
+    if (pb.roles[i] != role::smooth_both || x.b[i] - x.a[i] + dL[i] > 0 || !(load < vanishing_share * mean)) continue;
+    if (!out || load < sol.g[*out].integral()) out = i;
+  }
+  return out;
+}
 
 /// A FLAT RUN: accepted steps that each lower the largest edge condition by less than
 /// flat_gain (the line search shortened them to almost nothing). After flat_steps of them a new
@@ -574,6 +622,7 @@ struct jacobian_state {
   std::size_t since_fresh = 0;  // accepted steps since the last finite-difference Jacobian
   std::size_t flat = 0;         // accepted steps of the current flat run
   bool refreshed_in_flat = false;
+  bool krylov = false;  // the steps by krylov_step from now on
 
   /// A new finite-difference Jacobian at the accepted point of s.
   void refresh(const newton_state& s) {
@@ -675,6 +724,44 @@ flat_verdict flat_run(newton_state& s, jacobian_state& js, const edges& before, 
   return flat_verdict::stop;
 }
 
+/// NEWTON-KRYLOV STEP (inexact Newton, Dembo, Eisenstat and Steihaug, SIAM J. Numer. Anal. 19
+/// (1982) 400-408; Jacobian-free, Knoll and Keyes, J. Comput. Phys. 193 (2004) 357-397): the step dx
+/// with |r + J dx| <= krylov_rtol |r|, J the true Jacobian of the edge conditions
+/// (newton_krylov.hpp: GMRES on differences, no edge moved by more than 1e-7 of its contact's
+/// length, at the base point's fixed degree as jacobian's columns), right-preconditioned by
+/// Broyden's matrix (its solve). At most krylov_products + 1 evaluations; GMRES's best iterate
+/// when they are not enough. WHY: on a rigid body of many seeded contacts the
+/// coloured Jacobian (body_far_model) misses couplings among clustered contacts, and a fresh one's
+/// step then gains little: 1e5-sample periodic profile, 229 contacts, degree 512: 5e-5 to 1.4e-5
+/// of the largest condition in 20 steps and 180 s; with these steps 3e-7 in 12 steps (traced);
+/// 4000-sample periodic profile, seed 3, load 3e-3 (34 contacts): 26 s -> 12.7 s. Used only after
+/// a fresh Jacobian's step gained less than krylov_after; scenes the coloured Jacobian serves keep
+/// Broyden's steps, one evaluation each, and one that it serves slowly pays the products: the
+/// 16000-sample one at seed 3 (75 contacts) 19 s -> 26 s (rtol 1e-2: 32 s); the other 34 periodic
+/// and 21 finite scenes of studies/scenes/rough_matrix.py end as before, in the same time or less.
+constexpr double krylov_after = 0.5;
+constexpr double krylov_rtol = 0.1;
+constexpr std::size_t krylov_products = 12;
+
+Eigen::VectorXd krylov_step(const newton_state& s, const jacobian_state& js) {
+  problem pb = s.pb;
+  pb.fixed_degree = s.ev.sol.degree;
+  pb.fixed_poles_per_decade = s.ev.sol.poles_per_decade;
+  const unknowns& u = s.u;
+  Eigen::VectorXd length(static_cast<Eigen::Index>(u.state.size()));
+  for (std::size_t k = 0; k < u.state.size(); ++k)
+    length[static_cast<Eigen::Index>(k)] = s.out.x.b[u.state[k]] - s.out.x.a[u.state[k]];
+  const auto conditions = [&](const Eigen::VectorXd& dx) {
+    const edges y = moved(pb, u, s.out.x, dx);
+    return evaluate(pb, u, y.a, y.b).r;
+  };
+  const auto precondition = [&](const Eigen::VectorXd& v) {
+    const auto z = js.J.solve(v);
+    return z ? Eigen::VectorXd(*z) : v;
+  };
+  return newton_krylov_step(conditions, s.ev.r, length, precondition, krylov_rtol, krylov_products, 1e-7);
+}
+
 /// After an accepted step (t dx, the condition's reduction, the relative step): true when the
 /// iteration ends (stalled far from the solution, a contact vanishes, or converged); may refresh J.
 bool newton_step_ends(newton_state& s, jacobian_state& js, bool colouring, bool step_was_fresh, double t,
@@ -685,7 +772,9 @@ bool newton_step_ends(newton_state& s, jacobian_state& js, bool colouring, bool 
   // contacts: 27 steps from 3.8 to 0.95, each gaining 1 ... 11 %): the caller's continuation in
   // the load takes over. A rigid body's steps are often shortened by step_limit far from the
   // solution (a contact about to vanish): only a full step that gains little gives up there.
-  if (colouring && step_was_fresh && reduction > 0.75 && step > 10 * s.tol && (!pb.body_load || t == 1)) {
+  if (colouring && pb.seeded && step_was_fresh && !js.krylov && reduction > krylov_after && step > 10 * s.tol) {
+    js.krylov = true;  // the coloured Jacobian misses a coupling: exact products from now on
+  } else if (colouring && step_was_fresh && reduction > 0.75 && step > 10 * s.tol && (!pb.body_load || t == 1)) {
     s.out.failure = "the edge iteration stalled";
     return true;
   }
@@ -730,7 +819,8 @@ void broyden_steps(newton_state& s) {
       break;
     }
     out.iterations = it + 1;
-    const auto solved = js.J.solve(s.ev.r);
+    // (krylov_step returns the step; Broyden's solve returns minus it)
+    const auto solved = js.krylov ? std::optional<Eigen::VectorXd>(-krylov_step(s, js)) : js.J.solve(s.ev.r);
     if (!solved) {  // Broyden's updates made the matrix singular (a fresh one has none): a new Jacobian
       js.refresh(s);
       continue;
@@ -744,10 +834,19 @@ void broyden_steps(newton_state& s) {
     double t = step_limit(pb, u, out.x, dx, closing);
     if (closing) {
       std::ostringstream os;
-      os << (closing->closes ? " (the next step closes the gap: they merge)" : "") << "; gaps below " << resolved_gap
-         << " of the contact length are not resolved";
+      if (pb.seeded)
+        os << ": they merge (a sampled profile's contacts nearer than " << seeded_merge_gap
+           << " of a contact length are solved as one)";
+      else
+        os << (closing->closes ? " (the next step closes the gap: they merge)" : "") << "; gaps below " << resolved_gap
+           << " of the contact length are not resolved";
       out.failure = closing_message(pb, *closing, os.str());
-      if (closing->closes) out.merged = std::make_pair(closing->first, closing->second);
+      if (closing->closes || pb.seeded) out.merged = std::make_pair(closing->first, closing->second);
+      break;
+    }
+    if (const auto starved = starved_contact(pb, u, out.x, dx, s.ev.sol)) {
+      out.lost = starved;
+      out.failure = "a contact vanishes";
       break;
     }
     evaluation next;

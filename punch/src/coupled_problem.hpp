@@ -144,6 +144,10 @@ struct problem {
   std::optional<double> body_load;
   double height_factor = 1;          // scene::body continuation: every height times this
   bool full_jacobian = false;        // scene::body: every column differenced (no body_far_model)
+  // Contacts started from seeds (a sampled profile's coarse or solved contacts; contact_set.cpp):
+  // a starved contact vanishes and a closing gap merges sooner (coupled_newton.cpp,
+  // vanishing_share and seeded_merge_gap), as the profile search then drops or merges them.
+  bool seeded = false;
   // > 0: an iteration that stalls (no step descends, or a flat run) with every condition at most
   // this, evaluated to a tenth of it, has converged to the floor of its evaluations (newton).
   double stall_floor = 0;

@@ -499,6 +499,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   // start, no step descended from it, and the retries spent 55 s (the residual of (8) there: 5.1e-7,
   // within the acceptance 1e-6).
   const bool seeded = any_seeded(st);
+  pb.seeded = seeded;
   if (seeded) {
     pb.stall_floor = cx.options.acceptance;
     pb.accuracy = std::max(cx.options.tolerance, seeded_accuracy * cx.options.acceptance);

@@ -54,10 +54,11 @@
 //        general profile with smooth edges, loads unknown, total load P, equal rigid levels),
 //        each contact's Newton iteration started from its edges in the last converged round (the
 //        coarse ones in the first);
-//     2. a contact that vanishes in that solve (status contact_lost) is dropped; two contacts that
-//        meet (contacts_merge) become one contact over both basins; a contact that reaches beyond
-//        its basins takes the next basin in (shared with the contact there while the two stay
-//        apart);
+//     2. a contact that vanishes in that solve (status contact_lost; also one below 1 % of the mean
+//        load that a Newton step would shrink past zero) is dropped; two contacts that meet
+//        (contacts_merge; also two closing to a gap below 1e-4 of a contact length) become one
+//        contact over both basins; a contact that reaches beyond its basins takes the next basin
+//        in (shared with the contact there while the two stay apart);
 //     3. otherwise the surface displacement is evaluated at every sample outside the contacts (not
 //        within 1/64 of a contact's length of its edges, where the surface's quadrature is not
 //        resolved and the edge conditions hold anyway): where the profile penetrates the surface
@@ -72,7 +73,8 @@
 //   The coarse set is first-order accurate: a contact carrying a few percent of its neighbours'
 //   load may be missing or extra, and costs one more round. A contact spanning spline knots that
 //   misses the acceptance at the series' degree is solved again at degree 512, then 1024 (see
-//   below). When the seeded rounds at these degrees do not end ok (or the coarse solve's active
+//   below), from the last round's contacts when it reached the full load (its rounds then add
+//   the contacts missing where the surface penetrates). When the seeded rounds at these degrees do not end ok (or the coarse solve's active
 //   set does not settle), the search starts again by load continuation: from the highest tip
 //   alone at 1/256 of P, the load raised by 4 after each round that settles (the set grown at t
 //   is the start at 4 t), a step that fails halved towards the last settled load (at most three
@@ -166,12 +168,12 @@
 //   of self_affine_profile.py's 36 finite windows at 1000, 4000 and 16000 samples, seeds 1-3,
 //   loads 5e-4, 1e-3, 2e-3, 3e-3 (acceptance 1e-6, --time-limit 60; studies/scenes/
 //   rough_matrix.py), 15 are refused (contacts at an end of the samples) and 20 of the other 21
-//   are ok (3 to 64 contacts, 0.06-3.0 s; those of tests/punch/test_rough_profile.cpp agree with
+//   are ok (3 to 64 contacts, 0.06-2.8 s; those of tests/punch/test_rough_profile.cpp agree with
 //   the boundary-element oracle); one misses the acceptance by a contact across spline knots
 //   (residual of (8) 1.15e-6 at degree 1023: the spline's joints make its series converge like
 //   degree^-2). A search that ends short of the load says which load was reached and where the
 //   profile penetrates. The same 36 as periodic profiles (rough_matrix.py --periodic): all 36 ok
-//   (3 to 85 contacts, 0.1-27 s), each with the boundary-element solver's patches and C_f within
+//   (3 to 85 contacts, 0.09-26 s), each with the boundary-element solver's patches and C_f within
 //   its estimate (those of tests/punch/test_rough_profile.cpp against the boundary-element
 //   oracle).
 //   Scenes the search does not solve, and many hundreds of patches, are what
