@@ -772,6 +772,8 @@ bool newton_step_ends(newton_state& s, jacobian_state& js, bool colouring, bool 
   // contacts: 27 steps from 3.8 to 0.95, each gaining 1 ... 11 %): the caller's continuation in
   // the load takes over. A rigid body's steps are often shortened by step_limit far from the
   // solution (a contact about to vanish): only a full step that gains little gives up there.
+  // Seeded contacts first go on with krylov_step (a fresh step gaining less than krylov_after),
+  // and give up only when a fresh step gains that little again.
   if (colouring && pb.seeded && step_was_fresh && !js.krylov && reduction > krylov_after && step > 10 * s.tol) {
     js.krylov = true;  // the coloured Jacobian misses a coupling: exact products from now on
   } else if (colouring && step_was_fresh && reduction > 0.75 && step > 10 * s.tol && (!pb.body_load || t == 1)) {

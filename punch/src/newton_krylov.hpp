@@ -23,7 +23,6 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <exception>
 
