@@ -313,23 +313,28 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
   const double tol = std::max(cx.options.tolerance, pb.accuracy);
   o.residual_tolerance = std::clamp(10 * tol / std::max(worst_ratio, 1e-300), 10 * tol, 1e-4);
   constexpr std::size_t first_degree = 16;
-  o.degree = pb.fixed_degree > 0 ? pb.fixed_degree : std::max(first_degree, 2 * pb.degree_hint->load() / 3);
-  o.residual_points = pb.fixed_degree > 0 ? 0 : 8;
+  const bool fixed = !pb.fixed_degrees.empty();
+  o.residual_points = fixed ? 0 : 8;
   const std::size_t K = intervals.size();
   // Memory: at most 1 GiB for the union's system (the far route's estimate when it is used).
   o.max_memory_bytes = std::size_t(1) << 30;
   const std::size_t memory_degree = far ? abel::union_far_degree_limit(*far->field(), o.max_memory_bytes)
                                         : abel::union_degree_limit<double>(K, o.max_memory_bytes);
   const std::size_t top_degree = std::max(first_degree, std::min<std::size_t>(600, memory_degree));
-  if (pb.fixed_degree == 0) o.degree = std::min(o.degree, top_degree);
-  o.max_degree = pb.fixed_degree > 0 ? 0 : std::max(o.degree, top_degree);
+  // Each contact's degree: the base point's (fixed), else one rung below its last (hints), each
+  // adapting on its own residual (abel's adapt_each_interval).
+  for (const std::size_t j : targets)
+    o.degrees.push_back(fixed ? pb.fixed_degrees[j] : std::min(top_degree, std::max(first_degree, 2 * pb.hints->at(j) / 3)));
+  o.degree = *std::max_element(o.degrees.begin(), o.degrees.end());
+  o.max_degree = fixed ? 0 : top_degree;
+  o.adapt_each_interval = true;
   o.homogeneous = false;  // the loads are imposed through o.loads; the homogeneous solutions are not used
   // From iterative_from contacts: GMRES, with the far part through the particulars' far field
   // (the same intervals): 11-19 products for rows of 10-300 parabolas 1.5 L apart.
   o.iterative_from = iterative_from;
   if (far) o.far_field = far->field();
   // (A Jacobian's differences take the base point's route: a difference must not cross routes.)
-  const bool layered = !far && (pb.fixed_degree > 0 ? pb.fixed_poles_per_decade > 0
+  const bool layered = !far && (fixed ? pb.fixed_poles_per_decade > 0
                                                     : nearly_touching(intervals, cx.options.layered_below));
   std::size_t per_decade = 0;
   if (layered) {
@@ -338,15 +343,18 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
     // differences at the base point's basis. Its degree is not a hint for the polynomial route.
     const bool coarse = tol >= coarse_layered_accuracy;
     const std::size_t first = coarse ? layered_degree / 2 : layered_degree;
-    per_decade = pb.fixed_degree > 0 ? pb.fixed_poles_per_decade : (coarse ? layered_poles_per_decade / 2 : layered_poles_per_decade);
-    o.degree = pb.fixed_degree > 0 ? pb.fixed_degree : first;
-    o.max_degree = pb.fixed_degree > 0 ? 0 : 2 * first;
+    per_decade = fixed ? pb.fixed_poles_per_decade : (coarse ? layered_poles_per_decade / 2 : layered_poles_per_decade);
+    o.degree = fixed ? o.degree : first;  // (fixed: the base point's one degree for all)
+    o.max_degree = fixed ? 0 : 2 * first;
+    o.degrees.clear();
   }
   const auto sol = layered ? abel::solve_union_layered(cx.par, intervals, data, o, per_decade)
                            : abel::solve_union(cx.par, intervals, data, o);
   out.degree = sol.degree;
+  out.degrees.assign(n, 0);
+  for (std::size_t k = 0; k < K; ++k) out.degrees[targets[k]] = sol.degrees[k];
   out.poles_per_decade = per_decade;
-  if (pb.fixed_degree == 0 && !layered) pb.degree_hint->store(sol.degree);
+  if (!fixed && !layered) pb.hints->store(out.degrees);
   out.correction_residual = sol.residual * std::max(worst_ratio, 0.0);
   out.correction_converged = sol.status == abel::solve_status::converged;
   for (std::size_t k = 0; k < K; ++k) {

@@ -450,7 +450,7 @@ class colouring {
 /// 2 colours evaluations for any N: 2 full_width for rows of contacts of similar lengths.
 Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x, const evaluation& ev) {
   problem pb = base;
-  pb.fixed_degree = ev.sol.degree;
+  pb.fixed_degrees = ev.sol.degrees;
   pb.fixed_poles_per_decade = ev.sol.poles_per_decade;
   const Eigen::VectorXd& r = ev.r;
   const auto m = static_cast<Eigen::Index>(u.state.size());
@@ -745,7 +745,7 @@ constexpr std::size_t krylov_products = 12;
 
 Eigen::VectorXd krylov_step(const newton_state& s, const jacobian_state& js) {
   problem pb = s.pb;
-  pb.fixed_degree = s.ev.sol.degree;
+  pb.fixed_degrees = s.ev.sol.degrees;
   pb.fixed_poles_per_decade = s.ev.sol.poles_per_decade;
   const unknowns& u = s.u;
   Eigen::VectorXd length(static_cast<Eigen::Index>(u.state.size()));

@@ -16,7 +16,6 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
-#include <atomic>
 #include <cstddef>
 #include <limits>
 #include <memory>
@@ -116,7 +115,8 @@ class far_tree {
 struct fixed_solution {
   std::vector<contact_density> g;  // per state
   std::vector<double> defect;      // per state: nu = -1 defect (abel's normalisation), else 0
-  std::size_t degree = 0;          // collocation points per contact of the correction (0: none)
+  std::size_t degree = 0;          // the most collocation points of a contact's correction (0: none)
+  std::vector<std::size_t> degrees;  // per state: its correction's collocation points (0: none)
   std::size_t poles_per_decade = 0;  // the boundary-layer route's (0: the polynomial route)
   double correction_residual = 0;  // its independent residual, relative to the original data
   bool correction_converged = true;
@@ -126,6 +126,25 @@ struct fixed_solution {
 inline double data_scale(const indentor_state& st, const context& cx, double a, double b) {
   return max_slope(st, a, b) / cx.gamma_factor;
 }
+
+/// The correction's degrees of the last adaptive evaluation (problem::hints), per state; read and
+/// written under a lock (a Jacobian's threads read them through their copies of the problem).
+class degree_hints {
+ public:
+  /// Contact i's hint (0: none yet).
+  std::size_t at(std::size_t i) const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    return i < degrees_.size() ? degrees_[i] : 0;
+  }
+  void store(std::vector<std::size_t> degrees) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    degrees_ = std::move(degrees);
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::vector<std::size_t> degrees_;
+};
 
 struct problem {
   const std::vector<indentor_state>* st = nullptr;
@@ -159,21 +178,22 @@ struct problem {
   double load(std::size_t i) const {
     return load_factor * (*st)[i].target_load * (load_weights.empty() ? 1.0 : load_weights[i]);
   }
-  // > 0: the correction at exactly this many points per contact, without its residual (the
-  // finite differences of the Jacobian: the base point's degree, so that both sides of a
-  // difference share one discretisation)
-  std::size_t fixed_degree = 0;
-  // With fixed_degree on the boundary-layer route: the base point's poles a decade.
+  // Non-empty (per state): the correction at exactly these many points on each contact, without
+  // its residual (the finite differences of the Jacobian: the base point's degrees,
+  // fixed_solution::degrees, so that both sides of a difference share one discretisation)
+  std::vector<std::size_t> fixed_degrees;
+  // With fixed_degrees on the boundary-layer route: the base point's poles a decade.
   std::size_t fixed_poles_per_decade = 0;
   // The far field's tree, kept across evaluations (copies of the problem share it).
   std::shared_ptr<far_tree> tree = std::make_shared<far_tree>();
-  // The degree the last adaptive evaluation needed (copies share it). The next one starts its
-  // ladder one rung (x 2/3) below, so that the degree can also fall: the edges move little
-  // between evaluations, and near contacts need high degrees (gap 1e-3 L: ~400 at 1e-12), which
-  // the ladder from 16 reaches after 9 solves, each with its residual (measured at that gap:
-  // 190 ms an evaluation from 16, 145 ms from the hint; starting AT the hint, the degree only
-  // grows, and one overshoot toward a merge kept every later evaluation at the cap of 600).
-  std::shared_ptr<std::atomic<std::size_t>> degree_hint = std::make_shared<std::atomic<std::size_t>>(0);
+  // The degrees the last adaptive evaluation needed, per state (copies share them). The next one
+  // starts each contact's ladder one rung (x 2/3) below, so that a degree can also fall: the edges
+  // move little between evaluations, and near contacts need high degrees (gap 1e-3 L: ~400 at
+  // 1e-12), which the ladder from 16 reaches after 9 solves, each with its residual (measured at
+  // that gap: 190 ms an evaluation from 16, 145 ms from the hint; starting AT the hint, the degree
+  // only grows, and one overshoot toward a merge kept every later evaluation at the cap of 600).
+  // Per contact (abel's adapt_each_interval): only the contacts with a near neighbour climb.
+  std::shared_ptr<degree_hints> hints = std::make_shared<degree_hints>();
   // > the requested tolerance: the accuracy to which an evaluation solves the correction (an
   // inexact Newton step far from the solution; see newton_iteration).
   double accuracy = 0;

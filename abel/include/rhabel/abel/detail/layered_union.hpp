@@ -228,6 +228,7 @@ class layered_system {
       : par_(par), intervals_(intervals), M_(M), K_(intervals.size()), n_basis_(K_), offset_(K_ + 1, 0) {
     using std::pow;
     skeleton_.degree = M;
+    skeleton_.degrees.assign(K_, M);
     skeleton_.condition = std::numeric_limits<Real>::quiet_NaN();
     for (std::size_t i = 0; i < K_; ++i) {
       ops_.emplace_back(par, intervals[i].lo, intervals[i].hi);

@@ -18,6 +18,7 @@
 #include <cstddef>
 #include <functional>
 #include <limits>
+#include <map>
 #include <memory>
 #include <optional>
 #include <utility>
@@ -43,6 +44,16 @@ struct multi_solve_options {
   /// grow like max_degree^2 and ^3 (header: 2 s and a 81 MB peak at 1024 for two intervals;
   /// bounded by max_memory_bytes).
   std::size_t max_degree = 0;
+  /// Per interval: the first degree of each (empty: `degree` for all; else one per interval, each
+  /// in [2, max(degree, max_degree)]). A caller that knows which intervals need high degrees
+  /// (nearly touching neighbours) passes them here, the rest stay cheap.
+  std::vector<std::size_t> degrees;
+  /// Adaptive degree per interval: only the intervals whose own residual (at their points)
+  /// exceeds residual_tolerance grow by 1.5x; false: all grow together while the largest residual
+  /// exceeds it. WHY: on a union of many intervals, a few nearly touching pairs need high degrees
+  /// (gap 1e-4 L: ~800) and the rest ~16; growing all of them made the solve cost K M^3 for the
+  /// largest M (a 230-contact profile: 0.9 s an evaluation at degree 168 for all).
+  bool adapt_each_interval = false;
   std::size_t residual_points = 8;      ///< per interval; 0 = skip the residual
   std::vector<std::optional<Real>> loads;  ///< per interval, used for nu = +1 intervals only
   /// status = not_converged when the independent residual exceeds this (only if it is computed).
@@ -126,7 +137,11 @@ struct multi_solution {
   Real load(std::size_t i) const {
     return densities[i].integral() + (i < layers.size() ? layers[i].integral() : Real(0));
   }
-  std::size_t degree = 0;                            ///< collocation points per interval of the returned solve
+  std::size_t degree = 0;                            ///< the largest of `degrees`
+  std::vector<std::size_t> degrees;                  ///< collocation points of each interval in the returned solve
+  /// Per interval: its part of `residual` (the same definition at the interval's points; empty
+  /// when no residual was computed).
+  std::vector<Real> interval_residuals;
   /// not_converged: residual > options.residual_tolerance (typically nearly touching intervals,
   /// see the header); converged otherwise, or when no residual was computed.
   solve_status status = solve_status::converged;
@@ -179,7 +194,7 @@ Real union_gap(const std::vector<interval_spec<Real>>& intervals, std::size_t i,
   return i > j ? intervals[i].lo - intervals[j].hi : intervals[j].lo - intervals[i].hi;
 }
 
-/// The coupled system of solve_union_at_degree at M collocation points per interval: the
+/// The coupled system of solve_union_at_degree at M[i] collocation points on interval i: the
 /// unknowns' layout, the own and cross blocks, the right-hand side, and the linear solve (dense:
 /// LU or GMRES on the assembled matrix; matrix-free: own and near blocks plus the far field).
 /// Holds the solution being built (sol); not copyable (the solvers refer to its members).
@@ -193,11 +208,11 @@ class union_degree_system {
 
   union_degree_system(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
                       const std::vector<std::function<Real(Real)>>& F, const multi_solve_options<Real>& options,
-                      std::size_t M, const far_field<Real>* far)
-      : par_(par), intervals_(intervals), options_(options), far_(far), K_(intervals.size()), M_(M),
-        T_(static_cast<Eigen::Index>(intervals.size() * M)), Mi_(static_cast<Eigen::Index>(M)),
-        defect_column_(static_cast<Eigen::Index>(M - 1)), grid_(M) {
-    sol.degree = M;
+                      const std::vector<std::size_t>& M, const far_field<Real>* far)
+      : par_(par), intervals_(intervals), options_(options), far_(far), K_(intervals.size()), M_(M) {
+    sol.degrees = M;
+    sol.degree = *std::max_element(M.begin(), M.end());
+    for (const std::size_t m : M) grids_.try_emplace(m, m);
     lay_out();
     collocate(F);
     if (!far_)
@@ -242,7 +257,7 @@ class union_degree_system {
   std::vector<Real> defects(const vector& x) const {
     std::vector<Real> out(K_, Real(0));
     for (std::size_t j = 0; j < K_; ++j)
-      if (sol.exponents[j].nu == -1) out[j] = x[static_cast<Eigen::Index>(offset_[j]) + defect_column_];
+      if (sol.exponents[j].nu == -1) out[j] = x[static_cast<Eigen::Index>(offset_[j]) + defect_column(j)];
     return out;
   }
 
@@ -268,7 +283,7 @@ class union_degree_system {
       vector out = far_part(vector::Zero(T_), c0s);
       for (std::size_t j = 0; j < K_; ++j)
         for (const auto& [i, column] : near_c0_[j])
-          if (sol.exponents[i].nu == 1) out.segment(static_cast<Eigen::Index>(offset_[j]), Mi_) += c0s[i] * column;
+          if (sol.exponents[i].nu == 1) out.segment(static_cast<Eigen::Index>(offset_[j]), size(j)) += c0s[i] * column;
       return out;
     }
     vector out = vector::Zero(T_);
@@ -280,20 +295,29 @@ class union_degree_system {
  private:
   // The intervals' operators, classes, basis sizes, block offsets and zero densities.
   // Unknowns of interval i: the coefficients c^i_n (n_basis[i] of them; for nu = +1 c^i_0 is
-  // fixed by the load and not an unknown) and, for nu = -1, the defect d_i. Rows: the M
-  // collocation equations of interval i. Both number M per interval: the system is square.
+  // fixed by the load and not an unknown) and, for nu = -1, the defect d_i. Rows: the M_i
+  // collocation equations of interval i. Both number M_i on interval i: the system is square.
   void lay_out() {
     n_basis_.resize(K_);
     offset_.resize(K_);
+    std::size_t offset = 0;
     for (std::size_t i = 0; i < K_; ++i) {
       ops_.emplace_back(par_, intervals_[i].lo, intervals_[i].hi);
       const auto e = par_.exponents(intervals_[i].leading, intervals_[i].trailing);
       sol.exponents.push_back(e);
-      n_basis_[i] = e.nu == -1 ? M_ - 1 : (e.nu == 0 ? M_ : M_ + 1);
-      offset_[i] = i * M_;
+      n_basis_[i] = e.nu == -1 ? M_[i] - 1 : (e.nu == 0 ? M_[i] : M_[i] + 1);
+      offset_[i] = offset;
+      offset += M_[i];
       sol.densities.push_back(zero_density(intervals_[i], e, n_basis_[i]));
     }
+    T_ = static_cast<Eigen::Index>(offset);
   }
+
+  // Interval i's block size (collocation points = unknowns), its grid and its defect's column
+  // (nu = -1: the last unknown of the block).
+  Eigen::Index size(std::size_t i) const { return static_cast<Eigen::Index>(M_[i]); }
+  const chebyshev_grid<Real>& grid(std::size_t i) const { return grids_.at(M_[i]); }
+  Eigen::Index defect_column(std::size_t i) const { return size(i) - 1; }
 
   // The collocation points of each interval, the equations' scales h_j^-alpha and the scaled data.
   void collocate(const std::vector<std::function<Real(Real)>>& F) {
@@ -303,8 +327,8 @@ class union_degree_system {
     rhs_.resize(T_);
     for (std::size_t j = 0; j < K_; ++j) {
       scale_[j] = pow(ops_[j].half_length(), -par_.alpha());
-      pts_[j] = union_points(intervals_[j], grid_);
-      for (std::size_t k = 0; k < M_; ++k) {
+      pts_[j] = union_points(intervals_[j], grid(j));
+      for (std::size_t k = 0; k < M_[j]; ++k) {
         const Real v = F[j](pts_[j][k].s);
         check_finite_value("rhabel::abel::solve_union", v, pts_[j][k].s);
         rhs_[static_cast<Eigen::Index>(offset_[j] + k)] = scale_[j] * v;
@@ -324,32 +348,32 @@ class union_degree_system {
     const auto& e = sol.exponents[j];
     const Real p = e.gam + Real(e.nu), q = e.del + Real(e.nu);
     const std::vector<Real> lambda = ops_[j].eigenvalues(n_basis_[j], e);  // O(n_basis) in all
-    matrix B = matrix::Zero(Mi_, Mi_);
-    for (std::size_t k = 0; k < M_; ++k) {
+    matrix B = matrix::Zero(size(j), size(j));
+    for (std::size_t k = 0; k < M_[j]; ++k) {
       const auto r = static_cast<Eigen::Index>(k);
-      const auto image = jacobi_values_any(M_, p, q, grid_.x[k]);
+      const auto image = jacobi_values_any(M_[j], p, q, grid(j).x[k]);
       for (std::size_t n = 0; n < n_basis_[j]; ++n) {
         const long m = static_cast<long>(n) - e.nu;
         if (m < 0) continue;  // nu = +1, n = 0: the homogeneous solution, image 0
         const long c = local_index(j, n);
         if (c >= 0) B(r, c) += lambda[n] * image[static_cast<std::size_t>(m)];
       }
-      if (e.nu == -1) B(r, defect_column_) += Real(1);
+      if (e.nu == -1) B(r, defect_column(j)) += Real(1);
     }
     return B;
   }
 
-  // Cross block of interval i acting on j's collocation points (M x M in i's unknowns) and the
-  // column of i's fixed c_0 (nu = +1).
+  // Cross block of interval i acting on j's collocation points (M_j x M_i in i's unknowns) and
+  // the column of i's fixed c_0 (nu = +1).
   matrix cross(std::size_t j, std::size_t i, vector& c0_column) {
     const bool right = i > j;
-    std::vector<Real> dist(M_);
-    for (std::size_t k = 0; k < M_; ++k) dist[k] = right ? pts_[j][k].to_hi : pts_[j][k].from_lo;
+    std::vector<Real> dist(M_[j]);
+    for (std::size_t k = 0; k < M_[j]; ++k) dist[k] = right ? pts_[j][k].to_hi : pts_[j][k].from_lo;
     const auto& par = par_;
     const auto B = cross_block(sol.densities[i], union_gap(intervals_, i, j), right, dist, n_basis_[i], scale_[j],
                                [&](const Real& t_minus_s) { return cross_kernel(par, t_minus_s); }, &basis_cache_);
-    matrix out = matrix::Zero(Mi_, Mi_);
-    c0_column = vector::Zero(Mi_);
+    matrix out = matrix::Zero(size(j), size(i));
+    c0_column = vector::Zero(size(j));
     for (std::size_t n = 0; n < n_basis_[i]; ++n) {
       const long c = local_index(i, n);
       if (c >= 0)
@@ -369,18 +393,20 @@ class union_degree_system {
     c0_columns_.assign(K_, vector::Zero(T_));
     for (std::size_t j = 0; j < K_; ++j) {
       const auto row0 = static_cast<Eigen::Index>(offset_[j]);
-      A_.block(row0, row0, Mi_, Mi_) = own_block(j);
+      A_.block(row0, row0, size(j), size(j)) = own_block(j);
       for (std::size_t i = 0; i < K_; ++i) {
         if (i == j) continue;
         vector c0_column;
-        A_.block(row0, static_cast<Eigen::Index>(offset_[i]), Mi_, Mi_) += cross(j, i, c0_column);
-        c0_columns_[i].segment(row0, Mi_) += c0_column;
+        A_.block(row0, static_cast<Eigen::Index>(offset_[i]), size(j), size(i)) += cross(j, i, c0_column);
+        c0_columns_[i].segment(row0, size(j)) += c0_column;
       }
     }
     // 1-norm of A for the exact condition of non-IEEE types (A is overwritten below).
     if constexpr (!std::is_floating_point_v<Real>) norm_A_ = A_.cwiseAbs().colwise().sum().maxCoeff();
     if (std::is_floating_point_v<Real> && K_ > 1 && options_.iterative_from > 1 && K_ >= options_.iterative_from) {
-      gmres_ = std::make_unique<block_gmres<Real>>(A_, Mi_);
+      std::vector<Eigen::Index> blocks;
+      for (std::size_t j = 0; j < K_; ++j) blocks.push_back(size(j));
+      gmres_ = std::make_unique<block_gmres<Real>>(A_, blocks);
       sol.condition = std::numeric_limits<Real>::quiet_NaN();
     } else {
       factorise();
@@ -413,7 +439,7 @@ class union_degree_system {
     moment_.resize(K_);
     near_.resize(K_);
     near_c0_.resize(K_);
-    interpolation_ = far_->interpolation(grid_.x);
+    for (const auto& [m, g] : grids_) interpolation_.emplace(m, far_->interpolation(g.x));
     for (std::size_t j = 0; j < K_; ++j) {
       own_[j] = own_block(j);
       moment_[j] = far_->moment_matrix(j, sol.densities[j].del, sol.densities[j].gam, n_basis_[j]);
@@ -428,8 +454,9 @@ class union_degree_system {
       vector out = far_part(x, no_c0);
       for (std::size_t j = 0; j < K_; ++j) {
         const auto row0 = static_cast<Eigen::Index>(offset_[j]);
-        out.segment(row0, Mi_) += own_[j] * x.segment(row0, Mi_);
-        for (const auto& [i, B] : near_[j]) out.segment(row0, Mi_) += B * x.segment(static_cast<Eigen::Index>(offset_[i]), Mi_);
+        out.segment(row0, size(j)) += own_[j] * x.segment(row0, size(j));
+        for (const auto& [i, B] : near_[j])
+          out.segment(row0, size(j)) += B * x.segment(static_cast<Eigen::Index>(offset_[i]), size(i));
       }
       return out;
     };
@@ -450,7 +477,8 @@ class union_degree_system {
     }
     const auto local = far_->far_values(W);
     vector out(T_);
-    for (std::size_t j = 0; j < K_; ++j) out.segment(static_cast<Eigen::Index>(offset_[j]), Mi_) = scale_[j] * (interpolation_ * local[j]);
+    for (std::size_t j = 0; j < K_; ++j)
+      out.segment(static_cast<Eigen::Index>(offset_[j]), size(j)) = scale_[j] * (interpolation_.at(M_[j]) * local[j]);
     return out;
   }
 
@@ -458,10 +486,10 @@ class union_degree_system {
   const std::vector<interval_spec<Real>>& intervals_;
   const multi_solve_options<Real>& options_;
   const far_field<Real>* far_;
-  std::size_t K_, M_;
-  Eigen::Index T_, Mi_;
-  Eigen::Index defect_column_;  // column of the defect d_i (nu = -1): the last unknown of the block
-  chebyshev_grid<Real> grid_;
+  std::size_t K_;
+  std::vector<std::size_t> M_;  // collocation points (= unknowns) of each interval
+  Eigen::Index T_ = 0;          // their sum
+  std::map<std::size_t, chebyshev_grid<Real>> grids_;  // one Chebyshev grid per distinct M_i
   std::vector<abel_operator<Real>> ops_;
   std::vector<std::size_t> n_basis_, offset_;
   separated_basis_cache<Real> basis_cache_;
@@ -478,10 +506,10 @@ class union_degree_system {
   std::vector<matrix> own_, moment_;
   std::vector<std::vector<std::pair<std::size_t, matrix>>> near_;  // near_[j]: (i, block)
   std::vector<std::vector<std::pair<std::size_t, vector>>> near_c0_;
-  matrix interpolation_;
+  std::map<std::size_t, matrix> interpolation_;  // the far field's interpolation to each grid
 };
 
-/// One solve of the coupled system at `degree` collocation points per interval (no residual).
+/// One solve of the coupled system at M[i] collocation points on interval i (no residual).
 /// far: null for the dense system (LU, or GMRES on the assembled matrix from iterative_from on);
 /// else the far field of these intervals: only the own and near blocks are assembled and the
 /// far part is applied by the far field inside GMRES (the header, "Many intervals"). Returns
@@ -490,7 +518,8 @@ template <class Real>
 std::optional<multi_solution<Real>> solve_union_at_degree(const abel_parameters<Real>& par,
                                                           const std::vector<interval_spec<Real>>& intervals,
                                                           const std::vector<std::function<Real(Real)>>& F,
-                                                          const multi_solve_options<Real>& options, std::size_t M,
+                                                          const multi_solve_options<Real>& options,
+                                                          const std::vector<std::size_t>& M,
                                                           const far_field<Real>* far = nullptr) {
   const std::size_t K = intervals.size();
   union_degree_system<Real> system(par, intervals, F, options, M, far);
@@ -529,11 +558,11 @@ Real cross_sum(const abel_parameters<Real>& par, const cross_nodes<Real>& nodes,
   return sum;
 }
 
-/// Independent residual of the original equation (see the header): max over the intervals of
-/// max_s |A g(s) - (F(s) - h^alpha d_j)| / max_s |F(s)|, at Chebyshev points of another power of
-/// 2 than the collocation grid and at points graded toward every facing end.
+/// Independent residual of the original equation (see the header), per interval j:
+/// max_s |A g(s) - (F(s) - h^alpha d_j)| / max_s |F(s)| over s in I_j, at Chebyshev points of
+/// another power of 2 than I_j's collocation grid and at points graded toward every facing end.
 template <class Real>
-Real union_residual(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
+std::vector<Real> union_residuals(const abel_parameters<Real>& par, const std::vector<interval_spec<Real>>& intervals,
                     const std::vector<std::function<Real(Real)>>& F, const multi_solution<Real>& sol,
                     std::size_t points, const far_field<Real>* far = nullptr) {
   using std::abs;
@@ -541,7 +570,7 @@ Real union_residual(const abel_parameters<Real>& par, const std::vector<interval
   using std::pow;
   const std::size_t K = intervals.size();
   const Real alpha = par.alpha();
-  Real worst = 0;
+  std::vector<Real> out(K, Real(0));
   // With a far field: the far intervals' action through it (the local values of every interval
   // from the densities' moments), the near ones by quadrature as below.
   std::vector<Eigen::Matrix<Real, Eigen::Dynamic, 1>> local;
@@ -563,7 +592,8 @@ Real union_residual(const abel_parameters<Real>& par, const std::vector<interval
     const Real h = op.half_length();
     const Real defect = sol.exponents[j].nu == -1 ? pow(h, alpha) * sol.solvability_defects[j] : Real(0);
     // Never at the collocation points (residual_grid_size): there the residual is ~ rounding.
-    auto pts = union_points(intervals[j], chebyshev_grid<Real>(residual_grid_size(points, sol.degree)));
+    const std::size_t degree_j = j < sol.degrees.size() ? sol.degrees[j] : sol.degree;
+    auto pts = union_points(intervals[j], chebyshev_grid<Real>(residual_grid_size(points, degree_j)));
     // Points at distances 0.37 gap 3^k (k = 0, 1, ... while < h/2) from each facing end: the
     // boundary layer of width ~ gap that a coarse Chebyshev grid would step over. (0.37: no
     // coincidence with collocation points or panel breaks.)
@@ -606,9 +636,9 @@ Real union_residual(const abel_parameters<Real>& par, const std::vector<interval
       worst_j = max(worst_j, abs(value - (Fs - defect)));
       scale_j = max(scale_j, abs(Fs));
     }
-    worst = max(worst, scale_j > 0 ? worst_j / scale_j : worst_j);
+    out[j] = scale_j > 0 ? worst_j / scale_j : worst_j;
   }
-  return worst;
+  return out;
 }
 
 /// The argument checks of solve_union and solve_union_layered (their comments list them).
@@ -626,6 +656,13 @@ void check_union_arguments(const abel_parameters<Real>& par, const std::vector<i
       throw_bad_parameter("rhabel::abel::rhabel::abel::solve_union", "interval lo", intervals[i].lo,
                           "> hi of the previous interval (sorted, disjoint intervals)");
   }
+  if (!options.degrees.empty() && options.degrees.size() != K)
+    throw_bad_parameter("rhabel::abel::rhabel::abel::solve_union", "options.degrees size", options.degrees.size(),
+                        "0 or the number of intervals");
+  for (const std::size_t m : options.degrees)
+    if (m < 2 || (options.max_degree != 0 && m > options.max_degree))
+      throw_bad_parameter("rhabel::abel::rhabel::abel::solve_union", "options.degrees", m,
+                          "[2, options.max_degree] (or [2, inf) without adaptation)");
   if (options.max_degree != 0 && options.max_degree < options.degree)
     throw_bad_parameter("rhabel::abel::rhabel::abel::solve_union", "options.max_degree", options.max_degree,
                         "0 (no adaptation) or >= options.degree");
