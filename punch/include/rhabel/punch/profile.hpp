@@ -173,7 +173,7 @@
 //   (residual of (8) 1.15e-6 at degree 1023: the spline's joints make its series converge like
 //   degree^-2). A search that ends short of the load says which load was reached and where the
 //   profile penetrates. The same 36 as periodic profiles (rough_matrix.py --periodic): all 36 ok
-//   (3 to 85 contacts, 0.09-26 s), each with the boundary-element solver's patches and C_f within
+//   (3 to 85 contacts, 0.09-19 s), each with the boundary-element solver's patches and C_f within
 //   its estimate (those of tests/punch/test_rough_profile.cpp against the boundary-element
 //   oracle).
 //   Scenes the search does not solve, and many hundreds of patches, are what
