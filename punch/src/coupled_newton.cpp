@@ -155,11 +155,11 @@ constexpr double resolved_gap = 1e-6;
 /// Seeded contacts (problem::seeded, a sampled profile's): a gap narrower than this fraction of the
 /// smaller contact that a step narrows ends the iteration as a merge (contacts_merge); the profile
 /// search then solves the two as one contact, and splits it again where its pressure is negative
-/// (contact_set.cpp, repair_tension). WHY: abel::solve_union takes one coupling degree for all
-/// contacts, set by the narrowest gap; a 1e5-sample periodic profile whose two contacts (of 233)
-/// closed in to 1e-5 .. 3e-6 L raised it from 243 to 465 points a contact, 15 s an evaluation and
-/// 150 s a Jacobian, while the iteration still could not resolve the gap (traced in a scratch
-/// build). Not 1e-3: a pair of a 16000-sample periodic profile (seed 3, load 3e-3) closing to
+/// (contact_set.cpp, repair_tension). WHY: a pair's coupling degree grows like sqrt(L/gap); a
+/// 1e5-sample periodic profile whose two contacts (of 233) closed in to 1e-5 .. 3e-6 L took it
+/// from 243 to 465 points (then for every contact: 15 s an evaluation, 150 s a Jacobian; each
+/// contact has its own degree since), while the iteration still could not resolve the gap
+/// (traced in a scratch build). Not 1e-3: a pair of a 16000-sample periodic profile (seed 3, load 3e-3) closing to
 /// 6e-4 L is two contacts, and merged there the search split it again for its negative pressure
 /// (two more rounds: 27 s against 19 s).
 constexpr double seeded_merge_gap = 1e-4;
@@ -728,7 +728,7 @@ flat_verdict flat_run(newton_state& s, jacobian_state& js, const edges& before, 
 /// (1982) 400-408; Jacobian-free, Knoll and Keyes, J. Comput. Phys. 193 (2004) 357-397): the step dx
 /// with |r + J dx| <= krylov_rtol |r|, J the true Jacobian of the edge conditions
 /// (newton_krylov.hpp: GMRES on differences, no edge moved by more than 1e-7 of its contact's
-/// length, at the base point's fixed degree as jacobian's columns), right-preconditioned by
+/// length, at the base point's fixed degrees as jacobian's columns), right-preconditioned by
 /// Broyden's matrix (its solve). At most krylov_products + 1 evaluations; GMRES's best iterate
 /// when they are not enough. WHY: on a rigid body of many seeded contacts the
 /// coloured Jacobian (body_far_model) misses couplings among clustered contacts, and a fresh one's

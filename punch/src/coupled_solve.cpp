@@ -666,7 +666,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
     if (!result.sol.correction_converged && out.code == status_code::ok) {
       std::ostringstream os;
       os.precision(3);
-      os << "coupling correction not converged at " << result.sol.degree << " points per contact (residual "
+      os << "coupling correction not converged at up to " << result.sol.degree << " points a contact (residual "
          << result.sol.correction_residual << " of the data)";
       out.code = status_code::not_converged;
       out.message = os.str();

@@ -277,7 +277,7 @@ struct coupled_outcome {
   status_code code = status_code::ok;
   std::string message;      // empty when ok
   std::size_t iterations = 0;
-  std::size_t union_degree = 0;  // collocation points per contact of the last linear solve
+  std::size_t union_degree = 0;  // the most collocation points of a contact in the last linear solve
   std::optional<std::size_t> lost;  // contact_lost: the st index of the indentor named
   std::optional<std::pair<std::size_t, std::size_t>> merged;  // contacts_merge: the two st indices
 };

@@ -45,7 +45,7 @@ struct multi_solve_options {
   /// bounded by max_memory_bytes).
   std::size_t max_degree = 0;
   /// Per interval: the first degree of each (empty: `degree` for all; else one per interval, each
-  /// in [2, max(degree, max_degree)]). A caller that knows which intervals need high degrees
+  /// in [2, max_degree], or any >= 2 when max_degree = 0). A caller that knows which intervals need high degrees
   /// (nearly touching neighbours) passes them here, the rest stay cheap.
   std::vector<std::size_t> degrees;
   /// Adaptive degree per interval: only the intervals whose own residual (at their points)
@@ -592,8 +592,7 @@ std::vector<Real> union_residuals(const abel_parameters<Real>& par, const std::v
     const Real h = op.half_length();
     const Real defect = sol.exponents[j].nu == -1 ? pow(h, alpha) * sol.solvability_defects[j] : Real(0);
     // Never at the collocation points (residual_grid_size): there the residual is ~ rounding.
-    const std::size_t degree_j = j < sol.degrees.size() ? sol.degrees[j] : sol.degree;
-    auto pts = union_points(intervals[j], chebyshev_grid<Real>(residual_grid_size(points, degree_j)));
+    auto pts = union_points(intervals[j], chebyshev_grid<Real>(residual_grid_size(points, sol.degrees[j])));
     // Points at distances 0.37 gap 3^k (k = 0, 1, ... while < h/2) from each facing end: the
     // boundary layer of width ~ gap that a coarse Chebyshev grid would step over. (0.37: no
     // coincidence with collocation points or panel breaks.)
