@@ -908,10 +908,7 @@ void broyden_steps(newton_state& s) {
 /// residual of (8) still reports the truncation, so the result is not ok at that degree.
 double stall_floor(const problem& pb, const fixed_solution& sol) {
   if (!(pb.stall_floor > 0)) return 0;
-  double tail = 0;
-  for (const auto& g : sol.g)
-    if (g.jacobi.coefficients.size() >= pb.cx->options.max_degree) tail = std::max(tail, g.tail);
-  return std::max(pb.stall_floor, std::min(capped_floor_factor * tail, max_capped_floor));
+  return std::max(pb.stall_floor, std::min(capped_floor_factor * capped_tail(sol, *pb.cx), max_capped_floor));
 }
 
 newton_result newton_iteration(const problem& pb, const edges& start) {

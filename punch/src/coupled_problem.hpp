@@ -122,6 +122,16 @@ struct fixed_solution {
   bool correction_converged = true;
 };
 
+/// The largest tail (estimated relative error of the series) among the contacts whose series
+/// stopped at solve_options::max_degree; 0 when none did. Their edge conditions are resolved only
+/// to about it (coupled_solve.cpp, series_capped; coupled_newton.cpp, stall_floor).
+inline double capped_tail(const fixed_solution& sol, const context& cx) {
+  double tail = 0;
+  for (const auto& g : sol.g)
+    if (g.jacobi.coefficients.size() >= cx.options.max_degree) tail = std::max(tail, g.tail);
+  return tail;
+}
+
 /// Scale of the data on a contact: max |f'|/Gamma(1 - alpha) at 9 points (0 for a flat face).
 inline double data_scale(const indentor_state& st, const context& cx, double a, double b) {
   return max_slope(st, a, b) / cx.gamma_factor;

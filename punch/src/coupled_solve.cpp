@@ -164,11 +164,7 @@ constexpr double seeded_accuracy = 1e-3;
 /// largest condition 1e-3 at degree 128, and its retries (the homotopy from the seeds) took 20 s
 /// of it before the profile search raised the degree (4000 samples, periodic, seed 3, load 3e-3;
 /// at 512 it is ok).
-bool series_capped(const fixed_solution& sol, const context& cx) {
-  return std::any_of(sol.g.begin(), sol.g.end(), [&](const contact_density& g) {
-    return g.jacobi.coefficients.size() >= cx.options.max_degree && g.tail > cx.options.acceptance;
-  });
-}
+bool series_capped(const fixed_solution& sol, const context& cx) { return capped_tail(sol, cx) > cx.options.acceptance; }
 
 /// Whether a contact starts from a seed (a sampled profile's coarse or solved contacts).
 bool any_seeded(const std::vector<indentor_state>& st) {
