@@ -26,9 +26,11 @@
 namespace rhabel::punch::detail {
 
 /// One contact of the coarse solve: [a, b] (panel edges, absolute abscissae) and its load (units
-/// of int g).
+/// of int g). As the seed of a search from solved contacts (profile_search.hpp), `degree` caps its
+/// series' degree there (0: solve_options::max_degree).
 struct coarse_patch {
   double a = 0, b = 0, load = 0;
+  std::size_t degree = 0;
 };
 
 /// The contacts of the coarse solve in the order of x, on `panels` panels, refined on (by 4 at a

@@ -30,8 +30,8 @@ struct particular {
 /// inside, else the projection with the steps' coefficients in closed form, adaptive in the smooth
 /// part's tail.
 particular series_particular(double a, double b, const edge_exponents& e, const forcing& F, const context& cx,
-                              double load = 0) {
-  const std::size_t max_degree = std::max<std::size_t>(cx.options.max_degree, 8);
+                              std::size_t cap, double load = 0) {
+  const std::size_t max_degree = std::max<std::size_t>(cap, 8);
   bool step_inside = false;
   for (const auto& [position, jump] : F.steps) step_inside = step_inside || (position > a && position < b);
   particular out;
@@ -84,7 +84,9 @@ particular split_particular(const indentor_state& st, const context& cx, double 
 particular solve_particular(const indentor_state& st, const context& cx, role r, double a, double b, double load,
                             bool loaded) {
   particular out;
-  if (loaded) return series_particular(a, b, cx.exponents(1), own_forcing(st, cx), cx, load);
+  // The series' degree: solve_options::max_degree, or the contact's own cap below it.
+  const std::size_t cap = st.degree_cap > 0 ? std::min(st.degree_cap, cx.options.max_degree) : cx.options.max_degree;
+  if (loaded) return series_particular(a, b, cx.exponents(1), own_forcing(st, cx), cx, cap, load);
   if (r == role::line_load) {
     out.g.jacobi.lo = out.g.jacobi.hi = a;
     out.g.line_load = true;
@@ -108,7 +110,7 @@ particular solve_particular(const indentor_state& st, const context& cx, role r,
     out.g = build_wedge_step(a, b, st.apex, -1, cx, F, &out.defect);
     return out;
   }
-  return series_particular(a, b, e, F, cx);
+  return series_particular(a, b, e, F, cx, cap);
 }
 
 // The action of one contact's density at points of another (disjoint) interval [lo, hi].

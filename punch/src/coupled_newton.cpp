@@ -129,6 +129,18 @@ evaluation evaluate(const problem& pb, const unknowns& u, const std::vector<doub
   return ev;
 }
 
+/// What condition k of evaluate is, naming its indentor: for a message about the largest one.
+std::string condition_name(const problem& pb, const unknowns& u, std::size_t k) {
+  const std::size_t i = u.state[k];
+  const std::string name = indentor_name((*pb.st)[i].scene_index, *(*pb.st)[i].source);
+  if (pb.body_load && (u.trailing[k] || pb.roles[i] == role::apex_ended))
+    return i == 0 ? "the body's total load" : "the level of " + name + " against its neighbour's";
+  if (is_loaded(pb, i) || (pb.roles[i] == role::smooth_both && !u.trailing[k] && pb.split[i] != 0))
+    return "the intensity at an edge of " + name;
+  if (pb.roles[i] == role::smooth_both && !u.trailing[k]) return "the smoothness of the edges of " + name;
+  return "the load of " + name;
+}
+
 edges moved(const problem& pb, const unknowns& u, const edges& x, const Eigen::VectorXd& dx) {
   edges y = x;
   for (std::size_t k = 0; k < u.state.size(); ++k) {
@@ -923,6 +935,11 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
     s.out.merged.reset();
   }
   s.out.residual = s.ev.r.lpNorm<Eigen::Infinity>();
+  if (s.ev.r.size() > 0) {
+    Eigen::Index worst = 0;
+    s.ev.r.cwiseAbs().maxCoeff(&worst);
+    s.out.worst = condition_name(pb, s.u, static_cast<std::size_t>(worst));
+  }
   // Stalled at the floor of the evaluations (problem::stall_floor): converged; the caller's
   // independent checks (the residual of (8), loads, pressure) judge the result. (Not when out of
   // time, as after time_limit_reached: the time limit is reported.)

@@ -247,6 +247,7 @@ struct newton_result {
   fixed_solution sol;
   std::size_t iterations = 0;
   double residual = 0;  // max |condition|
+  std::string worst;    // which condition that is (coupled_newton.cpp, condition_name)
   std::string failure;
   std::optional<std::pair<std::size_t, std::size_t>> merged;
   std::optional<std::size_t> lost;  // scene::body: the contact that shrank below vanishing_length

@@ -627,7 +627,10 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
     } else {
       out.code = status_code::not_converged;
       os << "coupled edge iteration did not converge: " << (result.failure.empty() ? "iteration limit" : result.failure);
-      if (std::isfinite(result.residual)) os << "; largest edge condition " << result.residual;
+      if (std::isfinite(result.residual)) {
+        os << "; largest edge condition " << result.residual;
+        if (!result.worst.empty()) os << " (" << result.worst << ")";
+      }
     }
     if (pb.load_factor < 1) os << " (at " << pb.load_factor << " of the loads)";
     out.message = os.str();

@@ -89,6 +89,10 @@ struct indentor_state {
   // (general profiles only): the first round of a sampled profile's contact search, seeded by its
   // coarse boundary-element solve (contact_set.cpp).
   std::optional<std::pair<double, double>> seed;
+  // A cap on the degree of this contact's own series below solve_options::max_degree (0: none):
+  // a sampled profile's contact that met the acceptance at a lower degree, searched again at a
+  // higher one for others (contact_set.cpp, raise_degree).
+  std::size_t degree_cap = 0;
   contact_density g;
   // A coupled solve in the boundary-layer basis: g as solved, series and poles, before
   // absorb_layer made g one Jacobi series (whose distance from this is in g.tail). The report's

@@ -35,6 +35,16 @@ struct window_solution {
     for (const auto& g : densities) out.push_back({g.a() + origin, g.b() + origin, g.integral()});
     return out;
   }
+  /// contacts(), each that is ok with its residual of (8) at most `keep_below` keeping its series'
+  /// degree as its cap (coarse_patch::degree) in the search they seed.
+  std::vector<coarse_patch> contacts_capped(double keep_below) const {
+    std::vector<coarse_patch> out = contacts();
+    for (std::size_t k = 0; k < out.size() && k < result.contacts.size(); ++k) {
+      const indentor_result& c = result.contacts[k];
+      if (c.code == status_code::ok && c.residual <= keep_below) out[k].degree = c.degree + 1;
+    }
+    return out;
+  }
 };
 
 /// The contact search of solve_profile on the finite window `window` (material, speed, load; its
