@@ -20,6 +20,100 @@ constexpr std::size_t image_first_panels = 16;
 // this has a contact at an end of the window).
 constexpr double image_smallest_panel = 1e-9;
 
+// THE SOURCES' PROXIES. A table node x sees each source through R((t - x)/lambda), analytic in t
+// on the window but at t = x -+ lambda, just beyond its ends. So the sources of a bin of the window
+// act at x as proxies_per_bin weights at the bin's Chebyshev points (first kind; the weights the
+// sources' Lagrange interpolation onto them), whenever the bin is at least proxy_separation of its
+// widths from both singular points: the interpolation error is then below rho^-16 with
+// rho = 2 proxy_separation + 1 + sqrt((2 proxy_separation + 1)^2 - 1) = 9.9 for 2 widths, ~1e-16 of
+// the bin's sum of |w| max |R|; nearer bins (those at the far end of the window from x) act by
+// their sources. WHY: a 1e5-sample profile's 233 contacts are 1.4e5 sources (Gauss-Jacobi nodes),
+// and the direct sums over them at every table node took 10 % of its search.
+constexpr std::size_t proxies_per_bin = 16;
+constexpr double proxy_separation = 2;
+// The bins: this many across the window, when there are more than direct_sources sources.
+constexpr std::size_t proxy_bins = 64;
+constexpr std::size_t direct_sources = 4 * proxy_bins * proxies_per_bin;
+
+/// The sources in bins of the window: each bin's sources (sorted by t: [first[b], first[b + 1])) and
+/// their proxies (see above). Without bins (few sources): one bin, no proxies.
+struct binned_sources {
+  point_sources sorted;
+  std::vector<std::size_t> first;
+  std::vector<double> bin_lo, bin_hi;
+  std::vector<std::array<double, proxies_per_bin>> proxy_t, proxy_w;
+  std::vector<char> inside;  // every source of the bin within it (else the bin acts by its sources)
+
+  binned_sources(const point_sources& src, double lo, double period) {
+    std::vector<std::size_t> order(src.t.size());
+    for (std::size_t q = 0; q < order.size(); ++q) order[q] = q;
+    std::sort(order.begin(), order.end(), [&](std::size_t p, std::size_t q) { return src.t[p] < src.t[q]; });
+    for (const std::size_t q : order) sorted.t.push_back(src.t[q]), sorted.w.push_back(src.w[q]);
+    const std::size_t bins = src.t.size() > direct_sources ? proxy_bins : 0;
+    first.assign(1, 0);
+    if (bins == 0) {
+      first.push_back(sorted.t.size());
+      return;
+    }
+    constexpr std::size_t Q = proxies_per_bin;
+    std::array<double, Q> node{};
+    for (std::size_t j = 0; j < Q; ++j) node[j] = std::cos(pi * (static_cast<double>(j) + 0.5) / Q);
+    // T_k at the nodes: Tn[j][k] = cos(k pi (j + 1/2)/Q).
+    std::array<std::array<double, Q>, Q> Tn{};
+    for (std::size_t j = 0; j < Q; ++j)
+      for (std::size_t k = 0; k < Q; ++k) Tn[j][k] = std::cos(pi * static_cast<double>(k) * (static_cast<double>(j) + 0.5) / Q);
+    std::array<double, Q> T{};
+    for (std::size_t b = 0; b < bins; ++b) {
+      const double a = lo + period * static_cast<double>(b) / static_cast<double>(bins);
+      const double e = b + 1 == bins ? lo + period : lo + period * static_cast<double>(b + 1) / static_cast<double>(bins);
+      std::size_t end = first.back();
+      while (end < sorted.t.size() && (sorted.t[end] < e || b + 1 == bins)) ++end;
+      first.push_back(end);
+      bin_lo.push_back(a);
+      bin_hi.push_back(e);
+      std::array<double, Q> t{}, w{};
+      for (std::size_t j = 0; j < Q; ++j) t[j] = (a + e) / 2 + (e - a) / 2 * node[j];
+      // l_j(xi) = (1 + 2 sum_{k >= 1} T_k(xi_j) T_k(xi)) / Q: the Lagrange basis at the nodes.
+      inside.push_back(end == first[b] || (sorted.t[first[b]] >= a && sorted.t[end - 1] <= e));
+      for (std::size_t q = first[b]; q < end; ++q) {
+        const double xi = (2 * sorted.t[q] - a - e) / (e - a);
+        T[0] = 1;
+        T[1] = xi;
+        for (std::size_t k = 2; k < Q; ++k) T[k] = 2 * xi * T[k - 1] - T[k - 2];
+        for (std::size_t j = 0; j < Q; ++j) {
+          double sum = 0.5;
+          for (std::size_t k = 1; k < Q; ++k) sum += Tn[j][k] * T[k];
+          w[j] += sorted.w[q] * 2 * sum / Q;
+        }
+      }
+      proxy_t.push_back(t);
+      proxy_w.push_back(w);
+    }
+  }
+
+  /// sum_q w_q f((t_q - x)/period) and the same of df, f = periodic_panel_kernel::images.
+  std::pair<double, double> at(double x, double period, const periodic_panel_kernel& kernel) const {
+    double value = 0, slope = 0;
+    const auto add = [&](double t, double w) {
+      const double u = std::clamp((t - x) / period, -1 + 1e-15, 1 - 1e-15);
+      const auto [r, dr] = kernel.images(u);
+      value += w * r;
+      slope += w * dr;
+    };
+    for (std::size_t b = 0; b + 1 < first.size(); ++b) {
+      if (first[b] == first[b + 1]) continue;
+      const bool far = !bin_lo.empty() && inside[b] && std::min(x + period - bin_hi[b], bin_lo[b] - (x - period)) >=
+                                               proxy_separation * (bin_hi[b] - bin_lo[b]);
+      if (far) {
+        for (std::size_t j = 0; j < proxies_per_bin; ++j) add(proxy_t[b][j], proxy_w[b][j]);
+      } else {
+        for (std::size_t q = first[b]; q < first[b + 1]; ++q) add(sorted.t[q], sorted.w[q]);
+      }
+    }
+    return {value, slope};
+  }
+};
+
 }  // namespace
 
 point_sources density_sources(const contact_density& d, double origin) {
@@ -57,6 +151,7 @@ image_field::image_field(const point_sources& src, double lo, double period, con
                          double slope_accuracy)
     : lo_(lo), hi_(lo + period) {
   const periodic_panel_kernel kernel(cx.alpha, cx.kappa, cx.par.one_minus_kappa_over_alpha());
+  const binned_sources sources(src, lo, period);
   const double scale = cx.gamma_factor * std::pow(period, cx.alpha), slope_scale = scale / period;
   constexpr std::size_t P = points;
   // The nodes x_k = cos(pi (k + 1/2)/P) and T_j(x_k) = cos(pi j (k + 1/2)/P).
@@ -73,13 +168,7 @@ image_field::image_field(const point_sources& src, double lo, double period, con
     std::array<double, P> v{}, s{};
     for (std::size_t k = 0; k < P; ++k) {
       const double x = (a + b) / 2 + (b - a) / 2 * node[k];
-      double value = 0, slope = 0;
-      for (std::size_t q = 0; q < src.t.size(); ++q) {
-        const double u = std::clamp((src.t[q] - x) / period, -1 + 1e-15, 1 - 1e-15);
-        const auto [r, dr] = kernel.images(u);
-        value += src.w[q] * r;
-        slope += src.w[q] * dr;
-      }
+      const auto [value, slope] = sources.at(x, period, kernel);
       v[k] = scale * value;
       s[k] = -slope_scale * slope;  // d/dx of R((t - x)/period)
     }

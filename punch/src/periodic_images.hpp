@@ -17,7 +17,10 @@
 // their midpoints. w_img and its slope are tabulated on the window by piecewise Chebyshev
 // interpolation (16 points a panel), panels halved until the last coefficients of both are below
 // the requested accuracy (finer towards the ends, next to the images' singularities); a value is
-// then O(16) flops. Cost of the table: (panels x 16) x sources kernel values.
+// then O(16) flops. Each table node sums the sources of 64 bins of the window, a bin far from the
+// node's singular points (t - x = -+lambda) through 16 proxies (periodic_images.cpp): cost of the
+// table ~(panels x 16) x (64 x 16 + the sources of the bins near the window's far end) kernel
+// values, not (panels x 16) x sources.
 #pragma once
 
 #include "internal.hpp"

@@ -8,7 +8,7 @@
 # Checked: status ok at the full load, every contact ok; the same number of contacts as the
 # boundary-element patches, each contact overlapping one patch; C_f within twice the
 # boundary-element estimate (plus the acceptance's share of C_f). Measured (one core): ok in
-# 52 s, 233 contacts, C_f 0.0494308; the boundary-element solver (acceptance 1e-3, 1.6e6
+# 48-49 s, 233 contacts, C_f 0.0494308; the boundary-element solver (acceptance 1e-3, 1.6e6
 # panels, 3 s) 233 patches, C_f 0.049472 +- 2.5e-4.
 set -u
 rhabel="$1"; src="$2"
