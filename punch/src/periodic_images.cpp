@@ -35,6 +35,16 @@ constexpr double proxy_separation = 2;
 constexpr std::size_t proxy_bins = 64;
 constexpr std::size_t direct_sources = 4 * proxy_bins * proxies_per_bin;
 
+/// T_j at the first-kind Chebyshev points x_k = cos(pi (k + 1/2)/P) (abel::chebyshev_grid):
+/// out[j][k] = cos(pi j (k + 1/2)/P).
+template <std::size_t P>
+std::array<std::array<double, P>, P> chebyshev_at_points() {
+  std::array<std::array<double, P>, P> out{};
+  for (std::size_t j = 0; j < P; ++j)
+    for (std::size_t k = 0; k < P; ++k) out[j][k] = std::cos(pi * static_cast<double>(j) * (static_cast<double>(k) + 0.5) / P);
+  return out;
+}
+
 /// The sources in bins of the window: each bin's sources (sorted by t: [first[b], first[b + 1])) and
 /// their proxies (see above). Without bins (few sources): one bin, no proxies.
 struct binned_sources {
@@ -56,12 +66,8 @@ struct binned_sources {
       return;
     }
     constexpr std::size_t Q = proxies_per_bin;
-    std::array<double, Q> node{};
-    for (std::size_t j = 0; j < Q; ++j) node[j] = std::cos(pi * (static_cast<double>(j) + 0.5) / Q);
-    // T_k at the nodes: Tn[j][k] = cos(k pi (j + 1/2)/Q).
-    std::array<std::array<double, Q>, Q> Tn{};
-    for (std::size_t j = 0; j < Q; ++j)
-      for (std::size_t k = 0; k < Q; ++k) Tn[j][k] = std::cos(pi * static_cast<double>(k) * (static_cast<double>(j) + 0.5) / Q);
+    const abel::chebyshev_grid<double> grid(Q);
+    const auto at_node = chebyshev_at_points<Q>();  // at_node[k][j] = T_k(x_j)
     std::array<double, Q> T{};
     for (std::size_t b = 0; b < bins; ++b) {
       const double a = lo + period * static_cast<double>(b) / static_cast<double>(bins);
@@ -72,7 +78,7 @@ struct binned_sources {
       bin_lo.push_back(a);
       bin_hi.push_back(e);
       std::array<double, Q> t{}, w{};
-      for (std::size_t j = 0; j < Q; ++j) t[j] = (a + e) / 2 + (e - a) / 2 * node[j];
+      for (std::size_t j = 0; j < Q; ++j) t[j] = (a + e) / 2 + (e - a) / 2 * grid.x[j];
       // l_j(xi) = (1 + 2 sum_{k >= 1} T_k(xi_j) T_k(xi)) / Q: the Lagrange basis at the nodes.
       inside.push_back(end == first[b] || (sorted.t[first[b]] >= a && sorted.t[end - 1] <= e));
       for (std::size_t q = first[b]; q < end; ++q) {
@@ -82,7 +88,7 @@ struct binned_sources {
         for (std::size_t k = 2; k < Q; ++k) T[k] = 2 * xi * T[k - 1] - T[k - 2];
         for (std::size_t j = 0; j < Q; ++j) {
           double sum = 0.5;
-          for (std::size_t k = 1; k < Q; ++k) sum += Tn[j][k] * T[k];
+          for (std::size_t k = 1; k < Q; ++k) sum += at_node[k][j] * T[k];
           w[j] += sorted.w[q] * 2 * sum / Q;
         }
       }
@@ -154,12 +160,9 @@ image_field::image_field(const point_sources& src, double lo, double period, con
   const binned_sources sources(src, lo, period);
   const double scale = cx.gamma_factor * std::pow(period, cx.alpha), slope_scale = scale / period;
   constexpr std::size_t P = points;
-  // The nodes x_k = cos(pi (k + 1/2)/P) and T_j(x_k) = cos(pi j (k + 1/2)/P).
-  std::array<double, P> node{};
-  std::array<std::array<double, P>, P> cosine{};
-  for (std::size_t k = 0; k < P; ++k) node[k] = std::cos(pi * (static_cast<double>(k) + 0.5) / P);
-  for (std::size_t j = 0; j < P; ++j)
-    for (std::size_t k = 0; k < P; ++k) cosine[j][k] = std::cos(pi * static_cast<double>(j) * (static_cast<double>(k) + 0.5) / P);
+  // The nodes x_k = cos(pi (k + 1/2)/P) and T_j(x_k).
+  const abel::chebyshev_grid<double> grid(P);
+  const auto cosine = chebyshev_at_points<P>();
   // One panel's coefficients from its values at the nodes.
   auto fit = [&](double a, double b, panel& out) {
     cx.check_time();
@@ -167,7 +170,7 @@ image_field::image_field(const point_sources& src, double lo, double period, con
     out.hi = b;
     std::array<double, P> v{}, s{};
     for (std::size_t k = 0; k < P; ++k) {
-      const double x = (a + b) / 2 + (b - a) / 2 * node[k];
+      const double x = (a + b) / 2 + (b - a) / 2 * grid.x[k];
       const auto [value, slope] = sources.at(x, period, kernel);
       v[k] = scale * value;
       s[k] = -slope_scale * slope;  // d/dx of R((t - x)/period)
