@@ -31,6 +31,7 @@ namespace rhabel::punch::detail {
 struct coarse_patch {
   double a = 0, b = 0, load = 0;
   std::size_t degree = 0;
+  bool guessed = false;  // the load is a guess (a contact search's new contact), not a solve's
 };
 
 /// The contacts of the coarse solve in the order of x, on `panels` panels, refined on (by 4 at a

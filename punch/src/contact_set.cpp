@@ -82,13 +82,6 @@ constexpr double end_share = 1e-3;
 // (8) 1.8e-6 at 511 and 4.2e-7 at 1023 (4000 samples, seed 1, load 1e-3: ok in 6.6 s; 8.3e-7 for
 // seed 3, 4.0 s); 2048 took over a minute for 21 contacts.
 constexpr std::size_t profile_degrees[] = {512, 1024};
-// A contact whose residual of (8) is within this fraction of the acceptance keeps its series'
-// degree when the search is solved again at a higher one (raise_degree); the others may climb.
-// WHY: a rough profile's contacts need such different degrees that most of them are far within the
-// acceptance where a few reach it (1e5-sample periodic profile, 233 contacts: 229 at degree 1023
-// with median residual 1.7e-9, the largest 1e-6), and each evaluation solved every contact's
-// series to the top degree. The margin covers the edges' moves in the new search.
-constexpr double capped_below = 0.25;
 
 [[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(std::string(who) + ": " + what); }
 
@@ -257,8 +250,9 @@ void merge_runs(std::vector<run>& runs, std::size_t i, std::size_t j) {
   if (std::all_of(runs.begin() + static_cast<std::ptrdiff_t>(i), runs.begin() + static_cast<std::ptrdiff_t>(j) + 1,
                   [](const run& r) { return r.seed.has_value(); })) {
     double load = 0;
-    for (std::size_t k = i; k <= j; ++k) load += runs[k].seed->load;
-    runs[i].seed = coarse_patch{runs[i].seed->a, runs[j].seed->b, load};
+    bool guessed = false;
+    for (std::size_t k = i; k <= j; ++k) load += runs[k].seed->load, guessed = guessed || runs[k].seed->guessed;
+    runs[i].seed = coarse_patch{runs[i].seed->a, runs[j].seed->b, load, 0, guessed};
   }
   runs.erase(runs.begin() + static_cast<std::ptrdiff_t>(i) + 1, runs.begin() + static_cast<std::ptrdiff_t>(j) + 1);
 }
@@ -504,7 +498,7 @@ std::vector<bool> addable(const profile_model& m, const scene_states& ss, const 
 /// `load` (a quarter of the smallest contact's, as start_split gives a new contact).
 coarse_patch new_seed(const profile_model& m, double at, double load) {
   const double h = spacings_about(m, at);
-  return {std::max(at - h / 8, m.curve.lo()), std::min(at + h / 8, m.curve.hi()), load};
+  return {std::max(at - h / 8, m.curve.lo()), std::min(at + h / 8, m.curve.hi()), load, 0, true};
 }
 
 /// The part of a contact where its pressure is negative, when its lowest is below -tol of its
@@ -557,13 +551,14 @@ bool repair_tension(const profile_model& m, const scene_states& ss, std::vector<
     changed = true;
     coarse_patch& seed = *r.seed;  // the contact's edges (absolute) and load, from this round
     const double lo = negative->lo + ss.origin, hi = negative->hi + ss.origin, L = seed.b - seed.a;
+    seed.guessed = true;  // its load no longer matches its edges
     if (negative->at_hi) {
       seed.b = lo;
     } else if (negative->at_lo) {
       seed.a = hi;
     } else {
-      coarse_patch after{hi, seed.b, seed.load * (seed.b - hi) / (L - (hi - lo))};
-      seed = {seed.a, lo, seed.load - after.load};
+      coarse_patch after{hi, seed.b, seed.load * (seed.b - hi) / (L - (hi - lo)), 0, true};
+      seed = {seed.a, lo, seed.load - after.load, 0, true};
       split.push_back({r.first, r.last, after});
     }
   }
@@ -618,6 +613,7 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
         state.seed = std::pair{p.a - next.states.origin, p.b - next.states.origin};
         state.target_load = p.load * t;
         state.degree_cap = p.degree;
+        state.seed_load = !p.guessed;
       }
     } else {
       start_split(m, runs, shares, next.states);
@@ -821,6 +817,7 @@ std::optional<window_solution> search_and_report(const profile_model& m, const c
   window_solution out;
   out.result = report_profile(m, cx, sr);
   out.origin = sr.last->states.origin;
+  out.max_degree = cx.options.max_degree;
   out.densities.resize(sr.last->states.st.size());
   for (const auto& state : sr.last->states.st) out.densities[state.scene_index] = state.g;
   return out;
@@ -910,6 +907,11 @@ bool nearer(const profile_result& p, const profile_result& q) {
   return rank(p) < rank(q);
 }
 
+/// Whether a start's seeds hold degrees (coarse_patch::degree).
+bool held(const search_start& start) {
+  return std::any_of(start.runs.begin(), start.runs.end(), [](const run& r) { return r.seed && r.seed->degree > 0; });
+}
+
 /// The seeded search from `predicted` at each degree it needs (raise_degree); when that does not
 /// end ok, the continuation from the highest tip (then its degrees, from `predicted` below the
 /// full load), and the nearer of the two results (nearer) is reported. WHY the degrees first: a
@@ -920,7 +922,21 @@ window_solution solve_model(const profile_model& m, const context& cx, const std
   std::optional<window_solution> seeded;
   std::string failure;
   if (predicted) {
-    if (auto first = search_and_report(m, cx, *predicted, failure)) {
+    auto first = search_and_report(m, cx, *predicted, failure);
+    if (first && first->result.diagnostics.code != status_code::ok && held(*predicted) && !cx.out_of_time()) {
+      // Seeds holding their degrees (a periodic profile's next pass) that did not end ok: a held
+      // contact may have missed the acceptance once its edges moved; once more with every
+      // contact free to climb.
+      search_start free = *predicted;
+      for (run& r : free.runs)
+        if (r.seed) r.seed->degree = 0;
+      const auto rounds = first->result.diagnostics.rounds, iterations = first->result.diagnostics.iterations;
+      auto again = search_and_report(m, cx, free, failure);
+      if (again && nearer(again->result, first->result)) first = std::move(again);
+      first->result.diagnostics.rounds += rounds;
+      first->result.diagnostics.iterations += iterations;
+    }
+    if (first) {
       seeded = raise_degree(m, cx, std::move(*first), *predicted);
       if (seeded->result.diagnostics.code == status_code::ok || cx.out_of_time()) return std::move(*seeded);
     }

@@ -255,6 +255,29 @@ std::optional<std::size_t> starved_contact(const problem& pb, const unknowns& u,
   return out;
 }
 
+/// Seeded contacts on a rigid body whose iteration stalled: the contact its largest condition
+/// belongs to (for a level, the lighter of that contact and its neighbour) when it carries less
+/// than vanishing_share of the mean load; it vanishes. WHY: a starving contact that no full step
+/// shrinks past zero (starved_contact) keeps its level condition where it is while the others
+/// converge (1e5-sample periodic profile, 443 contacts: stalled at a level condition 0.0066 on
+/// a flank's contact 2.3e-7 long carrying 1e-3 of the mean load, beside one carrying 4e-3; the
+/// profile search then spent its time limit at degree 512 from that set). Named, it is dropped
+/// and added back once if the surface penetrates there (contact_set.cpp).
+std::optional<std::size_t> stalled_on_starved(const problem& pb, const unknowns& u, const evaluation& ev) {
+  if (!pb.body_load || !pb.seeded || ev.r.size() == 0 || ev.sol.g.size() != pb.roles.size()) return std::nullopt;
+  Eigen::Index worst = 0;
+  ev.r.cwiseAbs().maxCoeff(&worst);
+  const std::size_t k = static_cast<std::size_t>(worst), i = u.state[k];
+  double total = 0;
+  for (const auto& g : ev.sol.g) total += std::abs(g.integral());
+  const double mean = total / double(pb.roles.size());
+  std::size_t named = i;
+  const bool level = u.trailing[k] && i > 0;  // the level of i against i - 1 (condition_name)
+  if (level && ev.sol.g[i - 1].integral() < ev.sol.g[i].integral()) named = i - 1;
+  if (pb.roles[named] != role::smooth_both || !(ev.sol.g[named].integral() < vanishing_share * mean)) return std::nullopt;
+  return named;
+}
+
 /// A FLAT RUN: accepted steps that each lower the largest edge condition by less than
 /// flat_gain (the line search shortened them to almost nothing). After flat_steps of them a new
 /// Jacobian is taken; flat_steps more end the iteration. WHY: the conditions have reached the
@@ -949,6 +972,9 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
     s.out.converged = true;
     s.out.failure.clear();
   }
+  if (!s.out.converged && !s.out.merged && !s.out.lost && !pb.cx->out_of_time())
+    s.out.lost = stalled_on_starved(pb, s.u, s.ev);
+  if (s.out.lost) s.out.failure = "a contact vanishes";
   s.out.sol = std::move(s.ev.sol);
   return std::move(s.out);
 }

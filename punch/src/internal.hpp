@@ -93,6 +93,9 @@ struct indentor_state {
   // a sampled profile's contact that met the acceptance at a lower degree, searched again at a
   // higher one for others (contact_set.cpp, raise_degree).
   std::size_t degree_cap = 0;
+  // With seed on a rigid body: target_load is the seed's own load (a coarse solve's or a solved
+  // round's, not a guess), which coupled_solve.cpp's loads-imposed start may impose.
+  bool seed_load = false;
   contact_density g;
   // A coupled solve in the boundary-layer basis: g as solved, series and poles, before
   // absorb_layer made g one Jacobi series (whose distance from this is in g.tail). The report's

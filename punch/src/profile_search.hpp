@@ -23,12 +23,23 @@ namespace rhabel::punch::detail {
 inline constexpr std::size_t seed_panels = 8;
 inline constexpr std::size_t seed_panels_fine = 32;
 
+// A contact whose residual of (8) is within this fraction of the acceptance keeps its series'
+// degree when the search is solved again at a higher one (contact_set.cpp, raise_degree) or in the
+// next pass of a periodic profile (periodic_profile.cpp); the others may climb.
+// WHY: a rough profile's contacts need such different degrees that most of them are far within the
+// acceptance where a few reach it (1e5-sample periodic profile, 233 contacts: 229 at degree 1023
+// with median residual 1.7e-9, the largest 1e-6), and each evaluation solved every contact's
+// series to the top degree. The margin covers the edges' moves in the new search.
+inline constexpr double capped_below = 0.25;
+
 /// A searched window: its reported result and the reported contacts' densities, densities[k] that
-/// of result.contacts[k] (abscissae in the states' frame: add `origin` for the window's).
+/// of result.contacts[k] (abscissae in the states' frame: add `origin` for the window's), and the
+/// top series degree (solve_options::max_degree) of the search that gave them.
 struct window_solution {
   profile_result result;
   std::vector<contact_density> densities;
   double origin = 0;
+  std::size_t max_degree = 0;
   /// The solved contacts as seeds of another search: absolute edges, loads in units of int g.
   std::vector<coarse_patch> contacts() const {
     std::vector<coarse_patch> out;

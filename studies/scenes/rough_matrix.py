@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """Runs `rhabel solve` (the spectral contact search) on self-affine profiles, finite windows or
 (--periodic) periodic, and prints one line a scene: samples, seed, load, status, contacts, load
-fraction reached, wall time, the body's C_f.
+fraction reached, wall time, the body's C_f, and the search's rounds (coupled solves of a contact
+set) and Newton iterations in all.
 
     python3 studies/scenes/rough_matrix.py [--rhabel build/bin/rhabel] [--samples 1000 4000 16000]
         [--seeds 1 2 3] [--loads 5e-4 1e-3 2e-3 3e-3] [--acceptance 1e-6] [--time-limit 60] [--periodic]
@@ -33,7 +34,7 @@ def main():
     ap.add_argument("--periodic", action="store_true")
     a = ap.parse_args()
     print(f"{'samples':>7} {'seed':>4} {'load':>7} {'status':<14} {'contacts':>8} {'fraction':>8} {'seconds':>8} "
-          f"{'C_f':>14}")
+          f"{'C_f':>14} {'rounds':>6} {'iters':>5}")
     for n in a.samples:
         for seed in a.seeds:
             for load in a.loads:
@@ -56,7 +57,8 @@ def main():
                 g = d["diagnostics"]
                 note = "" if g["status"] == "ok" else "  " + g["status_message"][:80]
                 print(f"{n:>7} {seed:>4} {load:>7.1e} {g['status']:<14} {len(d['contacts']):>8} "
-                      f"{g['load_fraction']:>8.4g} {seconds:>8.2f} {d['hysteretic_friction']:>14.10f}{note}", flush=True)
+                      f"{g['load_fraction']:>8.4g} {seconds:>8.2f} {d['hysteretic_friction']:>14.10f} {g['rounds']:>6} "
+                      f"{g['iterations']:>5}{note}", flush=True)
 
 
 if __name__ == "__main__":

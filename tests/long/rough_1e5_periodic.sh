@@ -1,21 +1,22 @@
 #!/usr/bin/env bash
 # A long check (CTest label `long`, outside the default run: ctest --test-dir build -L long):
-# the spectral search on a periodic self-affine profile of 1e5 samples (233 patches) is `ok` at
-# --acceptance 1e-6 within --time-limit 300 and agrees with the boundary-element solver on the same
-# samples (a different discretisation: uniform panels, an active set on them, Richardson
-# extrapolation; it shares the samples' spline with the spectral search):
-#   bash rough_1e5_periodic.sh <path-to-rhabel-binary> <source-dir>
+# the spectral search on a periodic self-affine profile of 1e5 samples is `ok` at --acceptance
+# 1e-6 within --time-limit 300 and agrees with the boundary-element solver on the same samples (a
+# different discretisation: uniform panels, an active set on them, Richardson extrapolation; it
+# shares the samples' spline with the spectral search):
+#   bash rough_1e5_periodic.sh <path-to-rhabel-binary> <source-dir> [samples seed load]
+# (default 100000 1 3e-3: 233 patches; rough_1e5_periodic_heavy.sh runs 100000 1 6e-3: 443).
 # Checked: status ok at the full load, every contact ok; the same number of contacts as the
 # boundary-element patches, each contact overlapping one patch; C_f within twice the
-# boundary-element estimate (plus the acceptance's share of C_f). Measured (one core): ok in
-# 48-49 s, 233 contacts, C_f 0.0494308; the boundary-element solver (acceptance 1e-3, 1.6e6
-# panels, 3 s) 233 patches, C_f 0.049472 +- 2.5e-4.
+# boundary-element estimate (plus the acceptance's share of C_f). Measured (one core): 233
+# patches ok in 48-49 s, C_f 0.0494308, the boundary-element solver (acceptance 1e-3, 1.6e6
+# panels, 3 s) 233 patches, C_f 0.049472 +- 2.5e-4; 443 patches: see the heavy script.
 set -u
-rhabel="$1"; src="$2"
+rhabel="$1"; src="$2"; samples="${3:-100000}"; seed="${4:-1}"; load="${5:-3e-3}"
 py=/usr/bin/python3; [ -x "$py" ] || py=python3
 "$py" -c "import numpy" 2>/dev/null || { echo "SKIP: NumPy is needed to synthesise the profile"; exit 77; }
 tmp="$(mktemp -d)"; trap 'rm -rf "$tmp"' EXIT
-"$py" "$src/studies/scenes/self_affine_profile.py" 100000 1 3e-3 --periodic > "$tmp/bem.json" || exit 1
+"$py" "$src/studies/scenes/self_affine_profile.py" "$samples" "$seed" "$load" --periodic > "$tmp/bem.json" || exit 1
 "$py" -c "
 import json, sys
 d = json.load(open(sys.argv[1])); d['profile']['solver'] = 'spectral'

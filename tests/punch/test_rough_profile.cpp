@@ -32,6 +32,7 @@ constexpr double bar_factor = 2;
 struct outcome {
   bool ok = false, refused = false;
   std::vector<std::size_t> degrees;  // an ok result's contacts' series degrees
+  std::size_t rounds = 0;            // an ok result's rounds of the contact search, in all
 };
 
 /// One profile, a finite window (period 0) or periodic (period 1: rhabel's spectral search on one
@@ -75,6 +76,7 @@ outcome check_scene(std::size_t n, std::uint64_t seed, double load, double perio
     return out;
   }
   out.ok = true;
+  out.rounds = r.diagnostics.rounds;
   for (const auto& c : r.contacts) out.degrees.push_back(c.degree);
   // ok includes the levels of the rigid body, evaluated afresh from the reported pressures.
   CHECK(r.level_mismatch <= acceptance);
@@ -124,17 +126,25 @@ TEST_CASE("periodic self-affine profiles by the spectral search agree with the o
   // first degree, kept theirs (contact_set.cpp, capped_below). Solved again at the higher degree,
   // every contact spanning the spline's knots climbed to it (its series converges algebraically).
   bool kept = false;
+  std::size_t rounds = 0;
   for (const std::uint64_t seed : {1, 2, 3})
     for (const double load : {5e-4, 3e-3}) {
       if (bp::sanitizer_build && !(seed == 2 && load == 5e-4)) continue;  // the oracle: minutes under ASan
       const outcome o = check_scene(1000, seed, load, 1.0);
       ok += o.ok ? 1 : 0;
+      rounds += o.rounds;
       const auto count = [&](auto predicate) { return std::count_if(o.degrees.begin(), o.degrees.end(), predicate); };
       if (count([](std::size_t d) { return d == 127; }) > 0 && count([](std::size_t d) { return d >= 511; }) > 0)
         kept = true;
     }
   // Measured: seed 2 at 5e-4 (5 contacts): degrees 15, 127, 127, 511, 511.
   CHECK(kept);
+  // A pass after the first (the other periods' displacement of the solution) searches at the
+  // degree the last pass reached, its contacts within a quarter of the acceptance holding theirs
+  // (periodic_profile.cpp). Measured: 2, 2, 3, 4, 1, 3 rounds (15); when each pass climbed the
+  // degrees again from 128: 2, 2, 4, 6, 1, 3 (18). One round of slack for a path that roundings
+  // change. (Not under the sanitizers: one scene, whose rounds 3 and 4 leave no slack.)
+  if (!bp::sanitizer_build) CHECK(rounds <= 16u);
   // Measured: 6 of 6 ok (3 to 28 contacts at tolerance 1e-10), each within twice the oracle's bar.
   // Seed 3 at 3e-3 needs the coloured Jacobian's far model of every contact's load change
   // (coupled_newton.cpp, body_far_model).

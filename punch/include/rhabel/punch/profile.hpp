@@ -173,12 +173,13 @@
 //   (residual of (8) 1.15e-6 at degree 1023: the spline's joints make its series converge like
 //   degree^-2). A search that ends short of the load says which load was reached and where the
 //   profile penetrates. The same 36 as periodic profiles (rough_matrix.py --periodic): all 36 ok
-//   (3 to 85 contacts, 0.10-8.9 s), each with the boundary-element solver's patches and C_f within
+//   (3 to 85 contacts, 0.14-8.0 s), each with the boundary-element solver's patches and C_f within
 //   its estimate (those of tests/punch/test_rough_profile.cpp against the boundary-element
 //   oracle). 1e5 samples a period with 233 contacts (self_affine_profile.py 100000 1 3e-3
-//   --periodic): ok in 48-49 s (one core), the boundary-element solver's patches and C_f within its
-//   estimate (tests/long/rough_1e5_periodic.sh); at 6e-3 and 1.4e-2 (443 and ~1000 patches) the
-//   search ends not_converged after 400 s.
+//   --periodic): ok in 50 s (one core), at 6e-3 443 contacts ok in 2.4 min, each with the
+//   boundary-element solver's patches and C_f within its estimate
+//   (tests/long/rough_1e5_periodic*.sh); at 1.4e-2 (~980 patches) the search ends not_converged
+//   after 600 s.
 //   Scenes the search does not solve, and many hundreds of patches, are what
 //   rhabel/punch/profile_bem.hpp's boundary-element solver is for (first order, with error
 //   estimates).
