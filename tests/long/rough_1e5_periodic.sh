@@ -9,7 +9,7 @@
 # Checked: status ok at the full load, every contact ok; the same number of contacts as the
 # boundary-element patches, each contact overlapping one patch; C_f within twice the
 # boundary-element estimate (plus the acceptance's share of C_f). Measured (one core): 233
-# patches ok in 48-49 s, C_f 0.0494308, the boundary-element solver (acceptance 1e-3, 1.6e6
+# patches ok in 43-50 s, C_f 0.0494308, the boundary-element solver (acceptance 1e-3, 1.6e6
 # panels, 3 s) 233 patches, C_f 0.049472 +- 2.5e-4; 443 patches: see the heavy script.
 set -u
 rhabel="$1"; src="$2"; samples="${3:-100000}"; seed="${4:-1}"; load="${5:-3e-3}"
