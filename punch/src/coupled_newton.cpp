@@ -235,6 +235,13 @@ constexpr double vanishing_length = 1e-3;
 /// load at the solution (test_coupled.cpp).
 constexpr double vanishing_share = 1e-2;
 
+/// The load below which a contact of `sol` starves: vanishing_share of the mean |load|.
+double vanishing_load(const fixed_solution& sol) {
+  double total = 0;
+  for (const auto& g : sol.g) total += std::abs(g.integral());
+  return vanishing_share * (total / double(sol.g.size()));
+}
+
 /// The contact that vanishing_share names (the least loaded one if several), if any.
 std::optional<std::size_t> starved_contact(const problem& pb, const unknowns& u, const edges& x,
                                            const Eigen::VectorXd& dx, const fixed_solution& sol) {
@@ -243,13 +250,11 @@ std::optional<std::size_t> starved_contact(const problem& pb, const unknowns& u,
   std::vector<double> dL(n, 0.0);
   for (std::size_t k = 0; k < u.state.size(); ++k)
     dL[u.state[k]] += (u.trailing[k] ? 1.0 : -1.0) * dx[static_cast<Eigen::Index>(k)];
-  double total = 0;
-  for (const auto& g : sol.g) total += std::abs(g.integral());
-  const double mean = total / double(n);
+  const double starving = vanishing_load(sol);
   std::optional<std::size_t> out;
   for (std::size_t i = 0; i < n; ++i) {
     const double load = sol.g[i].integral();
-    if (pb.roles[i] != role::smooth_both || x.b[i] - x.a[i] + dL[i] > 0 || !(load < vanishing_share * mean)) continue;
+    if (pb.roles[i] != role::smooth_both || x.b[i] - x.a[i] + dL[i] > 0 || !(load < starving)) continue;
     if (!out || load < sol.g[*out].integral()) out = i;
   }
   return out;
@@ -268,13 +273,10 @@ std::optional<std::size_t> stalled_on_starved(const problem& pb, const unknowns&
   Eigen::Index worst = 0;
   ev.r.cwiseAbs().maxCoeff(&worst);
   const std::size_t k = static_cast<std::size_t>(worst), i = u.state[k];
-  double total = 0;
-  for (const auto& g : ev.sol.g) total += std::abs(g.integral());
-  const double mean = total / double(pb.roles.size());
   std::size_t named = i;
   const bool level = u.trailing[k] && i > 0;  // the level of i against i - 1 (condition_name)
   if (level && ev.sol.g[i - 1].integral() < ev.sol.g[i].integral()) named = i - 1;
-  if (pb.roles[named] != role::smooth_both || !(ev.sol.g[named].integral() < vanishing_share * mean)) return std::nullopt;
+  if (pb.roles[named] != role::smooth_both || !(ev.sol.g[named].integral() < vanishing_load(ev.sol))) return std::nullopt;
   return named;
 }
 
