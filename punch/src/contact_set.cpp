@@ -77,11 +77,15 @@ constexpr std::size_t max_drops = 2;
 // check.
 constexpr double end_share = 1e-3;
 // The degrees to which a search whose contacts missed the acceptance at solve_options::max_degree
-// is solved again, in turn (needs_degree). WHY 1024 too: a contact over a few samples of a
-// self-affine profile converges like degree^-2 (the spline's f''' jumps at the knots): residual of
-// (8) 1.8e-6 at 511 and 4.2e-7 at 1023 (4000 samples, seed 1, load 1e-3: ok in 6.6 s; 8.3e-7 for
-// seed 3, 4.0 s); 2048 took over a minute for 21 contacts.
-constexpr std::size_t profile_degrees[] = {512, 1024};
+// is solved again, in turn (needs_degree). WHY 1024 and 2048 too: a contact over a few samples of
+// a self-affine profile converges algebraically (the spline's f''' jumps at the knots): residual
+// of (8) 1.8e-6 at 511 and 4.2e-7 at 1023 (4000 samples, seed 1, load 1e-3: ok in 6.6 s; 8.3e-7
+// for seed 3, 4.0 s); contacts of 4-8 spacings 1.1e-6 .. 1.6e-6 at 1023 and 3.5e-8 .. 2.7e-7 at
+// 2047 (self_affine_profile.py 4000 2 6e-3 and 32000 2 3e-3 periodic, 16000 2 1e-3 finite: each
+// not_converged by that one contact at 1023, ok in 14, 20 and 4 s with it at 2047). Only the
+// contacts that missed the acceptance climb (capped_below); when all could, 2048 took over a
+// minute for 21 contacts.
+constexpr std::size_t profile_degrees[] = {512, 1024, 2048};
 
 [[noreturn]] void bad(const std::string& what) { throw std::invalid_argument(std::string(who) + ": " + what); }
 

@@ -72,7 +72,7 @@
 //        such a root where the physical solution has a gap; at most twice a tip).
 //   The coarse set is first-order accurate: a contact carrying a few percent of its neighbours'
 //   load may be missing or extra, and costs one more round. A contact spanning spline knots that
-//   misses the acceptance at the series' degree is solved again at degree 512, then 1024 (see
+//   misses the acceptance at the series' degree is solved again at degree 512, 1024, then 2048 (see
 //   below), from the last round's contacts when it reached the full load (its rounds then add
 //   the contacts missing where the surface penetrates). When the seeded rounds at these degrees do not end ok (or the coarse solve's active
 //   set does not settle), the search starts again by load continuation: from the highest tip
@@ -102,8 +102,9 @@
 //   misses the acceptance only because a contact's series stopped there with its residual of
 //   (8) above the acceptance (a contact spanning several samples of a rough profile: the
 //   spline's C2 joints make its series converge algebraically, measured residual 5e-6 at degree
-//   127 and 2e-8 at 511; a contact over ~3 samples, 1.8e-6 at 511 and 4.2e-7 at 1023), the
-//   search runs again with the series to degree 512, and then 1024 when one still misses it
+//   127 and 2e-8 at 511; a contact over ~3 samples, 1.8e-6 at 511 and 4.2e-7 at 1023; over 4-8
+//   samples, 1.1e-6 .. 1.6e-6 at 1023 and 3.5e-8 .. 2.7e-7 at 2047), the
+//   search runs again with the series to degree 512, then 1024 and 2048 while one still misses it
 //   there, on the same clock. A seeded round whose contact series stops at the degree with its
 //   tail above the acceptance ends at its first failed iteration (no retries: none can be ok at
 //   that degree), and the next degree starts at once.
@@ -153,7 +154,7 @@
 //       self_affine_profile.py 4000 1 2e-3 (35)                              2     1.0 s
 //       self_affine_profile.py 16000 1 1e-3 (35)                             2     1.45-1.48 s
 //     The coarse solve takes 0.01-0.21 s of that (0.21 s of the 50 bumps' 0.34 s); the self-affine contacts spanning several samples
-//     are solved twice (degree 128, then 512: see above), or three times (then 1024).
+//     are solved twice (degree 128, then 512: see above), or more (then 1024, 2048).
 //     Each round is one coupled solve of its contacts (contact.hpp, "Cost"); from six contacts on,
 //     a rigid body's Jacobian is coloured (10 evaluations) with its far entries from the loads'
 //     monopoles. The same 50 bumps at material.alpha = 0: 49 contacts, 1 round, 1.3 s (a
@@ -164,14 +165,14 @@
 //   Any alpha in [0, 1) and beta; contacts with smooth edges and no declared corner inside (see
 //   THE INTERPOLANT; either shows as tension or not_converged). The data must extend beyond
 //   the contacts. A contact that must cover many samples (a long contact on a rough profile)
-//   needs a degree beyond max(1024, max_degree): not_converged with its residual. Rough (self-affine) profiles:
+//   needs a degree beyond max(2048, max_degree): not_converged with its residual. Rough (self-affine) profiles:
 //   of self_affine_profile.py's 36 finite windows at 1000, 4000 and 16000 samples, seeds 1-3,
 //   loads 5e-4, 1e-3, 2e-3, 3e-3 (acceptance 1e-6, --time-limit 60; studies/scenes/
-//   rough_matrix.py), 15 are refused (contacts at an end of the samples) and 20 of the other 21
-//   are ok (3 to 64 contacts, 0.06-2.8 s; those of tests/punch/test_rough_profile.cpp agree with
-//   the boundary-element oracle); one misses the acceptance by a contact across spline knots
-//   (residual of (8) 1.15e-6 at degree 1023: the spline's joints make its series converge like
-//   degree^-2). A search that ends short of the load says which load was reached and where the
+//   rough_matrix.py), 15 are refused (contacts at an end of the samples) and the other 21 are ok
+//   (3 to 64 contacts, 0.10-10 s; those of tests/punch/test_rough_profile.cpp agree with the
+//   boundary-element oracle); one of them (16000 samples, seed 2, load 1e-3) needs one contact
+//   across spline knots at degree 2048 (residual of (8) 1.15e-6 at 1023, 3.5e-8 at 2047).
+//   A search that ends short of the load says which load was reached and where the
 //   profile penetrates. The same 36 as periodic profiles (rough_matrix.py --periodic): all 36 ok
 //   (3 to 85 contacts, 0.14-8.0 s), each with the boundary-element solver's patches and C_f within
 //   its estimate (those of tests/punch/test_rough_profile.cpp against the boundary-element
