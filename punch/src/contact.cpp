@@ -344,8 +344,9 @@ scene_result report_scene(const scene& s, const scene_states& ss, const context&
   out.indentors.resize(st.size());
   double worst_residual = 0;
   const surface heights(st, cx);
+  const auto gaps = isolated ? std::vector<std::pair<double, double>>(1, {0.0, 0.0}) : worst_gaps(heights, st);
   for (std::size_t i = 0; i < st.size(); ++i) {
-    indentor_result r = report_contact(st, i, cx, heights, s.material.coulomb, !isolated, ss.origin);
+    indentor_result r = report_contact(st, i, cx, heights, s.material.coulomb, gaps[i], ss.origin);
     if (!isolated || s.body) r.approach = heights.approach(i);
     if (!cx.options.residual) worst_residual = r.residual;
     else if (!std::isnan(worst_residual)) worst_residual = std::max(worst_residual, r.residual);

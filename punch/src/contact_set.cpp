@@ -41,7 +41,7 @@ constexpr const char* who = "rhabel::punch::solve_profile";
 // often clear once the deeper ones carry load; adding it anyway costs a round to drop it again.
 constexpr double add_fraction = 0.25;
 // Samples within this fraction of a contact's length of its edges are not checked: there the
-// surface's moments (surface.hpp) are not resolved (report.cpp, worst_gap), and the edge
+// surface's moments (surface.hpp) are not resolved (report.cpp, worst_gaps), and the edge
 // conditions with a non-negative pressure already give the clearance.
 constexpr double edge_margin = 1.0 / 64;
 // Load continuation (solve_profile): when the highest tip alone cannot carry the fraction t of

@@ -273,10 +273,14 @@ void shift(indentor_result& r, double origin);
 /// which the sign of a contact's pressure is probed (the report's judge; the profile search's
 /// repair of a contact with tension).
 std::vector<double> pressure_probes(const contact_density& g);
-/// The result of contact i with its evidence and status; `several`: other indentors are present;
-/// `origin`: where the solve's x = 0 lies (its pressure_at takes absolute abscissae).
+/// The worst gap of each contact between the surface and its profile next to its edges,
+/// relative to the profile's span, and where (report.cpp; {0, 0} for flat punches and line loads).
+std::vector<std::pair<double, double>> worst_gaps(const surface& heights, const std::vector<indentor_state>& st);
+/// The result of contact i with its evidence and status; `gap`: its entry of worst_gaps when
+/// other indentors are present, else {0, 0}; `origin`: where the solve's x = 0 lies (its
+/// pressure_at takes absolute abscissae).
 indentor_result report_contact(const std::vector<indentor_state>& st, std::size_t i, const context& cx,
-                               const surface& heights, double coulomb, bool several, double origin);
+                               const surface& heights, double coulomb, std::pair<double, double> gap, double origin);
 
 // ---- coupled_solve.cpp (with coupled_fixed.cpp, coupled_newton.cpp)
 /// Outcome of the coupled solve (coupled_solve.cpp).
