@@ -177,7 +177,7 @@
 //   (3 to 85 contacts, 0.14-8.0 s), each with the boundary-element solver's patches and C_f within
 //   its estimate (those of tests/punch/test_rough_profile.cpp against the boundary-element
 //   oracle). 1e5 samples a period with 233 contacts (self_affine_profile.py 100000 1 3e-3
-//   --periodic): ok in 43-50 s (one core), at 6e-3 443 contacts ok in 2.0-2.4 min, each with the
+//   --periodic): ok in 43-50 s (one core), at 6e-3 443 contacts ok in 2.0-2.2 min, each with the
 //   boundary-element solver's patches and C_f within its estimate
 //   (tests/long/rough_1e5_periodic*.sh); at 1.4e-2 (~980 patches) the search ends not_converged
 //   after 600 s.
