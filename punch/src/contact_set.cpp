@@ -849,6 +849,41 @@ bool needs_degree(const profile_result& r, const context& cx, std::size_t degree
   return std::any_of(r.contacts.begin(), r.contacts.end(), capped);
 }
 
+/// Whether result p is nearer the answer than q: ok first, then the larger fraction of the load,
+/// then fewer contacts missing (penetrations), then the smaller residual. WHY: the continuation
+/// from the highest tip, run when the seeded search did not end ok, can end further from the
+/// answer than it (1e5-sample periodic profile: the seeded search ended at the full load with one
+/// contact in tension; the continuation's result, reported instead, was further from the answer).
+bool nearer(const profile_result& p, const profile_result& q) {
+  const auto rank = [](const profile_result& r) {
+    return std::tuple(r.diagnostics.code == status_code::ok ? 0 : 1, -r.diagnostics.load_fraction, r.penetrations.size(),
+                      std::isnan(r.diagnostics.residual) ? std::numeric_limits<double>::infinity() : r.diagnostics.residual);
+  };
+  return rank(p) < rank(q);
+}
+
+/// The search from `held_start` (seeds holding their degrees, coarse_patch::degree); when it does
+/// not end ok and `retry` says of its result that a held contact may be why, once more from
+/// `free_start` (every contact free to climb), the nearer result of the two (nearer) kept with
+/// the rounds and iterations of both. WHY: a contact held at its degree whose edges then moved can
+/// miss the acceptance there, and the degree ladder (needs_degree) raises only contacts at the
+/// top degree, so the held one would end the search.
+template <class Retry>
+std::optional<window_solution> search_held(const profile_model& m, const context& cx, const search_start& held_start,
+                                           const search_start& free_start, Retry retry, std::string& failure) {
+  auto first = search_and_report(m, cx, held_start, failure);
+  if (!first || first->result.diagnostics.code == status_code::ok || cx.out_of_time() || !retry(first->result))
+    return first;
+  auto again = search_and_report(m, cx, free_start, failure);
+  if (!again) return first;
+  const auto rounds = first->result.diagnostics.rounds + again->result.diagnostics.rounds;
+  const auto iterations = first->result.diagnostics.iterations + again->result.diagnostics.iterations;
+  if (nearer(again->result, first->result)) first = std::move(again);
+  first->result.diagnostics.rounds = rounds;
+  first->result.diagnostics.iterations = iterations;
+  return first;
+}
+
 /// `out` searched again with the series to each of profile_degrees while needs_degree (the clock
 /// and the interrupt shared; rounds and iterations add up), from its own contacts when it reached
 /// the full load (each within capped_below of the acceptance holding its degree), else from
@@ -864,8 +899,7 @@ window_solution raise_degree(const profile_model& m, const context& cx, window_s
   for (const std::size_t degree : profile_degrees) {
     if (!needs_degree(out.result, wide, degree)) continue;
     // A contact held at an earlier search's top degree (capped_below) that then missed the
-    // acceptance: its edges moved. WHY this search once more with every contact free to climb:
-    // needs_degree raises only contacts at the top degree, so the held one would end the search.
+    // acceptance (its edges moved): the search from the free contacts follows (search_held).
     const std::size_t below = wide.options.max_degree;  // the last search's top degree
     const auto held_failed = [&](const profile_result& r) {
       return std::any_of(r.contacts.begin(), r.contacts.end(), [&](const indentor_result& c) {
@@ -874,41 +908,21 @@ window_solution raise_degree(const profile_model& m, const context& cx, window_s
       });
     };
     wide.options.max_degree = degree;
-    // From its own contacts (capped or not) when it reached the full load, else from the start.
+    // From its own contacts (capped, then free) when it reached the full load, else from the start.
     const bool own = out.result.diagnostics.load_fraction == 1;
-    std::optional<window_solution> again;
-    std::size_t rounds = out.result.diagnostics.rounds, iterations = out.result.diagnostics.iterations;
-    for (const bool capped : {true, false}) {
-      search_start from = start;
-      if (own)
-        if (auto seeds = start_from(m, capped ? out.contacts_capped(capped_below * cx.options.acceptance) : out.contacts()))
-          from = std::move(*seeds);
-      std::string failure;
-      again = search_and_report(m, wide, from, failure);
-      if (!again || !own || !capped || again->result.diagnostics.code == status_code::ok || !held_failed(again->result))
-        break;
-      rounds += again->result.diagnostics.rounds;
-      iterations += again->result.diagnostics.iterations;
+    search_start capped = start, free = start;
+    if (own) {
+      if (auto seeds = start_from(m, out.contacts_capped(capped_below * cx.options.acceptance))) capped = std::move(*seeds);
+      if (auto seeds = start_from(m, out.contacts())) free = std::move(*seeds);
     }
+    std::string failure;
+    auto again = search_held(m, wide, capped, free, [&](const profile_result& r) { return own && held_failed(r); }, failure);
     if (!again) break;
-    again->result.diagnostics.rounds += rounds;
-    again->result.diagnostics.iterations += iterations;
+    again->result.diagnostics.rounds += out.result.diagnostics.rounds;
+    again->result.diagnostics.iterations += out.result.diagnostics.iterations;
     out = std::move(*again);
   }
   return out;
-}
-
-/// Whether result p is nearer the answer than q: ok first, then the larger fraction of the load,
-/// then fewer contacts missing (penetrations), then the smaller residual. WHY: the continuation
-/// from the highest tip, run when the seeded search did not end ok, can end further from the
-/// answer than it (1e5-sample periodic profile: the seeded search ended at the full load with one
-/// contact in tension; the continuation's result, reported instead, was further from the answer).
-bool nearer(const profile_result& p, const profile_result& q) {
-  const auto rank = [](const profile_result& r) {
-    return std::tuple(r.diagnostics.code == status_code::ok ? 0 : 1, -r.diagnostics.load_fraction, r.penetrations.size(),
-                      std::isnan(r.diagnostics.residual) ? std::numeric_limits<double>::infinity() : r.diagnostics.residual);
-  };
-  return rank(p) < rank(q);
 }
 
 /// Whether a start's seeds hold degrees (coarse_patch::degree).
@@ -926,20 +940,12 @@ window_solution solve_model(const profile_model& m, const context& cx, const std
   std::optional<window_solution> seeded;
   std::string failure;
   if (predicted) {
-    auto first = search_and_report(m, cx, *predicted, failure);
-    if (first && first->result.diagnostics.code != status_code::ok && held(*predicted) && !cx.out_of_time()) {
-      // Seeds holding their degrees (a periodic profile's next pass) that did not end ok: a held
-      // contact may have missed the acceptance once its edges moved; once more with every
-      // contact free to climb.
-      search_start free = *predicted;
-      for (run& r : free.runs)
-        if (r.seed) r.seed->degree = 0;
-      const auto rounds = first->result.diagnostics.rounds, iterations = first->result.diagnostics.iterations;
-      auto again = search_and_report(m, cx, free, failure);
-      if (again && nearer(again->result, first->result)) first = std::move(again);
-      first->result.diagnostics.rounds += rounds;
-      first->result.diagnostics.iterations += iterations;
-    }
+    // Seeds holding their degrees (a periodic profile's next pass) that did not end ok: once more
+    // with every contact free to climb (search_held).
+    search_start free = *predicted;
+    for (run& r : free.runs)
+      if (r.seed) r.seed->degree = 0;
+    auto first = search_held(m, cx, *predicted, free, [&](const profile_result&) { return held(*predicted); }, failure);
     if (first) {
       seeded = raise_degree(m, cx, std::move(*first), *predicted);
       if (seeded->result.diagnostics.code == status_code::ok || cx.out_of_time()) return std::move(*seeded);
