@@ -864,17 +864,17 @@ bool nearer(const profile_result& p, const profile_result& q) {
 
 /// The search from `held_start` (seeds holding their degrees, coarse_patch::degree); when it does
 /// not end ok and `retry` says of its result that a held contact may be why, once more from
-/// `free_start` (every contact free to climb), the nearer result of the two (nearer) kept with
+/// `free_start()` (every contact free to climb; made only then), the nearer result of the two (nearer) kept with
 /// the rounds and iterations of both. WHY: a contact held at its degree whose edges then moved can
 /// miss the acceptance there, and the degree ladder (needs_degree) raises only contacts at the
 /// top degree, so the held one would end the search.
-template <class Retry>
+template <class Retry, class FreeStart>
 std::optional<window_solution> search_held(const profile_model& m, const context& cx, const search_start& held_start,
-                                           const search_start& free_start, Retry retry, std::string& failure) {
+                                           FreeStart free_start, Retry retry, std::string& failure) {
   auto first = search_and_report(m, cx, held_start, failure);
   if (!first || first->result.diagnostics.code == status_code::ok || cx.out_of_time() || !retry(first->result))
     return first;
-  auto again = search_and_report(m, cx, free_start, failure);
+  auto again = search_and_report(m, cx, free_start(), failure);
   if (!again) return first;
   const auto rounds = first->result.diagnostics.rounds + again->result.diagnostics.rounds;
   const auto iterations = first->result.diagnostics.iterations + again->result.diagnostics.iterations;
@@ -910,13 +910,16 @@ window_solution raise_degree(const profile_model& m, const context& cx, window_s
     wide.options.max_degree = degree;
     // From its own contacts (capped, then free) when it reached the full load, else from the start.
     const bool own = out.result.diagnostics.load_fraction == 1;
-    search_start capped = start, free = start;
-    if (own) {
-      if (auto seeds = start_from(m, out.contacts_capped(capped_below * cx.options.acceptance))) capped = std::move(*seeds);
-      if (auto seeds = start_from(m, out.contacts())) free = std::move(*seeds);
-    }
+    const auto from = [&](bool capped) {
+      if (own)
+        if (auto seeds = start_from(m, capped ? out.contacts_capped(capped_below * cx.options.acceptance) : out.contacts()))
+          return std::move(*seeds);
+      return start;
+    };
     std::string failure;
-    auto again = search_held(m, wide, capped, free, [&](const profile_result& r) { return own && held_failed(r); }, failure);
+    auto again = search_held(
+        m, wide, from(true), [&] { return from(false); }, [&](const profile_result& r) { return own && held_failed(r); },
+        failure);
     if (!again) break;
     again->result.diagnostics.rounds += out.result.diagnostics.rounds;
     again->result.diagnostics.iterations += out.result.diagnostics.iterations;
@@ -942,9 +945,12 @@ window_solution solve_model(const profile_model& m, const context& cx, const std
   if (predicted) {
     // Seeds holding their degrees (a periodic profile's next pass) that did not end ok: once more
     // with every contact free to climb (search_held).
-    search_start free = *predicted;
-    for (run& r : free.runs)
-      if (r.seed) r.seed->degree = 0;
+    const auto free = [&] {
+      search_start out = *predicted;
+      for (run& r : out.runs)
+        if (r.seed) r.seed->degree = 0;
+      return out;
+    };
     auto first = search_held(m, cx, *predicted, free, [&](const profile_result&) { return held(*predicted); }, failure);
     if (first) {
       seeded = raise_degree(m, cx, std::move(*first), *predicted);

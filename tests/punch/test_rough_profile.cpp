@@ -35,6 +35,26 @@ struct outcome {
   std::size_t rounds = 0;            // an ok result's rounds of the contact search, in all
 };
 
+/// The scene of `samples` under `load` (alpha 0.3; nu 0, k 0, E1 1, speed 1: the defaults), a
+/// finite window (period 0) or one period.
+pu::profile_scene scene_of(const punch_test::sampled& samples, double load, double period) {
+  pu::profile_scene ps;
+  ps.material.alpha = 0.3;
+  ps.load = load;
+  ps.profile.x = samples.x;
+  ps.profile.z = samples.z;
+  ps.profile.period = period;
+  return ps;
+}
+
+/// The search's options in these tests: tolerance 1e-10, the acceptance above.
+pu::solve_options search_options() {
+  pu::solve_options o;
+  o.tolerance = 1e-10;
+  o.acceptance = acceptance;
+  return o;
+}
+
 /// One profile, a finite window (period 0) or periodic (period 1: rhabel's spectral search on one
 /// period, the other periods' displacement by fixed-point passes, against the oracle's periodic
 /// kernel and active set).
@@ -44,19 +64,11 @@ outcome check_scene(std::size_t n, std::uint64_t seed, double load, double perio
   CAPTURE(load);
   CAPTURE(period);
   const auto samples = punch_test::self_affine(n, seed);
-  pu::profile_scene ps;
-  ps.material.alpha = 0.3;  // nu 0, k 0, E1 1, speed 1 (the defaults)
-  ps.load = load;
-  ps.profile.x = samples.x;
-  ps.profile.z = samples.z;
-  ps.profile.period = period;
-  pu::solve_options o;
-  o.tolerance = 1e-10;
-  o.acceptance = acceptance;
+  const pu::profile_scene ps = scene_of(samples, load, period);
   outcome out;
   pu::profile_result r;
   try {
-    r = pu::solve_profile(ps, o);
+    r = pu::solve_profile(ps, search_options());
   } catch (const std::domain_error& e) {
     // Contacts at an end of the samples: refused naming body.load (the oracle's first level finds
     // the end panel loaded too, and a finite window has nothing beyond it).
@@ -104,18 +116,9 @@ outcome check_scene(std::size_t n, std::uint64_t seed, double load, double perio
 /// The spectral search on n samples of self_affine(n, seed) as one period (alpha 0.3, tolerance
 /// 1e-10, the acceptance above), for the cases whose reference is not the test oracle.
 pu::profile_result solve_periodic(std::size_t n, std::uint64_t seed, double load) {
-  const auto samples = punch_test::self_affine(n, seed);
-  pu::profile_scene ps;
-  ps.material.alpha = 0.3;
-  ps.load = load;
-  ps.profile.x = samples.x;
-  ps.profile.z = samples.z;
-  ps.profile.period = 1;
-  pu::solve_options o;
-  o.tolerance = 1e-10;
-  o.acceptance = acceptance;
-  return pu::solve_profile(ps, o);
+  return pu::solve_profile(scene_of(punch_test::self_affine(n, seed), load, 1.0), search_options());
 }
+
 /// A result of solve_periodic against a reference of the product's boundary-element solver: ok,
 /// its patch count, level mismatch within the acceptance, C_f within twice its bar.
 void check_reference(const pu::profile_result& r, std::size_t patches, double friction, double bar) {
@@ -200,8 +203,7 @@ TEST_CASE("a contact across the spline's knots climbs to degree 2048 (periodic, 
   // Seed 15 at load 6e-3 (86 patches): one contact of ~4.8 sample spacings converges
   // algebraically (the spline's f''' jumps at its knots): residual of (8) 1.13e-6 at degree 1023,
   // above the acceptance (the search ended not_converged there), 8.0e-8 at 2047: the search goes
-  // on to 2048
-  // (contact_set.cpp, profile_degrees). As for seed 4 above, the test oracle does not settle on
+  // on to 2048 (contact_set.cpp, profile_degrees). As for seed 4 above, the test oracle does not settle on
   // this profile; the reference is the product's boundary-element solver (`rhabel solve` with
   // "solver": "boundary_element", acceptance 1e-6): 86 patches, C_f 0.0215062538 +- 9.3e-8 (its
   // estimate; the spectral result 0.0215062617).
