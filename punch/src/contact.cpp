@@ -307,7 +307,8 @@ scene_states prepare_states(const scene& s, const context& cx) {
 coupled_outcome solve_states(const scene& s, scene_states& ss, const context& cx) {
   auto& st = ss.st;
   if (st.size() > 1)
-    return solve_coupled(st, cx, s.body ? std::optional<double>(s.body->load / cx.pressure_scale) : std::nullopt);
+    return solve_coupled(st, cx, s.body ? std::optional<double>(s.body->load / cx.pressure_scale) : std::nullopt,
+                         ss.jacobian);
   try {
     solve_isolated(st[0], cx);
   } catch (const std::domain_error& err) {

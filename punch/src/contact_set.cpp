@@ -14,6 +14,7 @@
 // (continuation_start). The last round's solve is reported with contact.cpp's checks plus the
 // clearance at every sample.
 #include "coarse_contact.hpp"
+#include "coupled_problem.hpp"
 #include "internal.hpp"
 #include "profile_curve.hpp"
 #include "profile_search.hpp"
@@ -24,6 +25,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <memory>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
@@ -182,6 +184,8 @@ struct profile_model {
   profile_curve curve;
   std::vector<bump> bumps;
   double top = 0, span = 0;  // max z and max z - min z
+  // The last Jacobian of the rounds' coupled solves, kept for the next (coupled::jacobian_memo).
+  std::shared_ptr<coupled::jacobian_memo> jacobian = std::make_shared<coupled::jacobian_memo>();
 
   explicit profile_model(const profile_scene& s) : profile_model(s, profile_curve(s.profile)) {}
   /// s's profile given by `c` (its samples c.x(), c.z()).
@@ -610,6 +614,7 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
     next.t = t;
     next.sc = make_scene(m, runs, t * load);
     next.states = prepare_states(next.sc, cx);
+    next.states.jacobian = m.jacobian;
     const bool seeded = std::all_of(runs.begin(), runs.end(), [](const run& r) { return r.seed.has_value(); });
     if (seeded) {
       for (auto& state : next.states.st) {  // each run its own load (runs may share a tip)
@@ -979,8 +984,9 @@ window_solution solve_model(const profile_model& m, const context& cx, const std
 }  // namespace
 
 window_solution search_window(const profile_scene& window, const profile_curve& curve, const context& cx,
-                              const std::vector<coarse_patch>& seeds) {
-  const profile_model m(window, curve);
+                              const std::vector<coarse_patch>& seeds, std::shared_ptr<coupled::jacobian_memo> memo) {
+  profile_model m(window, curve);
+  if (memo) m.jacobian = std::move(memo);
   if (m.bumps.empty() || first_runs(m).empty())
     throw std::domain_error(std::string(who) + ": the profile corrected by the other periods has no tip inside the window");
   return solve_model(m, cx, seeds.empty() ? predicted_start(m, cx) : start_from(m, seeds));

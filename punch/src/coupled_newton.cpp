@@ -659,6 +659,40 @@ struct newton_state {
   }
 };
 
+/// The move of an edge, relative to its contact's length, up to which a kept Jacobian
+/// (jacobian_memo) starts an iteration. WHY 0.1: a contact's conditions change with its edges on
+/// the scale of its length, and the solves that reuse a Jacobian move the edges far less (the next
+/// series degree: 1e-6 .. 1e-3 of a length). WHY not also with a few contacts moved further (a
+/// repaired contact, its columns differenced again): on rough profiles that start took more
+/// iterations than a new Jacobian (1e5-sample periodic profile, 443 contacts: 14 instead of 7).
+constexpr double memo_shift = 0.1;
+
+/// Whether pb keeps its Jacobians in a memo: a seeded rigid body (a sampled profile's round)
+/// iterated with the coloured Jacobian (body_colouring). WHY seeded only: the other solves'
+/// continuations in the load or the heights start each stage far from the last stage's edges.
+bool keeps_jacobian(const problem& pb) { return pb.memo && pb.seeded && body_colouring(pb); }
+
+/// Whether pb's memo serves as the Jacobian at the edges x: keeps_jacobian, in a solve's first
+/// attempt (problem::read_memo), the memo taken at as many contacts, each edge within memo_shift
+/// of its contact's length of where it was.
+bool memo_serves(const problem& pb, const unknowns& u, const edges& x) {
+  if (!keeps_jacobian(pb) || !pb.read_memo) return false;
+  const jacobian_memo& m = *pb.memo;
+  if (m.J.rows() != static_cast<Eigen::Index>(u.state.size()) || m.a.size() != x.a.size()) return false;
+  for (std::size_t i = 0; i < x.a.size(); ++i) {
+    const double shift = memo_shift * (x.b[i] - x.a[i]);
+    if (!(std::abs(x.a[i] - m.a[i]) <= shift && std::abs(x.b[i] - m.b[i]) <= shift)) return false;
+  }
+  return true;
+}
+
+/// jacobian, kept in pb's memo when keeps_jacobian (jacobian_memo).
+Eigen::MatrixXd fresh_jacobian(const problem& pb, const unknowns& u, const edges& x, const evaluation& ev) {
+  Eigen::MatrixXd J = jacobian(pb, u, x, ev);
+  if (keeps_jacobian(pb)) *pb.memo = {J, x.a, x.b};
+  return J;
+}
+
 /// Broyden's matrix with the bookkeeping of its refreshes by a finite-difference Jacobian.
 struct jacobian_state {
   abel::broyden_matrix<double> J;
@@ -669,8 +703,9 @@ struct jacobian_state {
   bool krylov = false;  // the steps by krylov_step from now on
 
   /// A new finite-difference Jacobian at the accepted point of s.
-  void refresh(const newton_state& s) {
-    J.reset(jacobian(s.pb, s.u, s.out.x, s.ev));
+  void refresh(newton_state& s) {
+    J.reset(fresh_jacobian(s.pb, s.u, s.out.x, s.ev));
+    ++s.out.jacobians;
     fresh = true;
     since_fresh = 0;
   }
@@ -857,7 +892,12 @@ void broyden_steps(newton_state& s) {
   const problem& pb = s.pb;
   const unknowns& u = s.u;
   newton_result& out = s.out;
-  jacobian_state js{abel::broyden_matrix<double>(jacobian(pb, u, out.x, s.ev))};
+  // From the kept Jacobian when it serves (jacobian_memo); then not fresh, so that a step it fails
+  // refreshes it.
+  const bool kept = memo_serves(pb, u, out.x);
+  jacobian_state js{abel::broyden_matrix<double>(kept ? pb.memo->J : fresh_jacobian(pb, u, out.x, s.ev))};
+  js.fresh = !kept;
+  if (!kept) ++out.jacobians;
   const bool colouring = pb.roles.size() > full_width && (!pb.body_load || body_colouring(pb));
   for (std::size_t it = 0; it < 60; ++it) {
     if (pb.cx->out_of_time()) {

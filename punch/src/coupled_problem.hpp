@@ -156,6 +156,20 @@ class degree_hints {
   std::vector<std::size_t> degrees_;
 };
 
+/// A rigid body's last finite-difference Jacobian of the edge conditions (coupled_newton.cpp,
+/// jacobian: coloured, with the far model) and the contacts' edges where it was taken, kept for
+/// the next coupled solve of nearly the same contacts (each edge within memo_shift of its
+/// contact's length), whose Newton-Broyden iteration then starts from it instead of differencing
+/// a new one. WHY: a sampled profile's search solves one set of contacts again and again from the
+/// last solution, at each series degree (contact_set.cpp, raise_degree) and in each pass of a
+/// periodic profile (periodic_profile.cpp), and there the new Jacobian was most of a solve's time
+/// (1e5-sample periodic profile, 233 contacts: 16 evaluations of 0.1-0.3 s for one Newton step).
+/// Broyden's updates and the usual refresh (a step that gains too little) correct what is stale.
+struct jacobian_memo {
+  Eigen::MatrixXd J;
+  std::vector<double> a, b;
+};
+
 struct problem {
   const std::vector<indentor_state>* st = nullptr;
   const context* cx = nullptr;
@@ -194,6 +208,10 @@ struct problem {
   std::vector<std::size_t> fixed_degrees;
   // With fixed_degrees on the boundary-layer route: the base point's poles a decade.
   std::size_t fixed_poles_per_decade = 0;
+  // The Jacobian kept across solves (jacobian_memo; copies share it); null: none. Read only by a
+  // solve's first attempt (read_memo): a retry follows a failure, and differences its own.
+  std::shared_ptr<jacobian_memo> memo;
+  bool read_memo = true;
   // The far field's tree, kept across evaluations (copies of the problem share it).
   std::shared_ptr<far_tree> tree = std::make_shared<far_tree>();
   // The degrees the last adaptive evaluation needed, per state (copies share them). The next one
@@ -246,6 +264,7 @@ struct newton_result {
   edges x;
   fixed_solution sol;
   std::size_t iterations = 0;
+  std::size_t jacobians = 0;  // finite-difference Jacobians taken (jacobian_memo's start is none)
   double residual = 0;  // max |condition|
   std::string worst;    // which condition that is (coupled_newton.cpp, condition_name)
   std::string failure;

@@ -433,6 +433,7 @@ void retry(problem& pb, newton_result& result, problem other, Run run, Better be
   if (pb.cx->out_of_time()) return;  // a retry would return at once with nothing to compare
   auto second = run(other);
   second.iterations += result.iterations;
+  second.jacobians += result.jacobians;
   if (better(second, result)) {
     result = std::move(second);
     pb = std::move(other);
@@ -491,7 +492,7 @@ constexpr double preload_accuracy = 1e-4;
 /// all carry their own loads (indentor_state::seed_load): the edges of the contacts with those
 /// loads imposed (the loaded form, as independent indentors: loaded_form), Newton from the seeds
 /// to preload_accuracy; none when the seeds already meet that, when a contact has no loaded form
-/// or no seed load, or when the iteration fails. `iterations` gains its iterations.
+/// or no seed load, or when the iteration fails. `iterations` and `jacobians` gain its own.
 /// WHY: the coarse solve's edges are known to a panel, and for a contact narrower than a sample a
 /// panel is a large part of its length: its level condition starts tens to hundreds of its units
 /// off (1e5-sample periodic profile, 233 seeds: largest condition 242), the step limit shortens
@@ -500,7 +501,8 @@ constexpr double preload_accuracy = 1e-4;
 /// the contacts are nearly independent (a moved edge acts on the others by a dipole), the coloured
 /// Jacobian is nearly exact, and each contact's edges come to fit its coarse load: 10 iterations,
 /// after which the body's iteration converged in 9 (233 seeds) and 11 (443) with every seed kept.
-std::optional<edges> loads_imposed_start(const problem& pb, const edges& seeds, std::size_t& iterations) {
+std::optional<edges> loads_imposed_start(const problem& pb, const edges& seeds, std::size_t& iterations,
+                                         std::size_t& jacobians) {
   const auto& st = *pb.st;
   if (st.size() <= full_width) return std::nullopt;
   problem pre = pb;
@@ -521,6 +523,7 @@ std::optional<edges> loads_imposed_start(const problem& pb, const edges& seeds, 
   }
   const newton_result r = newton(pre, seeds);
   iterations += r.iterations;
+  jacobians += r.jacobians;
   if (!r.converged) return std::nullopt;
   return r.x;
 }
@@ -528,12 +531,14 @@ std::optional<edges> loads_imposed_start(const problem& pb, const edges& seeds, 
 }  // namespace
 }  // namespace coupled
 
-coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx, std::optional<double> body_load) {
+coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx, std::optional<double> body_load,
+                              std::shared_ptr<coupled::jacobian_memo> memo) {
   using namespace coupled;
   problem pb;
   pb.st = &st;
   pb.cx = &cx;
   pb.body_load = body_load;
+  pb.memo = std::move(memo);
   // Seeded contacts (a sampled profile's): their series converge algebraically across the spline's
   // knots, and their conditions have a floor there. WHY: 16000-sample self-affine profile, seed 3,
   // load 2e-3, degree 1024 from the contacts solved at 512: the largest condition 5.8e-7 at the
@@ -581,10 +586,13 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   // profile (seed 3, load 3e-3, 17 contacts) stalled at its first step from the loads-imposed
   // edges (largest condition 1.5e-4, a contact's series capped at degree 128) and converged from
   // the seeds in 9 iterations.
-  std::size_t preload_iterations = 0;
-  const auto start = seeded && body_load ? loads_imposed_start(pb, isolated, preload_iterations) : std::nullopt;
+  std::size_t preload_iterations = 0, preload_jacobians = 0;
+  const auto start =
+      seeded && body_load ? loads_imposed_start(pb, isolated, preload_iterations, preload_jacobians) : std::nullopt;
   newton_result result = attempt(pb, start ? *start : isolated);
   result.iterations += preload_iterations;
+  result.jacobians += preload_jacobians;
+  pb.read_memo = false;  // (the retries below copy pb)
   if (start && !result.converged && !result.merged && !result.lost)
     retry(pb, result, pb, again, [](const newton_result&, const newton_result&) { return true; });
   // Seeded contacts whose series cannot reach the acceptance at this degree: no retries.
@@ -655,6 +663,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
     }
   }
   out.iterations = result.iterations;
+  out.jacobians = result.jacobians;
   out.union_degree = result.sol.degree;
   if (!result.converged && result.lost) {
     out.code = status_code::contact_lost;

@@ -288,17 +288,25 @@ struct coupled_outcome {
   status_code code = status_code::ok;
   std::string message;      // empty when ok
   std::size_t iterations = 0;
+  std::size_t jacobians = 0;     // finite-difference Jacobians the iterations took
   std::size_t union_degree = 0;  // the most collocation points of a contact in the last linear solve
   std::optional<std::size_t> lost;  // contact_lost: the st index of the indentor named
   std::optional<std::pair<std::size_t, std::size_t>> merged;  // contacts_merge: the two st indices
 };
 
+namespace coupled {
+struct jacobian_memo;
+}
+
 /// Solves several indentors together (paper system 41): fills every st[i].g (and epsilon for
 /// wedges). st in any order; the contacts' order along x is found, not assumed.
 /// body_load (in units of int g): all indentors on one rigid body with this total load; their
 /// target_load is then only the starting split, and is set to the solved load on return.
+/// memo (a rigid body; null: none): the last Jacobian of the edge conditions, read when it was
+/// taken at nearly these contacts and replaced by each new one (coupled_problem.hpp).
 coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx,
-                              std::optional<double> body_load = std::nullopt);
+                              std::optional<double> body_load = std::nullopt,
+                              std::shared_ptr<coupled::jacobian_memo> memo = nullptr);
 
 // ---- contact.cpp
 /// A scene's indentors as the solver holds them: sorted by apex, abscissae relative to `origin`
@@ -307,6 +315,8 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
 struct scene_states {
   std::vector<indentor_state> st;
   double origin = 0;
+  // solve_coupled's memo (a sampled profile's rounds share one: contact_set.cpp); null: none.
+  std::shared_ptr<coupled::jacobian_memo> jacobian;
 };
 /// The states of a validated scene (equal load shares on a rigid body: the start).
 scene_states prepare_states(const scene& s, const context& cx);

@@ -16,6 +16,7 @@
 // converge geometrically.
 // The reported residual of (8) is the window's plus the last pass's change of w_img's slope:
 // that is the residual of the periodic equation for the reported densities.
+#include "coupled_problem.hpp"
 #include "periodic_images.hpp"
 #include "profile_search.hpp"
 
@@ -190,13 +191,16 @@ profile_result solve_periodic_profile(const profile_scene& s, const context& cx)
   // little between passes, and from degree 128 each pass climbed the degrees again (1e5-sample
   // periodic profile, 443 contacts: the second pass's searches at 128, 512 and 1024 took 70 s).
   context pass_cx = cx;
+  // The passes solve one window with nearly the same contacts: each starts from the Jacobians the
+  // last one kept (coupled::jacobian_memo).
+  const auto memo = std::make_shared<coupled::jacobian_memo>();
   for (;;) {
     ++pass;
     const profile_curve wc(curve, first, [field](double at) { return field->value(at); },
                            [field](double at) { return field->slope(at); });
     window.profile.x = wc.x();
     window.profile.z = wc.z();
-    window_solution sol = search_window(window, wc, pass_cx, seeds);
+    window_solution sol = search_window(window, wc, pass_cx, seeds, memo);
     // (before the result moves out: its contacts' residuals of (8) are the window's own)
     std::vector<coarse_patch> next_seeds = sol.contacts_capped(capped_below * cx.options.acceptance);
     rounds += sol.result.diagnostics.rounds;

@@ -8,6 +8,7 @@
 #include "profile_curve.hpp"
 
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace rhabel::punch::detail {
@@ -62,9 +63,12 @@ struct window_solution {
 /// profile.x, profile.z those of `curve`, whose spline and slope the contacts are solved on), the
 /// first round from `seeds` (absolute edges, loads in units of int g) or, when empty, from the
 /// coarse boundary-element solve. Reported as solve_profile's result (seconds not set). Throws
-/// std::domain_error when the curve has no tip inside the window.
+/// std::domain_error when the curve has no tip inside the window. `memo`: the Jacobians its
+/// rounds keep for one another (coupled::jacobian_memo), shared with other searches of the same
+/// window (a periodic profile's passes); null: its own.
 window_solution search_window(const profile_scene& window, const profile_curve& curve, const context& cx,
-                              const std::vector<coarse_patch>& seeds);
+                              const std::vector<coarse_patch>& seeds,
+                              std::shared_ptr<coupled::jacobian_memo> memo = nullptr);
 
 /// solve_profile for a periodic profile (periodic_profile.cpp; s validated, period > 0).
 profile_result solve_periodic_profile(const profile_scene& s, const context& cx);

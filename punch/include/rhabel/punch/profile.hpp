@@ -174,10 +174,10 @@
 //   across spline knots at degree 2048 (residual of (8) 1.15e-6 at 1023, 3.5e-8 at 2047).
 //   A search that ends short of the load says which load was reached and where the
 //   profile penetrates. The same 36 as periodic profiles (rough_matrix.py --periodic): all 36 ok
-//   (3 to 85 contacts, 0.14-8.0 s), each with the boundary-element solver's patches and C_f within
+//   (3 to 85 contacts, 0.10-4.4 s), each with the boundary-element solver's patches and C_f within
 //   its estimate (those of tests/punch/test_rough_profile.cpp against the boundary-element
 //   oracle). 1e5 samples a period with 233 contacts (self_affine_profile.py 100000 1 3e-3
-//   --periodic): ok in 43-50 s (one core), at 6e-3 443 contacts ok in 2.0-2.2 min, each with the
+//   --periodic): ok in 29 s (one core), at 6e-3 443 contacts ok in 1.7 min, each with the
 //   boundary-element solver's patches and C_f within its estimate
 //   (tests/long/rough_1e5_periodic*.sh); at 1.4e-2 (~980 patches) the search ends not_converged
 //   after 600 s. An ok result bounds the residual of (8), the loads, the pressure's sign, the levels
