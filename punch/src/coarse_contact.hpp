@@ -31,7 +31,9 @@ namespace rhabel::punch::detail {
 struct coarse_patch {
   double a = 0, b = 0, load = 0;
   std::size_t degree = 0;
-  bool guessed = false;  // the load is a guess (a contact search's new contact), not a solve's
+  // The load is a solve's (this one's or a converged round's: indentor_state::seed_load); false: a
+  // guess (a contact search's new or repaired contact).
+  bool load_solved = true;
 };
 
 /// The contacts of the coarse solve in the order of x, on `panels` panels, refined on (by 4 at a

@@ -258,9 +258,9 @@ void merge_runs(std::vector<run>& runs, std::size_t i, std::size_t j) {
   if (std::all_of(runs.begin() + static_cast<std::ptrdiff_t>(i), runs.begin() + static_cast<std::ptrdiff_t>(j) + 1,
                   [](const run& r) { return r.seed.has_value(); })) {
     double load = 0;
-    bool guessed = false;
-    for (std::size_t k = i; k <= j; ++k) load += runs[k].seed->load, guessed = guessed || runs[k].seed->guessed;
-    runs[i].seed = coarse_patch{runs[i].seed->a, runs[j].seed->b, load, 0, guessed};
+    bool solved = true;
+    for (std::size_t k = i; k <= j; ++k) load += runs[k].seed->load, solved = solved && runs[k].seed->load_solved;
+    runs[i].seed = coarse_patch{runs[i].seed->a, runs[j].seed->b, load, 0, solved};
   }
   runs.erase(runs.begin() + static_cast<std::ptrdiff_t>(i) + 1, runs.begin() + static_cast<std::ptrdiff_t>(j) + 1);
 }
@@ -506,7 +506,7 @@ std::vector<bool> addable(const profile_model& m, const scene_states& ss, const 
 /// `load` (a quarter of the smallest contact's, as start_split gives a new contact).
 coarse_patch new_seed(const profile_model& m, double at, double load) {
   const double h = spacings_about(m, at);
-  return {std::max(at - h / 8, m.curve.lo()), std::min(at + h / 8, m.curve.hi()), load, 0, true};
+  return {std::max(at - h / 8, m.curve.lo()), std::min(at + h / 8, m.curve.hi()), load, 0, false};
 }
 
 /// The part of a contact where its pressure is negative, when its lowest is below -tol of its
@@ -559,7 +559,7 @@ bool repair_tension(const profile_model& m, const scene_states& ss, std::vector<
     changed = true;
     coarse_patch& seed = *r.seed;  // the contact's edges (absolute) and load, from this round
     const double lo = negative->lo + ss.origin, hi = negative->hi + ss.origin, L = seed.b - seed.a;
-    seed.guessed = true;  // its load no longer matches its edges
+    seed.load_solved = false;  // its load no longer matches its edges
     if (negative->at_hi) {
       seed.b = lo;
     } else if (negative->at_lo) {
@@ -622,7 +622,7 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
         state.seed = std::pair{p.a - next.states.origin, p.b - next.states.origin};
         state.target_load = p.load * t;
         state.degree_cap = p.degree;
-        state.seed_load = !p.guessed;
+        state.seed_load = p.load_solved;
       }
     } else {
       start_split(m, runs, shares, next.states);
