@@ -191,7 +191,7 @@ profile_result solve_periodic_profile(const profile_scene& s, const context& cx)
   // little between passes, and from degree 128 each pass climbed the degrees again (1e5-sample
   // periodic profile, 443 contacts: the second pass's searches at 128, 512 and 1024 took 70 s).
   context pass_cx = cx;
-  // The passes solve one window with nearly the same contacts: each starts from the Jacobians the
+  // The passes solve one window with nearly the same contacts: each starts from the Jacobian the
   // last one kept (coupled::jacobian_memo).
   const auto memo = std::make_shared<coupled::jacobian_memo>();
   for (;;) {

@@ -63,7 +63,7 @@ struct window_solution {
 /// profile.x, profile.z those of `curve`, whose spline and slope the contacts are solved on), the
 /// first round from `seeds` (absolute edges, loads in units of int g) or, when empty, from the
 /// coarse boundary-element solve. Reported as solve_profile's result (seconds not set). Throws
-/// std::domain_error when the curve has no tip inside the window. `memo`: the Jacobians its
+/// std::domain_error when the curve has no tip inside the window. `memo`: the Jacobian its
 /// rounds keep for one another (coupled::jacobian_memo), shared with other searches of the same
 /// window (a periodic profile's passes); null: its own.
 window_solution search_window(const profile_scene& window, const profile_curve& curve, const context& cx,
