@@ -42,7 +42,9 @@
 // circulant (periodic) and is tabulated once per level. Active set on panels: solve the active
 // panels and delta (dense LU up to 600 active panels; above, GMRES right-preconditioned by the exact
 // inverse of each patch's own block, for g = x1 - delta x2 with A x1 = z, A x2 = 1, delta from the
-// load); the gaps at all inactive collocation points (one FFT convolution above 1000 active panels);
+// load; its products dense, O(m^2), or with `options::fft_products` on a periodic level by FFT of
+// the circulant, O(n log n): the same values to rounding, C_f per level measured equal to 12
+// digits); the gaps at all inactive collocation points (one FFT convolution above 1000 active panels);
 // grow every run of active panels into adjacent penetrating panels (up to a quarter of the run per
 // side and iteration), seed each penetrating component that touches no run at its deepest panel;
 // only when nothing grows drop every panel with g < 0. The first level starts from the highest
@@ -67,7 +69,33 @@
 // disagreement of the two finest plus a panel when that exceeds three panels). Contact fraction:
 // the finest level's, bar the sum of the edge bars. A patch not found on all three levels gets
 // bars its own size (edges: its width; load: itself; C_f: max |z'|). All bars are ESTIMATES, not
-// bounds. Evidence: min g / mean g (>= 0 by construction of the active set), min gap / (max z -
+// bounds.
+//
+// NARROW PATCHES (`options::bound_narrow`, off by default). A rough profile under a heavy load has
+// patches that carry >= 1e-4 of the load and stay narrower than 16 panels far into the levels
+// (measured: self_affine(4000, 4) at P_phys 6e-3, 74 patches: at 256000 panels seven of them,
+// 4 .. 14 panels, 1.6e-5 .. 5.5e-5 wide, 5e-5 .. 1e-3 of the load; five at 512000; one at
+// 1024000), so the rule above does not settle on them below 2^20 panels. With the option such
+// patches stand, and their worst case is added to the body's C_f bar (`narrow_share`):
+//     sum_i (L_i r_i + dL_i R) / P,
+// r_i the range of z' over the patch widened to its edges' bars, R that over the window, dL_i its
+// load's bar plus |extrapolated - finest|. Why: C_i = int z' g / int g is a mean of z' weighted by
+// g >= 0, on every level and exactly, so it lies in that range however coarsely the patch is
+// resolved; a load error moves load from or to the other patches, at most R per unit of load.
+// Refinement then stops when Richardson's bar plus this share is below friction_tol x max |z'|.
+// The load bars are estimates, so the share is one too; it is conservative (in the case above the
+// narrow patches' C_i moved by <= 2.8e-4 between the last levels against ranges r_i of 1e-3 ..
+// 1e-2). Measured (test_rough_profile_reference.cpp: max_panels 2^20, bound_narrow, fft_products,
+// friction_tol 1e-5; one core of a shared 2-core machine, Release;
+// `ctest --test-dir build -R punch.test_rough_profile_reference -V`):
+//     seed  patches  C_f                      narrow  their share  finest   time
+//     4     74       0.0244682934 +- 1.24e-6  1       5.2e-7       1024000  60 s
+//     15    86       0.0215062673 +- 1.16e-6  1       1.4e-7       1024000  62 s
+//   (C_f's differences per level for seed 4: 4.1e-5, 1.5e-5, 3.1e-6, 7.2e-7, 2.3e-7 from 64000
+//   panels on; with friction_tol 1e-4 it stops at 512000 panels, 24 s: 0.0244684187 +- 8.95e-6,
+//   5.8e-6 of it the share of five narrow patches). rhabel's spectral search gives 0.0244683239
+//   and 0.0215062617 (3.0e-8 and 5.6e-9 from these), its boundary-element solver 0.0244683204 +-
+//   8.3e-8 and 0.0215062538 +- 9.3e-8. Evidence: min g / mean g (>= 0 by construction of the active set), min gap / (max z -
 // min z) on the finest level, `touches_end` (finite: the contact reaches an end of the samples,
 // where the profile is not known: the answer is that of the window, physically suspect), the
 // patches and active-set iterations per level.
@@ -117,12 +145,18 @@
 //   2e-5, 6e-6, ...); on coarser levels it is off by up to 2e-3 (1000 panels). Where the stopping
 //   rule once stopped early (seed 3, 5e-4, at 32000 panels, bar 1.9e-4) the error was 1.9e-5.
 //   The cost is the active set's solves: dense LU (m^3) up to 600 active panels, then GMRES with
-//   O(m^2) products: ~1 s a level at m ~ 3500.
+//   O(m^2) products: ~1 s a level at m ~ 3500. GMRES takes ~90 products a solve (two solves an
+//   active-set iteration, ~3 iterations a level) on the 4000-sample profiles of NARROW PATCHES:
+//   at 256000 panels (m ~ 6500) 23 s a level dense, 5 s with fft_products (an FFT pair of 256000
+//   points: ~6 ms); at 1024000 (m ~ 26000) 36 s with them. Their first level (4000 panels, from
+//   one panel) grows to ~2400 active panels before it shrinks to ~150: 10 .. 17 s dense, 2 .. 4 s
+//   by FFT.
 //
 // LIMITS. alpha + beta <= 1. Smooth profiles (no corners). An active set started on a fine grid at
 // kappa = -1 (alpha 0.7, beta 0.3) can settle on a spurious set (measured: the parabola from a single
 // panel at 4096 panels); `solve` starts at the samples' spacing and refines, which avoids it in
-// every case measured. Patches narrower than a panel of the finest level are not seen.
+// every case measured. Patches narrower than a panel of the finest level are not seen (nor, with
+// bound_narrow, counted in the narrow share: a patch is counted once it is on the finest level).
 #pragma once
 
 #include "punch/bem_oracle.hpp"
@@ -138,8 +172,11 @@
 #include <cmath>
 #include <complex>
 #include <limits>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 namespace punch_test::bem_profile {
@@ -180,6 +217,36 @@ struct spline {
     const std::size_t i = interval(t);
     const double h = x[i + 1] - x[i], A = (x[i + 1] - t) / h, B = (t - x[i]) / h;
     return (z[i + 1] - z[i]) / h + (-(3 * A * A - 1) * m[i] + (3 * B * B - 1) * m[i + 1]) * h / 6;
+  }
+  /// {min z', max z'} on [t0, t1] (t0 <= t1; periodic: t1 - t0 <= period; finite: clipped to the
+  /// knots). Exact: z'' is continuous and linear between knots, so z' is extreme at t0, t1 or
+  /// where z'' changes sign inside a knot interval.
+  std::pair<double, double> slope_range(double t0, double t1) const {
+    if (!periodic) {
+      t0 = std::clamp(t0, lo(), hi());
+      t1 = std::clamp(t1, lo(), hi());
+    }
+    double lo_s = slope(t0), hi_s = lo_s;
+    auto see = [&](double t) {
+      const double s = slope(t);
+      lo_s = std::min(lo_s, s);
+      hi_s = std::max(hi_s, s);
+    };
+    see(t1);
+    double t = t0;
+    for (std::size_t k = 0; t < t1 && k < x.size() + 2; ++k) {
+      double tm = t;
+      const std::size_t i = interval(tm);        // tm: t brought into the knots' range
+      const double end = t + (x[i + 1] - tm);    // this knot interval's end, in t's period
+      if ((m[i] < 0) != (m[i + 1] < 0)) {        // z'' = 0 inside: an extremum of z'
+        const double u = t + (x[i] + (x[i + 1] - x[i]) * m[i] / (m[i] - m[i + 1]) - tm);
+        if (u > t0 && u < t1) see(u);
+      }
+      if (end < t1) see(end);
+      if (!(end > t)) break;
+      t = end;
+    }
+    return {lo_s, hi_s};
   }
 };
 
@@ -492,15 +559,44 @@ inline std::vector<std::pair<int, int>> runs(const std::vector<char>& act, bool 
   return r;
 }
 
+/// The periodic influence matrix as what it is, a circulant: u = c * g (cyclic convolution of
+/// length n, c_d = kern[d + n - 1], d = 0 .. n - 1), by one forward and one inverse FFT of length
+/// n (Eigen's FFT, any n; exact up to rounding: ~1e-16 x sum |c g|), O(n log n) instead of the
+/// O(m^2) dense product over m active panels. `options::fft_products`.
+struct circulant {
+  int n;
+  mutable Eigen::FFT<double> fft;
+  std::vector<std::complex<double>> c_hat;
+  explicit circulant(const level_data& L) : n(L.n) {
+    std::vector<double> c(static_cast<std::size_t>(n));
+    for (int d = 0; d < n; ++d) c[static_cast<std::size_t>(d)] = L.kern[static_cast<std::size_t>(d + n - 1)];
+    fft.fwd(c_hat, c);
+  }
+  /// (A x)_r = sum_c kern[idx_r - idx_c + n - 1] x_c over the active panels idx.
+  Eigen::VectorXd apply(const std::vector<int>& idx, const Eigen::VectorXd& x) const {
+    std::vector<double> g(static_cast<std::size_t>(n), 0.0), u;
+    for (std::size_t r = 0; r < idx.size(); ++r) g[static_cast<std::size_t>(idx[r])] = x(static_cast<Eigen::Index>(r));
+    std::vector<std::complex<double>> G;
+    fft.fwd(G, g);
+    for (std::size_t k = 0; k < G.size(); ++k) G[k] *= c_hat[k];
+    fft.inv(u, G);
+    Eigen::VectorXd y(static_cast<Eigen::Index>(idx.size()));
+    for (std::size_t r = 0; r < idx.size(); ++r) y(static_cast<Eigen::Index>(r)) = u[static_cast<std::size_t>(idx[r])];
+    return y;
+  }
+};
+
 /// Solve A x = b, A the active panels' influence matrix (idx), by GMRES (restarted every 60)
 /// right-preconditioned with the exact inverse of each run's own block (block Jacobi: the runs
-/// interact through smooth far fields). Relative residual 1e-13.
+/// interact through smooth far fields). Relative residual 1e-13. Products by the circulant's FFT
+/// when `C` is given (periodic levels, `options::fft_products`), else dense.
 struct block_solver {
   const level_data& L;
   const std::vector<int>& idx;
+  const circulant* C = nullptr;
   std::vector<std::pair<int, int>> blocks;  // (offset in idx, size)
   std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> lu;
-  block_solver(const level_data& L_, const std::vector<int>& idx_) : L(L_), idx(idx_) {
+  block_solver(const level_data& L_, const std::vector<int>& idx_, const circulant* C_ = nullptr) : L(L_), idx(idx_), C(C_) {
     const int m = static_cast<int>(idx.size());
     for (int r = 0; r < m;) {
       int e = r + 1;
@@ -516,6 +612,7 @@ struct block_solver {
     }
   }
   Eigen::VectorXd apply(const Eigen::VectorXd& x) const {
+    if (C) return C->apply(idx, x);
     const auto m = static_cast<Eigen::Index>(idx.size());
     Eigen::VectorXd y(m);
     for (Eigen::Index r = 0; r < m; ++r) {
@@ -606,10 +703,14 @@ inline constexpr int dense_limit = 600;
 }  // namespace detail
 
 /// Active-set solve on n uniform panels, from `start` (per-panel activity; empty: the highest panel).
-inline level_result solve_level(const scene& sc, int n, std::vector<char> start = {}, int max_iterations = 400) {
+/// fft_products: periodic levels' GMRES products by FFT (`options::fft_products`).
+inline level_result solve_level(const scene& sc, int n, std::vector<char> start = {}, int max_iterations = 400,
+                                bool fft_products = false) {
   if (n < 8) bad("solve_level", "n = " + std::to_string(n) + " must be >= 8");
   const auto L = detail::make_level(sc, n);
   const bool per = L.periodic;
+  std::unique_ptr<detail::circulant> circ;
+  if (fft_products && per) circ = std::make_unique<detail::circulant>(L);
   double zmax = -std::numeric_limits<double>::infinity(), zmin = -zmax;
   for (double v : L.f) { zmax = std::max(zmax, v); zmin = std::min(zmin, v); }
   const double zscale = std::max(zmax - zmin, std::numeric_limits<double>::min());
@@ -636,7 +737,7 @@ inline level_result solve_level(const scene& sc, int n, std::vector<char> start 
     const auto m = static_cast<Eigen::Index>(idx.size());
     if (m > detail::dense_limit) {
       // g = x1 - delta x2 with A x1 = f, A x2 = 1; delta from the load.
-      const detail::block_solver S(L, idx);
+      const detail::block_solver S(L, idx, circ.get());
       Eigen::VectorXd f(m);
       for (Eigen::Index r = 0; r < m; ++r) f(r) = L.f[static_cast<std::size_t>(idx[static_cast<std::size_t>(r)])];
       bool ok1 = false, ok2 = false;
@@ -796,6 +897,11 @@ struct options {
   int max_panels = 1 << 18; ///< refinement stops here (then converged = false unless already settled)
   double span_load = 1e-4;  ///< min_span applies to patches carrying at least this fraction of the load
   double friction_tol = 1e-4;  ///< refine until the body's C_f bar is below this x max |z'| of the samples
+  /// Let patches narrower than min_span panels stand when their worst case, added to the body's C_f
+  /// bar, keeps it below friction_tol (see `narrow_share`); off: every patch carrying >= span_load
+  /// of the load must span min_span panels.
+  bool bound_narrow = false;
+  bool fft_products = false;  ///< periodic: GMRES products by FFT (`detail::circulant`), same values to rounding
 };
 
 /// Options for the sanitizer build: coarser (every check still runs, on fewer panels).
@@ -824,6 +930,9 @@ struct result {
   std::vector<int> patch_counts;  ///< patches per level
   std::vector<int> iterations;    ///< active-set iterations per level
   std::vector<double> level_friction;  ///< C_f of the body per level
+  std::vector<double> level_seconds;   ///< wall time per level (reported, never asserted)
+  double narrow_share = 0;     ///< bound_narrow: the narrow patches' share of friction.error (`narrow_share`)
+  int narrow_patches = 0;      ///< bound_narrow: patches narrower than min_span panels on the finest level
   double seconds = 0;          ///< wall time (reported, never asserted)
   level_result finest;
 };
@@ -854,6 +963,46 @@ inline std::vector<int> match(const level_result& coarse, const level_result& fi
 
 }  // namespace detail
 
+/// The worst case that patches narrower than `min_span` panels on the finest level l2 add to the
+/// body's C_f (`options::bound_narrow`), in C_f units, and how many there are:
+///     sum over those patches i of (L_i r_i + dL_i R) / P.
+/// WHY IT BOUNDS THEM. C_f = sum_j L_j C_j / P over the patches, and a patch's C_i = int z' g / int g
+/// is a mean of z' with the weight g >= 0 (the exact solution's pressure, and every level's g by
+/// the active set), so C_i, exact or on any level, lies in [min z', max z'] over the patch: r_i is
+/// that range over the run widened to the edges' bars (`slope_range`, exact on the spline), so a
+/// patch too narrow for its C_i to have converged still cannot be off by more than r_i (~ |z''| x
+/// its width: small for the narrow ones). A wrong load dL_i moves to or from the other patches
+/// (the total is P): at most dL_i R, R = the range of z' over the window. dL_i: the patch's load
+/// bar plus |extrapolated - finest| (the finest level's error; `extrapolate`), its whole load when
+/// it is not on all three levels. The loads' bars are estimates, so the sum is one too.
+inline std::pair<double, int> narrow_share(const scene& sc, const level_result& l0, const level_result& l1,
+                                           const level_result& l2, int min_span) {
+  const bool per = sc.profile.periodic;
+  const double W = sc.profile.hi() - sc.profile.lo();
+  const auto [zmin, zmax] = sc.profile.slope_range(sc.profile.lo(), sc.profile.hi());
+  const auto m1 = detail::match(l1, l2, W, per), m0 = detail::match(l0, l2, W, per);
+  double share = 0;
+  int count = 0;
+  for (std::size_t i = 0; i < l2.patches.size(); ++i) {
+    const auto& p = l2.patches[i];
+    if (p.panels >= min_span) continue;
+    ++count;
+    double dL = p.load, bar_a = p.b - p.a + l2.h, bar_b = bar_a;
+    if (m0[i] >= 0 && m1[i] >= 0) {
+      const auto &p0 = l0.patches[static_cast<std::size_t>(m0[i])], &p1 = l1.patches[static_cast<std::size_t>(m1[i])];
+      const auto e = extrapolate(p0.load, p1.load, p.load, sc.load);
+      dL = e.error + std::abs(e.value - p.load);
+      // the edges' bars (`edge_estimate`), periodic images brought next to p
+      auto near = [&](double v) { return per ? v + W * std::round((p.a - v) / W) : v; };
+      bar_a = edge_estimate(near(p0.ea), near(p1.ea), p.ea, l2.h).error;
+      bar_b = edge_estimate(near(p0.eb), near(p1.eb), p.eb, l2.h).error;
+    }
+    const auto [smin, smax] = sc.profile.slope_range(std::min(p.a, p.ea) - bar_a, std::max(p.b, p.eb) + bar_b);
+    share += (p.load * (smax - smin) + dL * (zmax - zmin)) / sc.load;
+  }
+  return {share, count};
+}
+
 /// The whole oracle: levels n = start * 2^k until the contact set is stable, Richardson on the last three.
 inline result solve(const scene& sc, const options& opt = {}) {
   const auto t_start = std::chrono::steady_clock::now();
@@ -874,7 +1023,9 @@ inline result solve(const scene& sc, const options& opt = {}) {
     slope = std::max(slope, std::abs(sc.profile.slope(sc.profile.x[i])));
   bool settled = false;
   for (;; n *= 2) {
-    lv.push_back(solve_level(sc, n, start));
+    const auto t_level = std::chrono::steady_clock::now();
+    lv.push_back(solve_level(sc, n, start, 400, opt.fft_products));
+    res.level_seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t_level).count());
     const auto& cur = lv.back();
     res.panels.push_back(n);
     res.patch_counts.push_back(static_cast<int>(cur.patches.size()));
@@ -890,8 +1041,11 @@ inline result solve(const scene& sc, const options& opt = {}) {
       if (ok) {
         const auto m1 = detail::match(l1, l2, W, per), m0 = detail::match(l0, l2, W, per);
         for (std::size_t i = 0; i < m1.size(); ++i) ok = ok && m1[i] >= 0 && m0[i] >= 0;
-        for (const auto& p : l2.patches) ok = ok && (p.panels >= opt.min_span || p.load < opt.span_load * sc.load);
-        ok = ok && extrapolate(l0.friction, l1.friction, l2.friction, slope).error <= opt.friction_tol * slope;
+        double narrow = 0;
+        if (opt.bound_narrow) narrow = narrow_share(sc, l0, l1, l2, opt.min_span).first;
+        else
+          for (const auto& p : l2.patches) ok = ok && (p.panels >= opt.min_span || p.load < opt.span_load * sc.load);
+        ok = ok && extrapolate(l0.friction, l1.friction, l2.friction, slope).error + narrow <= opt.friction_tol * slope;
       }
       if (ok) { settled = true; break; }
     }
@@ -908,6 +1062,10 @@ inline result solve(const scene& sc, const options& opt = {}) {
   }
   const auto &l0 = lv[L - 3], &l1 = lv[L - 2], &l2 = lv[L - 1];
   res.friction = extrapolate(l0.friction, l1.friction, l2.friction, slope);
+  if (opt.bound_narrow) {
+    std::tie(res.narrow_share, res.narrow_patches) = narrow_share(sc, l0, l1, l2, opt.min_span);
+    res.friction.error += res.narrow_share;
+  }
   const auto m1 = detail::match(l1, l2, W, per), m0 = detail::match(l0, l2, W, per);
   for (std::size_t i = 0; i < l2.patches.size(); ++i) {
     patch_estimate pe;

@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 
 #include "punch/bem_profile_oracle.hpp"
+#include "punch/rough_profiles.hpp"
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/special_functions/beta.hpp>
@@ -13,6 +14,7 @@
 
 #include <cmath>
 #include <random>
+#include <utility>
 #include <vector>
 
 namespace bp = punch_test::bem_profile;
@@ -268,5 +270,71 @@ TEST_CASE("self-affine periodic profile: ~20 patches, internal consistency and t
     REQUIRE(r2.converged);
     CHECK(r2.patches.size() == r.patches.size());
     CHECK(std::abs(r2.friction.value - r.friction.value) <= r.friction.error + r2.friction.error);
+  }
+}
+
+TEST_CASE("options for narrow patches: the spline's slope range, FFT products, the premise of bound_narrow") {
+  // rough_profiles.hpp's self-affine profile (1000 samples, seed 1) as one period, alpha 0.3, load
+  // 3e-3 per period (E1 = U = 1): ~20 patches, the GMRES path (> 600 active panels) at 32000 panels.
+  const auto s = punch_test::self_affine(1000, 1);
+  const auto sc = bp::make_scene_physical(s.x, s.z, 1, 0.3, 0, 0, 1, 3e-3, 1.0);
+  const auto& sp = sc.profile;
+  SUBCASE("slope_range: exact extremes of z' (quadratic between knots) against dense sampling") {
+    for (auto [t0, t1] : {std::pair{0.1234, 0.1236}, std::pair{0.2, 0.21}, std::pair{0.9995, 1.0017}, std::pair{0.0, 1.0}}) {
+      const auto [lo, hi] = sp.slope_range(t0, t1);
+      double slo = 1e300, shi = -1e300;
+      const int N = 200000;
+      for (int k = 0; k <= N; ++k) {
+        const double v = sp.slope(t0 + (t1 - t0) * k / N);
+        slo = std::min(slo, v);
+        shi = std::max(shi, v);
+      }
+      // the sampling misses a vertex of z' by at most max |z'''| d^2 / 8 (d the sampling step)
+      double z3 = 0;
+      for (std::size_t i = 0; i + 1 < sp.x.size(); ++i) z3 = std::max(z3, std::abs(sp.m[i + 1] - sp.m[i]) / (sp.x[i + 1] - sp.x[i]));
+      const double d = (t1 - t0) / N, miss = z3 * d * d / 8 + 1e-15;
+      CAPTURE(t0); CAPTURE(t1); CAPTURE(lo - slo); CAPTURE(hi - shi); CAPTURE(miss);
+      // never narrower than the samples; wider only by the sampling's miss of a vertex
+      CHECK(lo <= slo + 1e-15);
+      CHECK(hi >= shi - 1e-15);
+      CHECK(slo - lo <= miss);
+      CHECK(hi - shi <= miss);
+    }
+  }
+  SUBCASE("FFT products give the dense products' levels; every patch's C_f inside its slope range") {
+    bp::options o = bp::test_options();
+    o.start_panels = 1000;
+    o.max_panels = bp::sanitizer_build ? 4000 : 32000;
+    o.min_levels = bp::sanitizer_build ? 3 : 6;
+    o.friction_tol = 0;  // every level to max_panels
+    const auto dense = bp::solve(sc, o);
+    o.fft_products = true;
+    const auto fft = bp::solve(sc, o);
+    if (!bp::sanitizer_build) CHECK(dense.finest.fraction * dense.finest.n > bp::detail::dense_limit);  // GMRES ran
+    REQUIRE(fft.panels == dense.panels);
+    CHECK(fft.patch_counts == dense.patch_counts);
+    CHECK(fft.finest.active == dense.finest.active);
+    for (std::size_t k = 0; k < dense.panels.size(); ++k) {
+      CAPTURE(dense.panels[k]);
+      CHECK(std::abs(fft.level_friction[k] - dense.level_friction[k]) <= 1e-12 * std::abs(dense.level_friction[k]));
+    }
+    // bound_narrow's premise: C_i = int z' g / int g with g >= 0 lies in z''s range over the run.
+    for (const auto& p : dense.finest.patches) {
+      const auto [lo, hi] = sp.slope_range(p.a, p.b);
+      CHECK(p.friction() >= lo);
+      CHECK(p.friction() <= hi);
+    }
+    // With every patch counted as narrow (min_span huge), the bound covers the body's C_f outright:
+    // at least the finest level's distance from the extrapolated value; it is added to the bar.
+    o.bound_narrow = true;
+    o.min_span = 1 << 30;
+    const auto all = bp::solve(sc, o);
+    CAPTURE(all.narrow_share); CAPTURE(dense.friction.value - dense.friction.finest); CAPTURE(dense.seconds); CAPTURE(fft.seconds);
+    CHECK(all.narrow_patches == static_cast<int>(all.patches.size()));
+    CHECK(all.friction.finest == fft.friction.finest);
+    CHECK(all.friction.error == doctest::Approx(fft.friction.error + all.narrow_share).epsilon(1e-12));
+    CHECK(std::abs(dense.friction.value - dense.friction.finest) <= all.narrow_share);
+    // the default stopping rule's narrow patches add nothing unless asked
+    CHECK(dense.narrow_share == 0);
   }
 }
