@@ -180,13 +180,15 @@
 //   --periodic): ok in 29 s (one core), at 6e-3 443 contacts ok in 1.7 min, each with the
 //   boundary-element solver's patches and C_f within its estimate
 //   (tests/long/rough_1e5_periodic*.sh); at 1.4e-2 (~980 patches) the search ends not_converged
-//   after 600 s. An ok result bounds the residual of (8), the loads, the pressure's sign, the levels
+//   after 600 s, and ok after 27 min (977 contacts; two other jobs on the two cores). An ok
+//   result bounds the residual of (8), the loads, the pressure's sign, the levels
 //   and the clearance at the samples by the acceptance; it does not guarantee that a contact
 //   narrower than a sample spacing that carries ~1e-4 of the load is found: on the tests' profile
 //   (tests/punch/rough_profiles.hpp) of 16000 samples, seed 4, load 2e-3, periodic, the search
 //   ends ok with 58 contacts in 39-46 s, without two of the boundary-element solver's 60 patches
 //   (2e-6 and 2.9e-6 wide, 3 % and 5 % of a spacing, 3e-5 and 1.2e-4 of the load), and C_f is
-//   3.3e-6 (1e-4 relative) from that solver's 0.0322903 +- 1.5e-6.
+//   3.3e-6 (1e-4 relative) from that solver's 0.0322903 +- 1.5e-6 (such a patch penetrates the
+//   profile by ~(width/2)^2 |z''|/2, 1e-7 .. 2e-7 of its span: below the acceptance of the clearance).
 //   Scenes the search does not solve, and many hundreds of patches, are what
 //   rhabel/punch/profile_bem.hpp's boundary-element solver is for (first order, with error
 //   estimates).
