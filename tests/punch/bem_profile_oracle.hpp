@@ -172,7 +172,7 @@
 #include <cmath>
 #include <complex>
 #include <limits>
-#include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <tuple>
@@ -559,27 +559,46 @@ inline std::vector<std::pair<int, int>> runs(const std::vector<char>& act, bool 
   return r;
 }
 
-/// The periodic influence matrix as what it is, a circulant: u = c * g (cyclic convolution of
-/// length n, c_d = kern[d + n - 1], d = 0 .. n - 1), by one forward and one inverse FFT of length
-/// n (Eigen's FFT, any n; exact up to rounding: ~1e-16 x sum |c g|), O(n log n) instead of the
-/// O(m^2) dense product over m active panels. `options::fft_products`.
-struct circulant {
-  int n;
+/// The level's influence matrix times a density on all n panels, u_i = sum_j kern[i - j + n - 1]
+/// g_j, by FFT with the kernel's transform computed once per level: a periodic level's matrix is
+/// a circulant (c_d = kern[d + n - 1], d = 0 .. n - 1), a cyclic convolution of length n; a finite
+/// level's is Toeplitz, a linear convolution padded to a power of 2 >= 3n. Eigen's FFT (any
+/// length), exact up to rounding (~1e-16 x sum |kern g|). Used for the gaps above 4096 panels and,
+/// with `options::fft_products`, for the periodic levels' GMRES products (O(n log n) instead of
+/// the O(m^2) dense product over m active panels).
+struct kernel_product {
+  int n, N;
   mutable Eigen::FFT<double> fft;
-  std::vector<std::complex<double>> c_hat;
-  explicit circulant(const level_data& L) : n(L.n) {
-    std::vector<double> c(static_cast<std::size_t>(n));
-    for (int d = 0; d < n; ++d) c[static_cast<std::size_t>(d)] = L.kern[static_cast<std::size_t>(d + n - 1)];
-    fft.fwd(c_hat, c);
+  std::vector<std::complex<double>> k_hat;
+  explicit kernel_product(const level_data& L) : n(L.n), N(L.n) {
+    std::vector<double> k;
+    if (L.periodic) {
+      k.resize(static_cast<std::size_t>(n));
+      for (int d = 0; d < n; ++d) k[static_cast<std::size_t>(d)] = L.kern[static_cast<std::size_t>(d + n - 1)];
+    } else {
+      N = 1;
+      while (N < 3 * n) N *= 2;
+      k.assign(static_cast<std::size_t>(N), 0.0);
+      for (int d = -(n - 1); d <= n - 1; ++d) k[static_cast<std::size_t>((d + N) % N)] = L.kern[static_cast<std::size_t>(d + n - 1)];
+    }
+    fft.fwd(k_hat, k);
+  }
+  /// u for a density g on the n panels.
+  std::vector<double> operator()(std::vector<double> g) const {
+    g.resize(static_cast<std::size_t>(N), 0.0);
+    std::vector<std::complex<double>> G;
+    fft.fwd(G, g);
+    for (std::size_t k = 0; k < G.size(); ++k) G[k] *= k_hat[k];
+    std::vector<double> u;
+    fft.inv(u, G);
+    u.resize(static_cast<std::size_t>(n));
+    return u;
   }
   /// (A x)_r = sum_c kern[idx_r - idx_c + n - 1] x_c over the active panels idx.
   Eigen::VectorXd apply(const std::vector<int>& idx, const Eigen::VectorXd& x) const {
-    std::vector<double> g(static_cast<std::size_t>(n), 0.0), u;
+    std::vector<double> g(static_cast<std::size_t>(n), 0.0);
     for (std::size_t r = 0; r < idx.size(); ++r) g[static_cast<std::size_t>(idx[r])] = x(static_cast<Eigen::Index>(r));
-    std::vector<std::complex<double>> G;
-    fft.fwd(G, g);
-    for (std::size_t k = 0; k < G.size(); ++k) G[k] *= c_hat[k];
-    fft.inv(u, G);
+    const std::vector<double> u = (*this)(std::move(g));
     Eigen::VectorXd y(static_cast<Eigen::Index>(idx.size()));
     for (std::size_t r = 0; r < idx.size(); ++r) y(static_cast<Eigen::Index>(r)) = u[static_cast<std::size_t>(idx[r])];
     return y;
@@ -588,15 +607,15 @@ struct circulant {
 
 /// Solve A x = b, A the active panels' influence matrix (idx), by GMRES (restarted every 60)
 /// right-preconditioned with the exact inverse of each run's own block (block Jacobi: the runs
-/// interact through smooth far fields). Relative residual 1e-13. Products by the circulant's FFT
-/// when `C` is given (periodic levels, `options::fft_products`), else dense.
+/// interact through smooth far fields). Relative residual 1e-13. Products by FFT when `C` is given
+/// (kernel_product: periodic levels, `options::fft_products`), else dense.
 struct block_solver {
   const level_data& L;
   const std::vector<int>& idx;
-  const circulant* C = nullptr;
+  const kernel_product* C = nullptr;
   std::vector<std::pair<int, int>> blocks;  // (offset in idx, size)
   std::vector<Eigen::PartialPivLU<Eigen::MatrixXd>> lu;
-  block_solver(const level_data& L_, const std::vector<int>& idx_, const circulant* C_ = nullptr) : L(L_), idx(idx_), C(C_) {
+  block_solver(const level_data& L_, const std::vector<int>& idx_, const kernel_product* C_ = nullptr) : L(L_), idx(idx_), C(C_) {
     const int m = static_cast<int>(idx.size());
     for (int r = 0; r < m;) {
       int e = r + 1;
@@ -678,25 +697,6 @@ struct block_solver {
   }
 };
 
-/// u_i = sum_j kern[i - j + n - 1] g_j for all i (Toeplitz; the periodic kern is circulant), by
-/// one FFT convolution of length >= 3n (Eigen's FFT; exact up to rounding: ~1e-16 x sum |kern g|).
-inline std::vector<double> convolve(const level_data& L, const std::vector<double>& g) {
-  const int n = L.n;
-  int N = 1;
-  while (N < 3 * n) N *= 2;
-  std::vector<double> a(static_cast<std::size_t>(N), 0.0), b(static_cast<std::size_t>(N), 0.0);
-  for (int d = -(n - 1); d <= n - 1; ++d) a[static_cast<std::size_t>((d + N) % N)] = L.kern[static_cast<std::size_t>(d + n - 1)];
-  for (int j = 0; j < n; ++j) b[static_cast<std::size_t>(j)] = g[static_cast<std::size_t>(j)];
-  Eigen::FFT<double> fft;
-  std::vector<std::complex<double>> A, B;
-  fft.fwd(A, a);
-  fft.fwd(B, b);
-  for (std::size_t k = 0; k < A.size(); ++k) A[k] *= B[k];
-  std::vector<double> c;
-  fft.inv(c, A);
-  return std::vector<double>(c.begin(), c.begin() + n);
-}
-
 /// Panels above which the active system is solved by block-preconditioned GMRES instead of dense LU.
 inline constexpr int dense_limit = 600;
 
@@ -709,8 +709,12 @@ inline level_result solve_level(const scene& sc, int n, std::vector<char> start 
   if (n < 8) bad("solve_level", "n = " + std::to_string(n) + " must be >= 8");
   const auto L = detail::make_level(sc, n);
   const bool per = L.periodic;
-  std::unique_ptr<detail::circulant> circ;
-  if (fft_products && per) circ = std::make_unique<detail::circulant>(L);
+  // The FFT products (kernel_product), made when first needed.
+  std::optional<detail::kernel_product> product;
+  const auto fast = [&]() -> const detail::kernel_product& {
+    if (!product) product.emplace(L);
+    return *product;
+  };
   double zmax = -std::numeric_limits<double>::infinity(), zmin = -zmax;
   for (double v : L.f) { zmax = std::max(zmax, v); zmin = std::min(zmin, v); }
   const double zscale = std::max(zmax - zmin, std::numeric_limits<double>::min());
@@ -737,7 +741,7 @@ inline level_result solve_level(const scene& sc, int n, std::vector<char> start 
     const auto m = static_cast<Eigen::Index>(idx.size());
     if (m > detail::dense_limit) {
       // g = x1 - delta x2 with A x1 = f, A x2 = 1; delta from the load.
-      const detail::block_solver S(L, idx, circ.get());
+      const detail::block_solver S(L, idx, fft_products && per ? &fast() : nullptr);
       Eigen::VectorXd f(m);
       for (Eigen::Index r = 0; r < m; ++r) f(r) = L.f[static_cast<std::size_t>(idx[static_cast<std::size_t>(r)])];
       bool ok1 = false, ok2 = false;
@@ -764,7 +768,7 @@ inline level_result solve_level(const scene& sc, int n, std::vector<char> start 
     }
     // Gaps at every inactive collocation point (the displacement by FFT convolution above 4096 panels).
     if (idx.size() > 1000 && n > 4096) {
-      const std::vector<double> u = detail::convolve(L, g);
+      const std::vector<double> u = fast()(g);
       for (int i = 0; i < n; ++i)
         gap[static_cast<std::size_t>(i)] = act[static_cast<std::size_t>(i)] ? 0 : u[static_cast<std::size_t>(i)] + delta - L.f[static_cast<std::size_t>(i)];
     } else {
@@ -901,7 +905,7 @@ struct options {
   /// bar, keeps it below friction_tol (see `narrow_share`); off: every patch carrying >= span_load
   /// of the load must span min_span panels.
   bool bound_narrow = false;
-  bool fft_products = false;  ///< periodic: GMRES products by FFT (`detail::circulant`), same values to rounding
+  bool fft_products = false;  ///< periodic: GMRES products by FFT (`detail::kernel_product`), same values to rounding
 };
 
 /// Options for the sanitizer build: coarser (every check still runs, on fewer panels).
