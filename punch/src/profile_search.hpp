@@ -8,6 +8,7 @@
 #include "profile_curve.hpp"
 
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <vector>
 
@@ -41,6 +42,9 @@ struct window_solution {
   std::vector<contact_density> densities;
   double origin = 0;
   std::size_t max_degree = 0;
+  /// Contacts its search lost once at the full load and did not restore: the bump (an index of
+  /// this window's bumps) -> the seed it was lost with (contact_set.cpp, restore_lost).
+  std::map<std::size_t, coarse_patch> lost;
   /// The solved contacts as seeds of another search: absolute edges, loads in units of int g.
   std::vector<coarse_patch> contacts() const {
     std::vector<coarse_patch> out;

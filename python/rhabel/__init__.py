@@ -191,7 +191,8 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
           highest sample inside it, and the fields above but ``shape``/``name``), ``surface``,
           ``clearance``
           {``min``, ``at``} (the smallest gap between surface and profile at the samples outside
-          the contacts, relative to max z - min z), ``level_mismatch`` {``max``, ``at``} (the
+          the contacts and between neighbouring ones where the spline rises above both,
+          relative to max z - min z), ``level_mismatch`` {``max``, ``at``} (the
           largest mismatch of neighbouring contacts' levels on the rigid body, relative to
           max z - min z), ``penetrations`` (where the profile
           penetrates the surface outside the contacts found: the contacts a result that is not
