@@ -658,8 +658,12 @@ bool restore_lost(const profile_model& m, const scene_states& ss, const context&
   for (auto it = lost.begin(); it != lost.end();) {
     const auto& [b, seed] = *it;
     const double quarter = spacings_about(m, m.curve.x()[m.bumps[b].tip]) / 8;
-    if (!held[b] && dropped[b] < max_drops && !heights) heights.emplace(ss.st, cx);
-    if (held[b] || dropped[b] >= max_drops || !(lowest_gap(m, ss, *heights, seed.a - quarter, seed.b + quarter) < 0)) {
+    if (held[b] || dropped[b] >= max_drops) {
+      ++it;
+      continue;
+    }
+    if (!heights) heights.emplace(ss.st, cx);
+    if (!(lowest_gap(m, ss, *heights, seed.a - quarter, seed.b + quarter) < 0)) {
       ++it;
       continue;
     }
