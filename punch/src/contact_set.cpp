@@ -309,10 +309,10 @@ struct clearance_check {
 
 /// The clearances w(s) - w(a_i) - (z(s) - z(a_i)) relative to the span at the abscissae `s` (the
 /// states' frame) off the contacts, i = reference[k] (a contact whose leading edge a_i is where
-/// both are known): negative where the profile penetrates the surface.
-std::vector<double> clearances(const profile_model& m, const scene_states& ss, const surface& heights,
+/// both are known), w[k] = w(s[k]) - w(a_i) (surface::heights): negative where the profile
+/// penetrates the surface.
+std::vector<double> clearances(const profile_model& m, const scene_states& ss, const std::vector<double>& w,
                                const std::vector<double>& s, const std::vector<std::size_t>& reference) {
-  const auto w = heights.heights(s, reference);
   std::vector<double> out(s.size());
   for (std::size_t k = 0; k < s.size(); ++k) {
     const double za = m.curve.value(ss.st[reference[k]].g.a() + ss.origin);
@@ -320,6 +320,38 @@ std::vector<double> clearances(const profile_model& m, const scene_states& ss, c
   }
   return out;
 }
+
+/// The contacts of a round in the order of x, to find the one nearest an abscissa in O(log n).
+/// The contacts of a converged round are disjoint (the coupled solve reports contacts that meet).
+class contact_locator {
+ public:
+  explicit contact_locator(const scene_states& ss) : ss_(ss), order_(ss.st.size()) {
+    for (std::size_t i = 0; i < order_.size(); ++i) order_[i] = i;
+    std::sort(order_.begin(), order_.end(), [&](std::size_t i, std::size_t j) { return ss.st[i].g.a() < ss.st[j].g.a(); });
+  }
+  /// The contact nearest s (the states' frame), or none when s lies within `margin` of a contact's
+  /// length of it (inside it included).
+  std::optional<std::size_t> reference(double s, double margin) const {
+    const auto p = static_cast<std::size_t>(
+        std::partition_point(order_.begin(), order_.end(), [&](std::size_t i) { return ss_.st[i].g.a() <= s; }) - order_.begin());
+    std::optional<std::size_t> nearest;
+    double distance = std::numeric_limits<double>::infinity();
+    // Disjoint contacts: the nearest is the last starting at or before s or the first after it;
+    // one more each side for a margin that reaches past a neighbour.
+    for (std::size_t j = p > 1 ? p - 2 : 0; j < std::min(p + 2, order_.size()); ++j) {
+      const std::size_t i = order_[j];
+      const double a = ss_.st[i].g.a(), b = ss_.st[i].g.b(), pad = margin * (b - a);
+      if (s > a - pad && s < b + pad) return std::nullopt;
+      const double d = s < a ? a - s : s - b;
+      if (d < distance) distance = d, nearest = i;
+    }
+    return nearest;
+  }
+
+ private:
+  const scene_states& ss_;
+  std::vector<std::size_t> order_;
+};
 
 /// A point between two neighbouring checked samples where the profile may penetrate the surface
 /// deeper than at both: s in the states' frame, its reference contact, and the sample of the pair
@@ -398,21 +430,14 @@ clearance_check check_clearance(const profile_model& m, const scene_states& ss, 
   // The samples off the contacts (in order), each with the nearest contact as its reference (its datum).
   std::vector<double> xs;
   std::vector<std::size_t> index, reference;
+  const contact_locator near(ss);
   for (std::size_t q = 0; q < x.size(); ++q) {
     const double s = x[q] - ss.origin;
-    std::size_t nearest = 0;
-    double distance = std::numeric_limits<double>::infinity();
-    bool skip = false;
-    for (std::size_t i = 0; i < st.size(); ++i) {
-      const double a = st[i].g.a(), b = st[i].g.b(), margin = edge_margin * (b - a);
-      if (s > a - margin && s < b + margin) skip = true;
-      const double d = s < a ? a - s : s - b;
-      if (d < distance) distance = d, nearest = i;
-    }
-    if (skip) continue;
+    const auto nearest = near.reference(s, edge_margin);
+    if (!nearest) continue;
     xs.push_back(s);
     index.push_back(q);
-    reference.push_back(nearest);
+    reference.push_back(*nearest);
   }
   std::vector<std::size_t> bump_of(x.size(), 0);
   for (std::size_t b = 0; b < m.bumps.size(); ++b)
@@ -427,16 +452,12 @@ clearance_check check_clearance(const profile_model& m, const scene_states& ss, 
   std::vector<double> z_a(st.size());
   for (std::size_t i = 0; i < st.size(); ++i) z_a[i] = m.curve.value(st[i].g.a() + ss.origin);
   const auto w = heights.heights(xs, reference);
-  std::vector<double> gaps(xs.size());
+  const auto gaps = clearances(m, ss, w, xs, reference);
   const auto note = [&](double gap, double at, std::size_t bump) {
     if (gap < out.worst) out.worst = gap, out.worst_at = at;
     if (-gap > out.depth[bump]) out.depth[bump] = -gap, out.deepest_at[bump] = at;
   };
-  for (std::size_t k = 0; k < xs.size(); ++k) {
-    const std::size_t q = index[k];
-    gaps[k] = (w[k] - (m.curve.z()[q] - z_a[reference[k]])) / m.span;  // clearances(), with w kept
-    note(gaps[k], x[q], bump_of[q]);
-  }
+  for (std::size_t k = 0; k < xs.size(); ++k) note(gaps[k], x[index[k]], bump_of[index[k]]);
   // Between two checked samples the spline can rise above both: its crests lie up to
   // h^2 |z''| / 8 above the samples (a 16000-sample self-affine profile: ~1e-4 of the span), and
   // there a contact narrower than a spacing touches while both samples clear the surface.
@@ -445,7 +466,7 @@ clearance_check check_clearance(const profile_model& m, const scene_states& ss, 
     std::vector<double> at;
     std::vector<std::size_t> ref;
     for (const auto& c : inside) at.push_back(c.s), ref.push_back(c.reference);
-    const auto gap = clearances(m, ss, heights, at, ref);
+    const auto gap = clearances(m, ss, heights.heights(at, ref), at, ref);
     for (std::size_t k = 0; k < inside.size(); ++k) note(gap[k], at[k] + ss.origin, bump_of[inside[k].bump_sample]);
   }
   return out;
@@ -455,24 +476,18 @@ clearance_check check_clearance(const profile_model& m, const scene_states& ss, 
 /// 33 points, each against its nearest contact's leading edge as in check_clearance; +infinity
 /// when every point lies on a contact.
 double lowest_gap(const profile_model& m, const scene_states& ss, const surface& heights, double lo, double hi) {
-  const auto& st = ss.st;
   std::vector<double> xs;
   std::vector<std::size_t> reference;
+  const contact_locator near(ss);
   for (int k = 0; k <= 32; ++k) {
     const double s = lo + (hi - lo) * k / 32.0 - ss.origin;
-    std::size_t nearest = 0;
-    double distance = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < st.size(); ++i) {
-      const double a = st[i].g.a(), b = st[i].g.b();
-      const double d = s < a ? a - s : s > b ? s - b : 0;
-      if (d < distance) distance = d, nearest = i;
-    }
-    if (distance == 0) continue;
+    const auto nearest = near.reference(s, 0);
+    if (!nearest) continue;
     xs.push_back(s);
-    reference.push_back(nearest);
+    reference.push_back(*nearest);
   }
   if (xs.empty()) return std::numeric_limits<double>::infinity();
-  const auto gap = clearances(m, ss, heights, xs, reference);
+  const auto gap = clearances(m, ss, heights.heights(xs, reference), xs, reference);
   return *std::min_element(gap.begin(), gap.end());
 }
 
@@ -499,6 +514,16 @@ struct round_state {
   scene sc;
   scene_states states;
   coupled_outcome outcome;
+
+  round_state() = default;
+  round_state(round_state&&) = default;
+  round_state& operator=(round_state&&) = default;
+  /// A copy's states refer to its own scene's indentors (indentor_state::source; a move keeps the
+  /// indentors where they are).
+  round_state(const round_state& o) : runs(o.runs), t(o.t), sc(o.sc), states(o.states), outcome(o.outcome) {
+    for (auto& state : states.st) state.source = &sc.indentors[state.scene_index];
+  }
+  round_state& operator=(const round_state&) = delete;
 };
 
 /// What the search found: the last solved round and its evidence.
@@ -572,6 +597,21 @@ std::optional<search_start> start_from(const profile_model& m, const std::vector
   return out;
 }
 
+/// Lost contacts (absolute edges) on the bumps of `m` that hold their middles, the first of a bump
+/// kept. WHY by position: a periodic profile's next pass searches the window's profile corrected
+/// by new images, whose bumps can differ from the last pass's.
+std::map<std::size_t, coarse_patch> lost_on_bumps(const profile_model& m, const std::vector<coarse_patch>& lost) {
+  const auto& x = m.curve.x();
+  std::map<std::size_t, coarse_patch> out;
+  for (const coarse_patch& p : lost) {
+    const double middle = (p.a + p.b) / 2;
+    // the first bump whose basin ends at or after the middle
+    const auto it = std::partition_point(m.bumps.begin(), m.bumps.end(), [&](const bump& b) { return x[b.last] < middle; });
+    if (it != m.bumps.end() && x[it->first] <= middle) out.emplace(static_cast<std::size_t>(it - m.bumps.begin()), p);
+  }
+  return out;
+}
+
 /// The coarse solve's contacts (coarse_contact.hpp) at the full load, each the run of bumps whose
 /// tips it covers (two may share a bump: a bump's flank can carry a contact of its own), with its
 /// coarse edges and load as the seed of the first round; empty when the coarse solve did not
@@ -595,6 +635,13 @@ double spacings_about(const profile_model& m, double at) {
   return x[std::min(q + 1, x.size() - 1)] - x[q > 0 ? q - 1 : 0];
 }
 
+/// Whether a contact of `ss` comes within `pad` of [lo, hi] (absolute).
+bool near_contact(const scene_states& ss, double lo, double hi, double pad) {
+  return std::any_of(ss.st.begin(), ss.st.end(), [&](const indentor_state& state) {
+    return lo < state.g.b() + ss.origin + pad && hi > state.g.a() + ss.origin - pad;
+  });
+}
+
 /// The bumps a round may add a run on: those without one that were not dropped max_drops times
 /// and, in a seeded search, also a bump with runs whose deepest sample lies more than a sample
 /// spacing from every contact (a bump's flank can carry a contact of its own; its run starts from
@@ -615,13 +662,8 @@ std::vector<bool> addable(const profile_model& m, const scene_states& ss, const 
       continue;
     }
     if (!seeded) continue;
-    const double at = clear.deepest_at[b], spacing = spacings_about(m, at);
-    bool apart = true;
-    for (const auto& state : ss.st) {
-      const double start = state.g.a() + ss.origin, end = state.g.b() + ss.origin;
-      if (at > start - spacing / 2 && at < end + spacing / 2) apart = false;
-    }
-    out[b] = apart;
+    const double at = clear.deepest_at[b];
+    out[b] = !near_contact(ss, at, at, spacings_about(m, at) / 2);
   }
   return out;
 }
@@ -634,46 +676,66 @@ coarse_patch new_seed(const profile_model& m, double at, double load) {
 }
 
 /// After a round that converged: each bump whose lone contact was lost once at this load (in this
-/// search, or in the search at a lower degree that seeded it: search_start::lost), that no run
-/// holds now and on which the surface penetrates the profile (anywhere within the lost contact's
-/// edges and a quarter spacing about them, however shallowly), gets it back, seeded as it was
-/// lost; returns whether one did. A contact lost again is lost for good (`dropped` reaches
-/// max_drops). WHY: the rigid body's iteration from the coarse seeds can starve a real contact
-/// narrower than a sample spacing (a seed load under a hundredth of the mean; coupled_newton.cpp,
-/// vanishing_share), whose penetration, between two samples and shallower than the acceptance
-/// times the span may be, no clearance check adds back; from the converged set and its coarse
-/// edges it is kept. Measured: 16000 samples, seed 4, load 2e-3, periodic: two contacts 2e-6 and
-/// 2.9e-6 wide (3e-5 and 1.2e-4 of the load), lost in rounds 1 and 2, penetrating by 5.8e-6 and
-/// 7.6e-6 of the span after round 3; restored, the search ends ok with all 60 contacts and C_f
-/// 0.03229008 (the test oracle: 60 patches, 0.03229008 +- 5.8e-6), where without them it ended
-/// ok with 58 and C_f 0.0322935, 3.4e-6 off. Restored from a new seed (a quarter spacing each side,
-/// ~16 times wider) instead, the round took 82 iterations and 30 s.
-bool restore_lost(const profile_model& m, const scene_states& ss, const context& cx, std::vector<run>& runs,
-                  std::map<std::size_t, coarse_patch>& lost, const std::vector<std::size_t>& dropped) {
-  std::vector<bool> held(m.bumps.size(), false);
-  for (const run& r : runs)
-    for (std::size_t b = r.first; b <= r.last; ++b) held[b] = true;
-  bool back = false;
+/// search, or in an earlier search of the same window that seeded it: search_start::lost), with no
+/// contact within a sample spacing of the lost one's edges and where the profile penetrates the
+/// surface by more than the acceptance (relative to the span) anywhere within those edges and a
+/// quarter spacing about them, gets it back, seeded as it was lost, at most `at_most` of them (in
+/// the order of x); returns the bumps that got one. A contact lost again is lost for good
+/// (`dropped` reaches max_drops), and so is a lone one whose round then fails (search_contact_set,
+/// restore_point).
+/// WHY: the rigid body's iteration from the coarse seeds can starve a real contact narrower than a
+/// sample spacing (a seed load under a hundredth of the mean; coupled_newton.cpp, vanishing_share);
+/// from the converged set and its coarse edges it is kept. Measured: 16000 samples, seed 4, load
+/// 2e-3, periodic: two contacts 2e-6 and 2.9e-6 wide (3e-5 and 1.2e-4 of the load), lost in rounds
+/// 1 and 2, penetrating by 5.8e-6 and 7.6e-6 of the span after round 3; restored, the search ends
+/// ok with all 60 contacts and C_f 0.03229008 (the test oracle: 60 patches, 0.03229008 +- 5.8e-6),
+/// where without them it ended ok with 58 and C_f 0.0322935, 3.4e-6 off. Added as a new contact
+/// instead (new_seed, ~16 times wider), the round took 82 iterations and 30 s.
+/// WHY no contact near, not no run on the bump: a run widened over the bumps beside its contact
+/// holds bumps none of its contacts touches. WHY only beyond the acceptance: shallower, the result
+/// is ok without it, and restoring it can cost the search its path (1e5 samples, periodic, load
+/// 1.4e-2, 977 contacts: a contact lost in the first round, penetrating by 7.8e-7 of the span once
+/// the others settled, given back; that round stalled on another contact's level, and the search
+/// from the round before it failed at degree 512, where without it the search ends ok).
+std::vector<std::size_t> restore_lost(const profile_model& m, const scene_states& ss, const context& cx,
+                                      std::vector<run>& runs, std::map<std::size_t, coarse_patch>& lost,
+                                      const std::vector<std::size_t>& dropped, std::size_t at_most) {
+  std::vector<std::size_t> back;
   std::optional<surface> heights;  // built once, if a lost contact is to be checked
-  for (auto it = lost.begin(); it != lost.end();) {
+  for (auto it = lost.begin(); it != lost.end() && back.size() < at_most;) {
     const auto& [b, seed] = *it;
-    const double quarter = spacings_about(m, m.curve.x()[m.bumps[b].tip]) / 8;
-    if (held[b] || dropped[b] >= max_drops) {
+    const double spacings = spacings_about(m, m.curve.x()[m.bumps[b].tip]), quarter = spacings / 8;
+    if (dropped[b] >= max_drops || near_contact(ss, seed.a, seed.b, spacings / 2)) {
       ++it;
       continue;
     }
     if (!heights) heights.emplace(ss.st, cx);
-    if (!(lowest_gap(m, ss, *heights, seed.a - quarter, seed.b + quarter) < 0)) {
+    if (!(lowest_gap(m, ss, *heights, seed.a - quarter, seed.b + quarter) < -cx.options.acceptance)) {
       ++it;
       continue;
     }
     runs.push_back({b, b, seed});
+    back.push_back(b);
     it = lost.erase(it);
-    back = true;
   }
-  if (back) sort_runs(runs);
+  if (!back.empty()) sort_runs(runs);
   return back;
 }
+
+/// The search's state before restore_lost gave contacts back: the round that converged without
+/// them, its runs (seeded from it) and the lost seeds, and the bumps restored. WHY: a round with
+/// contacts restored can fail to converge, and that failure ended the search, the round before it
+/// never reported; the search goes back to that round instead, and gives the contacts back one at
+/// a time, a lone one that fails being lost for good. Measured (16000 samples, seed 4, load 2e-3,
+/// periodic, tolerance 1e-10, degree 512): four restored at once stalled; one at a time, three
+/// converged and the fourth made the others vanish again, so that search too ended short and the
+/// continuation from the highest tip found all 60 (ok in 8 min, as before).
+struct restore_point {
+  round_state converged;
+  std::vector<run> runs;
+  std::map<std::size_t, coarse_patch> lost;
+  std::vector<std::size_t> restored;
+};
 
 /// The part of a contact where its pressure is negative, when its lowest is below -tol of its
 /// mean (at report.cpp's pressure_probes, as the judge): the run of probes with a negative
@@ -753,6 +815,10 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
   // an earlier search at this load lost count as dropped once.
   std::map<std::size_t, coarse_patch> lost_seeds = start.lost;
   for (const auto& entry : lost_seeds) dropped[entry.first] = 1;
+  // Set while the contacts restore_lost gave back have not yet converged in a round.
+  std::optional<restore_point> restoring;
+  // Contacts restore_lost gives back in one round (1 after a round with several failed).
+  std::size_t restore_at_most = std::numeric_limits<std::size_t>::max();
   // Tip sample -> times a contact on it was started again for a negative pressure.
   std::map<std::size_t, std::size_t> repaired;
   // Tip sample -> its load at the last solved set, per unit t.
@@ -830,10 +896,25 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
       merge_runs(runs, i, j);
       continue;
     }
+    if (co.code != status_code::ok && restoring) {
+      // Back to the round that converged without the restored contacts (solved again from its
+      // seeds); several are given back one at a time, a lone one is lost for good.
+      runs = std::move(restoring->runs);
+      lost_seeds = std::move(restoring->lost);
+      if (restoring->restored.size() == 1) {
+        dropped[restoring->restored.front()] = max_drops;
+        lost_seeds.erase(restoring->restored.front());
+      }
+      restore_at_most = 1;
+      out.last = std::move(restoring->converged);
+      restoring.reset();
+      continue;
+    }
     if (co.code != status_code::ok) {
       if (halve_step()) continue;
       break;  // reported as it is
     }
+    restoring.reset();
     shares.clear();
     for (const auto& state : last.states.st) {
       shares[m.tip(runs[state.scene_index])] = state.target_load / t;
@@ -841,7 +922,15 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
         runs[state.scene_index].seed = coarse_patch{state.g.a() + last.states.origin, state.g.b() + last.states.origin,
                                                     state.target_load / t, state.degree_cap};
     }
-    if (seeded && restore_lost(m, last.states, cx, runs, lost_seeds, dropped)) continue;
+    if (seeded && !lost_seeds.empty()) {
+      std::vector<run> runs_before = runs;
+      std::map<std::size_t, coarse_patch> lost_before = lost_seeds;
+      auto restored = restore_lost(m, last.states, cx, runs, lost_seeds, dropped, restore_at_most);
+      if (!restored.empty()) {
+        restoring = restore_point{last, std::move(runs_before), std::move(lost_before), std::move(restored)};
+        continue;
+      }
+    }
     if (seeded && repair_tension(m, last.states, runs, repaired, tol)) continue;
     if (widen(m, runs, last.states)) continue;
     out.clear = check_clearance(m, last.states, cx);
@@ -1163,12 +1252,15 @@ window_solution solve_model(const profile_model& m, const context& cx, const std
 }  // namespace
 
 window_solution search_window(const profile_scene& window, const profile_curve& curve, const context& cx,
-                              const std::vector<coarse_patch>& seeds, std::shared_ptr<coupled::jacobian_memo> memo) {
+                              const std::vector<coarse_patch>& seeds, std::shared_ptr<coupled::jacobian_memo> memo,
+                              const std::vector<coarse_patch>& lost) {
   profile_model m(window, curve);
   if (memo) m.jacobian = std::move(memo);
   if (m.bumps.empty() || first_runs(m).empty())
     throw std::domain_error(std::string(who) + ": the profile corrected by the other periods has no tip inside the window");
-  return solve_model(m, cx, seeds.empty() ? predicted_start(m, cx) : start_from(m, seeds));
+  auto start = seeds.empty() ? predicted_start(m, cx) : start_from(m, seeds);
+  if (start) start->lost = lost_on_bumps(m, lost);
+  return solve_model(m, cx, start);
 }
 
 /// The body's C_f, mean pressure and contact fraction from the contacts (profile_result).

@@ -45,6 +45,12 @@ struct window_solution {
   /// Contacts its search lost once at the full load and did not restore: the bump (an index of
   /// this window's bumps) -> the seed it was lost with (contact_set.cpp, restore_lost).
   std::map<std::size_t, coarse_patch> lost;
+  /// The seeds of `lost` (absolute edges), for a search of the same window whose bumps may differ.
+  std::vector<coarse_patch> lost_seeds() const {
+    std::vector<coarse_patch> out;
+    for (const auto& entry : lost) out.push_back(entry.second);
+    return out;
+  }
   /// The solved contacts as seeds of another search: absolute edges, loads in units of int g.
   std::vector<coarse_patch> contacts() const {
     std::vector<coarse_patch> out;
@@ -69,10 +75,14 @@ struct window_solution {
 /// coarse boundary-element solve. Reported as solve_profile's result (seconds not set). Throws
 /// std::domain_error when the curve has no tip inside the window. `memo`: the Jacobian its
 /// rounds keep for one another (coupled::jacobian_memo), shared with other searches of the same
-/// window (a periodic profile's passes); null: its own.
+/// window (a periodic profile's passes); null: its own. `lost`: contacts an earlier search of the
+/// same window and load lost once and did not restore (window_solution::lost_seeds), each on the
+/// bump that holds its middle, as lost once in this search (restore_lost gives it back where the
+/// profile penetrates there).
 window_solution search_window(const profile_scene& window, const profile_curve& curve, const context& cx,
                               const std::vector<coarse_patch>& seeds,
-                              std::shared_ptr<coupled::jacobian_memo> memo = nullptr);
+                              std::shared_ptr<coupled::jacobian_memo> memo = nullptr,
+                              const std::vector<coarse_patch>& lost = {});
 
 /// solve_profile for a periodic profile (periodic_profile.cpp; s validated, period > 0).
 profile_result solve_periodic_profile(const profile_scene& s, const context& cx);

@@ -190,11 +190,12 @@
 //   back from its coarse edges once the others settle and the profile penetrates there (on the
 //   tests' profile of 16000 samples, seed 4, load 2e-3, periodic: two contacts 2e-6 and 2.9e-6
 //   wide, 3e-5 and 1.2e-4 of the load, lost and restored; ok with the test oracle's 60 patches in
-//   ~70 s, C_f 0.0322901). What an ok cannot exclude is a missing contact whose penetration stays
-//   under the acceptance times the span (one the coarse solve does not seed, or one lost in an
-//   earlier pass of a periodic profile's iteration: the ~980-patch profile ends ok with one such
-//   penetration, 7.8e-7 of the span): the clearance is bounded, not the load such a contact would
-//   carry.
+//   ~70 s, C_f 0.0322901). A lost contact that penetrates by less than the acceptance times the
+//   span is not given back (the result is ok without it, and giving it back can cost the search
+//   its path). So what an ok cannot exclude is a missing contact whose penetration stays under the
+//   acceptance times the span (one the coarse solve does not seed, or such a lost one: the
+//   ~980-patch profile ends ok with one, lost in the first round, penetrating by 7.8e-7 of the
+//   span): the clearance is bounded, not the load such a contact would carry.
 //   Scenes the search does not solve, and many hundreds of patches, are what
 //   rhabel/punch/profile_bem.hpp's boundary-element solver is for (first order, with error
 //   estimates).
