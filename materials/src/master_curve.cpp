@@ -254,6 +254,13 @@ local_fit fit_at(const master_curve& curve, double omega0, const fit_options& op
   }
   f.alpha = f.alpha_slope;
   f.E1 = f.modulus / (std::tgamma(1 - f.alpha) * std::pow(omega0, f.alpha));
+  // |E*| and omega0 are doubles, but E1 = |E*| / (Gamma(1 - alpha) omega0^alpha) can leave their
+  // range (fuzzed: |E*| ~ 1e300 at omega0 ~ 1e-231 rad/s gives E1 = inf).
+  if (!std::isfinite(f.E1) || !(f.E1 > 0)) {
+    throw std::domain_error("rhabel::materials::fit_at: the power law's E1 = |E*| / (Gamma(1 - alpha) omega0^alpha) = " +
+                            short_num(f.modulus) + " / (Gamma(" + short_num(1 - f.alpha) + ") " + short_num(omega0) + "^" +
+                            short_num(f.alpha) + ") of " + curve.source + " is outside the double range");
+  }
   const double gap = std::fabs(f.alpha_slope - f.alpha_tan_delta);
   if (gap > options.warning_threshold) {
     f.status = fit_status::poor_power_law;

@@ -214,6 +214,11 @@ TEST_CASE("fit outside the range or with a slope outside [0, 1) is refused") {
   CHECK_THROWS_AS(fit_at(curve, 2e4), std::domain_error);
   const auto falling = parse_master_curve("omega,E_abs,tan_delta\n1,3,0\n10,2,0\n100,1,0\n", "falling");
   CHECK_THROWS_AS(fit_at(falling, 10.0), std::domain_error);
+  // Regression (fuzz_master_curve): moduli near the top of the double range at frequencies near its
+  // bottom give E1 = |E*| / (Gamma(1 - alpha) omega0^alpha) = inf; refused, not returned.
+  const auto extreme = parse_master_curve(
+      "omega,E_storage,E_loss\n1e-308,1e300,1e300\n1e-200,1e305,1e300\n1e-154,1e30,0\n", "extreme");
+  CHECK_THROWS_AS(fit_at(extreme, std::sqrt(1e-308) * std::sqrt(1e-154)), std::domain_error);
 }
 
 TEST_CASE("fixed point omega0 = U / L(alpha, E1) against a closed-form contact length") {

@@ -131,7 +131,8 @@ struct local_fit {
 };
 
 /// Fits the local power law at omega0 (inside the curve's range). Throws std::domain_error for
-/// omega0 outside the range or a slope outside [0, 1).
+/// omega0 outside the range, a slope outside [0, 1), or an E1 outside the double range (a curve
+/// at extreme moduli and frequencies).
 local_fit fit_at(const master_curve& curve, double omega0, const fit_options& options = {});
 
 /// Result of the self-consistent fit omega0 = U / L.
