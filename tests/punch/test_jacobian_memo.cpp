@@ -4,8 +4,8 @@
 // (parabolas given by their slope, so that the seeded path of a sampled profile's round is taken)
 // on one body: the solve from a kept Jacobian takes fewer finite-difference Jacobians and ends on
 // the same edges; a wrong kept Jacobian costs a new one and changes nothing of the result; one
-// taken at other edges, or a start from guessed loads, does not read it. Cheap enough for the sanitizer build (seven contacts, a few
-// Newton steps each).
+// taken at other edges, or a start from guessed loads, does not read it. Cheap enough for the
+// sanitizer build (seven contacts, a few Newton steps each).
 #include <doctest/doctest.h>
 
 #include "../punch/src/coupled_problem.hpp"
