@@ -359,12 +359,29 @@ scene_result report_scene(const scene& s, const scene_states& ss, const context&
   out.diagnostics.code = coupled.code;
   out.diagnostics.status = coupled.code == status_code::ok ? "ok" : coupled.message;
   out.diagnostics.iterations = coupled.iterations;
-  for (std::size_t i = 0; i < out.indentors.size(); ++i)
-    if (out.indentors[i].code != status_code::ok && out.diagnostics.code == status_code::ok) {
-      out.diagnostics.code = out.indentors[i].code;
-      out.diagnostics.status = "see indentors[" + std::to_string(i) + "].status";
-    }
+  if (out.diagnostics.code == status_code::ok)
+    for (const auto& r : out.indentors)
+      if (r.code != status_code::ok) {
+        out.diagnostics.code = r.code;
+        out.diagnostics.status = contacts_not_ok(out.indentors, "indentors");
+        break;
+      }
   if (s.body) report_body(s, st, cx, out);
+  return out;
+}
+
+std::string contacts_not_ok(const std::vector<indentor_result>& results, const char* noun) {
+  constexpr std::size_t listed = 8;
+  std::vector<std::size_t> bad;
+  for (std::size_t i = 0; i < results.size(); ++i)
+    if (results[i].code != status_code::ok) bad.push_back(i);
+  if (bad.empty()) return {};
+  std::string out = std::string("see ") + noun + "[" + std::to_string(bad[0]) + "].status: " + results[bad[0]].status;
+  if (bad.size() > 1) {
+    out += "; " + std::to_string(bad.size()) + " of " + std::to_string(results.size()) + " " + noun + " are not ok: ";
+    for (std::size_t k = 0; k < std::min(bad.size(), listed); ++k) out += (k ? ", " : "") + std::to_string(bad[k]);
+    if (bad.size() > listed) out += ", ...";
+  }
   return out;
 }
 

@@ -1020,7 +1020,9 @@ profile_result report_profile(const profile_model& m, const context& cx, const s
   out.body_approach = r.body_approach.value_or(std::numeric_limits<double>::quiet_NaN());
   out.diagnostics.residual = r.diagnostics.residual;
   out.diagnostics.code = r.diagnostics.code;
-  out.diagnostics.status = rename(r.diagnostics.status, m, last.runs);
+  // A contact not ok: the summary again in the profile's terms (its contacts' renamed statuses).
+  out.diagnostics.status = r.diagnostics.status.rfind("see indentors[", 0) == 0 ? contacts_not_ok(out.contacts, "contacts")
+                                                                                 : rename(r.diagnostics.status, m, last.runs);
   out.diagnostics.rounds = sr.rounds;
   out.diagnostics.iterations = sr.iterations;
   out.diagnostics.load_fraction = last.t;
@@ -1263,6 +1265,17 @@ window_solution search_window(const profile_scene& window, const profile_curve& 
   return solve_model(m, cx, start);
 }
 
+/// A result that is not ok from a search whose time ran out says so, whichever stage it was in.
+/// WHY: the degree ladder (raise_degree), the continuation after the seeded search (solve_model)
+/// and a periodic profile's passes stop at the limit between two searches and report the last
+/// one as it failed: a 1e5-sample periodic profile (self_affine_profile.py 100000 2 6e-3) at
+/// --time-limit 600 said only "see contacts[44].status" (a contact's residual at degree 512).
+void say_time_limit(profile_result& r, const context& cx) {
+  if (r.diagnostics.code == status_code::ok || !cx.out_of_time()) return;
+  const std::string limit = cx.time_limit_message();
+  if (r.diagnostics.status.find(limit) == std::string::npos) r.diagnostics.status += "; " + limit;
+}
+
 /// The body's C_f, mean pressure and contact fraction from the contacts (profile_result).
 void body_totals(profile_result& r, const profile_scene& s) {
   double load = 0, moment = 0, width = 0;
@@ -1286,6 +1299,7 @@ profile_result solve_profile(const profile_scene& s, const solve_options& option
     const context cx = make_context(s.material, s.speed, options);
     profile_result out = solve_periodic_profile(s, cx);
     cx.throw_if_interrupted(who);
+    say_time_limit(out, cx);
     body_totals(out, s);
     out.diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return out;
@@ -1300,6 +1314,7 @@ profile_result solve_profile(const profile_scene& s, const solve_options& option
         "): the first contact would leave the samples; extend them");
   const context cx = make_context(s.material, s.speed, options);
   profile_result out = solve_model(m, cx, predicted_start(m, cx)).result;
+  say_time_limit(out, cx);
   body_totals(out, s);
   out.diagnostics.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return out;

@@ -324,6 +324,11 @@ scene_states prepare_states(const scene& s, const context& cx);
 coupled_outcome solve_states(const scene& s, scene_states& ss, const context& cx);
 /// The scene's result with every contact's evidence (report_contact, report_body).
 scene_result report_scene(const scene& s, const scene_states& ss, const context& cx, const coupled_outcome& coupled);
+/// The status of a result whose coupled solve converged but some contacts are not ok: the first
+/// one's status and the count with their indices (at most 8), `noun` naming the list ("indentors",
+/// "contacts"), e.g. "see contacts[44].status: residual of (8) 1.27e-06 > acceptance 1e-06; 8 of
+/// 435 contacts are not ok: 44, 47, 190, 248, 304, 374, 399, 425". Empty when all are ok.
+std::string contacts_not_ok(const std::vector<indentor_result>& results, const char* noun);
 /// The material's fields and the speed (std::invalid_argument naming the field, from `function`).
 void validate_material(const material& m, double speed, const char* function);
 /// options.tolerance in (0, 1), else std::invalid_argument naming `function`.

@@ -84,6 +84,10 @@ window_solution search_window(const profile_scene& window, const profile_curve& 
                               std::shared_ptr<coupled::jacobian_memo> memo = nullptr,
                               const std::vector<coarse_patch>& lost = {});
 
+/// A result that is not ok when cx's time has run out: its status gets cx.time_limit_message()
+/// appended unless it names it already (solve_profile's last step, contact_set.cpp).
+void say_time_limit(profile_result& r, const context& cx);
+
 /// solve_profile for a periodic profile (periodic_profile.cpp; s validated, period > 0).
 profile_result solve_periodic_profile(const profile_scene& s, const context& cx);
 

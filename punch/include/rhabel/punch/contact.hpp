@@ -478,7 +478,11 @@ struct scene_result {
     double residual = 0;  ///< max over indentors of indentor_result::residual (NaN if not computed)
     double seconds = 0;   ///< wall-clock solve time [s]
     status_code code = status_code::ok;  ///< the worst of the indentors' codes and the coupled solve's
-    std::string status;   ///< "ok" or a summary of the indentors' statuses
+    /// "ok", the coupled solve's failure, or, when it converged and some indentors are not ok,
+    /// the first one's status and how many are not ok with their indices (e.g. "see
+    /// indentors[0].status: residual of (8) 2.6e-14 > acceptance 1e-15; 2 of 2 indentors are not
+    /// ok: 0, 1"; at most 8 listed).
+    std::string status;
     std::size_t iterations = 0;  ///< Newton iterations of the coupled solve (0 for one indentor)
   } diagnostics;
 };
