@@ -1020,9 +1020,10 @@ profile_result report_profile(const profile_model& m, const context& cx, const s
   out.body_approach = r.body_approach.value_or(std::numeric_limits<double>::quiet_NaN());
   out.diagnostics.residual = r.diagnostics.residual;
   out.diagnostics.code = r.diagnostics.code;
-  // A contact not ok: the summary again in the profile's terms (its contacts' renamed statuses).
-  out.diagnostics.status = r.diagnostics.status.rfind("see indentors[", 0) == 0 ? contacts_not_ok(out.contacts, "contacts")
-                                                                                 : rename(r.diagnostics.status, m, last.runs);
+  // A converged round with contacts not ok: report_scene's summary again in the profile's terms
+  // (its contacts' renamed statuses); else the round's own status, renamed.
+  const std::string not_ok = last.outcome.code == status_code::ok ? contacts_not_ok(out.contacts, "contacts") : "";
+  out.diagnostics.status = not_ok.empty() ? rename(r.diagnostics.status, m, last.runs) : not_ok;
   out.diagnostics.rounds = sr.rounds;
   out.diagnostics.iterations = sr.iterations;
   out.diagnostics.load_fraction = last.t;
