@@ -769,12 +769,12 @@ std::optional<negative_part> tension_in(const contact_density& g, double tol) {
 
 /// A seeded round's contacts whose pressure is negative inside start again (runs' seeds; at most
 /// max_drops times a tip) without the part where it is negative: an edge moved to it when that
-/// part reaches the outermost probe, else as two contacts each side of it (the load shared by
-/// length). WHY: the edge conditions of a contact over a bump with a shoulder have a root whose
-/// pressure has a negative lobe where the physical solution has a gap (32000 samples, seed 1,
-/// load 3e-3: -0.19 of the mean pressure inside one contact of a bump; the boundary-element
-/// solution has two patches there, a sample spacing apart), and the coupled solve converges to
-/// it as well as to the physical one. Returns whether a run changed.
+/// part reaches the outermost probe (its load then a guess: coarse_patch::load_solved), else as
+/// two contacts each side of it (split_seed). WHY: the edge conditions of a contact over a bump
+/// with a shoulder have a root whose pressure has a negative lobe where the physical solution has
+/// a gap (32000 samples, seed 1, load 3e-3: -0.19 of the mean pressure inside one contact of a
+/// bump; the boundary-element solution has two patches there, a sample spacing apart), and the
+/// coupled solve converges to it as well as to the physical one. Returns whether a run changed.
 bool repair_tension(const profile_model& m, const scene_states& ss, std::vector<run>& runs,
                     std::map<std::size_t, std::size_t>& repairs, double tol) {
   bool changed = false;
@@ -786,15 +786,15 @@ bool repair_tension(const profile_model& m, const scene_states& ss, std::vector<
     if (negative->at_lo && negative->at_hi) continue;  // negative all over: nothing to keep (the report says tension)
     changed = true;
     coarse_patch& seed = *r.seed;  // the contact's edges (absolute) and load, from this round
-    const double lo = negative->lo + ss.origin, hi = negative->hi + ss.origin, L = seed.b - seed.a;
-    seed.load_solved = false;  // its load no longer matches its edges
     if (negative->at_hi) {
-      seed.b = lo;
+      seed.b = negative->lo + ss.origin;
+      seed.load_solved = false;  // its load no longer matches its edges
     } else if (negative->at_lo) {
-      seed.a = hi;
+      seed.a = negative->hi + ss.origin;
+      seed.load_solved = false;
     } else {
-      coarse_patch after{hi, seed.b, seed.load * (seed.b - hi) / (L - (hi - lo)), 0, true};
-      seed = {seed.a, lo, seed.load - after.load, 0, true};
+      auto [before, after] = split_seed(seed, state.g, negative->lo, negative->hi, ss.origin);
+      seed = before;
       split.push_back({r.first, r.last, after});
     }
   }
@@ -1264,6 +1264,23 @@ window_solution search_window(const profile_scene& window, const profile_curve& 
   auto start = seeds.empty() ? predicted_start(m, cx) : start_from(m, seeds);
   if (start) start->lost = lost_on_bumps(m, lost);
   return solve_model(m, cx, start);
+}
+
+/// WHY the integrals, not the lengths: the parts of a contact over two summits of different heights
+/// carry different pressures; shared by length (1e5-sample periodic profile, seed 2, load 6e-3: 58 %
+/// of the load to the longer part, whose density carries 51 %), the overloaded part grew into the
+/// other until their gap closed, and the search cycled between the pair and the merged contact
+/// (negative inside, -0.7 % of the mean) until its repairs ran out (repair_tension). Solved loads:
+/// the next round starts from the edges that carry them (coupled_solve.cpp, loads_imposed_start).
+std::pair<coarse_patch, coarse_patch> split_seed(const coarse_patch& seed, const contact_density& g, double lo, double hi,
+                                                 double origin) {
+  const double before = g.integral_to(lo), after = g.integral_from(hi);
+  // (A part whose integral is not positive, negative elsewhere too: shared by length instead.)
+  const double share =
+      before > 0 && after > 0 ? after / (before + after) : (seed.b - hi - origin) / (seed.b - seed.a - (hi - lo));
+  const double after_load = seed.load * share;
+  return {coarse_patch{seed.a, lo + origin, seed.load - after_load, 0, true},
+          coarse_patch{hi + origin, seed.b, after_load, 0, true}};
 }
 
 /// A result that is not ok from a search whose time ran out says so, whichever stage it was in.

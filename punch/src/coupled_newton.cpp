@@ -675,12 +675,12 @@ bool keeps_jacobian(const problem& pb) { return pb.memo && pb.seeded && body_col
 /// Whether pb's memo serves as the Jacobian at the edges x: keeps_jacobian, in a solve's first
 /// attempt (problem::read_memo), every contact started from a solved load (indentor_state::
 /// seed_load), the memo taken at as many contacts, each edge within memo_shift of its contact's
-/// length of where it was. WHY solved loads: a contact whose pressure was negative inside starts
-/// the next round moved or split, its load a guess; from the kept Jacobian the round's iteration
-/// then closed two contacts ~5e-6 apart until they merged (32000-sample periodic profile, seed 1,
-/// load 6e-3), and the search cycled between the merged contact, negative inside, and the pair
-/// until its time limit (not_converged at 120 s); with a new Jacobian it is ok with the boundary-
-/// element solver's 240 patches in 40 s.
+/// length of where it was. WHY solved loads: a contact whose pressure was negative at an end
+/// starts the next round with that edge moved, its load a guess (contact_set.cpp, repair_tension);
+/// from the kept Jacobian the round's iteration then closed two contacts ~5e-6 apart until they
+/// merged (32000-sample periodic profile, seed 1, load 6e-3), and the search cycled between the
+/// merged contact, negative inside, and the pair until its time limit (not_converged at 120 s);
+/// with a new Jacobian it is ok with the boundary-element solver's 240 patches in 40 s.
 bool memo_serves(const problem& pb, const unknowns& u, const edges& x) {
   if (!keeps_jacobian(pb) || !pb.read_memo) return false;
   for (const indentor_state& s : *pb.st)

@@ -10,6 +10,7 @@
 #include <cstddef>
 #include <map>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace rhabel::punch::detail {
@@ -84,6 +85,13 @@ window_solution search_window(const profile_scene& window, const profile_curve& 
                               std::shared_ptr<coupled::jacobian_memo> memo = nullptr,
                               const std::vector<coarse_patch>& lost = {});
 
+/// A seeded contact (seed: absolute edges, its load) whose density g (abscissae of the solve:
+/// `origin` added for absolute ones) is negative on [lo, hi] inside it, as the two contacts either
+/// side, [seed.a, lo] and [hi, seed.b]: seed.load shared in the ratio of int_a^lo g to int_hi^b g
+/// (by the parts' lengths when either integral is not positive), both loads solved
+/// (coarse_patch::load_solved) and no degree cap (contact_set.cpp, repair_tension).
+std::pair<coarse_patch, coarse_patch> split_seed(const coarse_patch& seed, const contact_density& g, double lo, double hi,
+                                                 double origin);
 /// A result that is not ok when cx's time has run out: its status gets cx.time_limit_message()
 /// appended unless it names it already (solve_profile's last step, contact_set.cpp).
 void say_time_limit(profile_result& r, const context& cx);

@@ -1,7 +1,11 @@
-// The sampled profile's contact search (punch/src/contact_set.cpp) stopped by its time limit: what
-// it reports says so, whichever stage the limit cut (a round, the series-degree ladder, the
-// continuation, a periodic pass). No oracle: the claim is the status's, and the search run without
-// the limit is ok, so any result that is not ok under a limit must owe it to the limit.
+// The sampled profile's contact search (punch/src/contact_set.cpp).
+// - Stopped by its time limit, what it reports says so, whichever stage the limit cut (a round,
+//   the series-degree ladder, the continuation, a periodic pass). No oracle: the claim is the
+//   status's, and the search run without the limit is ok, so any result that is not ok under a
+//   limit must owe it to the limit.
+// - A contact split around its negative part (split_seed) shares its load as its density's
+//   integrals over the two parts do. Oracle: the density written out from its definition (a
+//   Jacobi weight), integrated by Boost's tanh-sinh quadrature.
 #include <doctest/doctest.h>
 
 #include "../punch/src/internal.hpp"
@@ -9,8 +13,12 @@
 #include "punch/rough_profiles.hpp"
 #include "rhabel/punch.hpp"
 
+#include <boost/math/quadrature/tanh_sinh.hpp>
+
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <string>
 #include <thread>
 
@@ -19,6 +27,7 @@ namespace pu = rhabel::punch;
 namespace pd = rhabel::punch::detail;
 
 const std::string limit_words = "stopped at the time limit of ";
+constexpr double eps = std::numeric_limits<double>::epsilon();
 }  // namespace
 
 TEST_CASE("say_time_limit: a result that is not ok, out of time, names the limit once") {
@@ -79,4 +88,46 @@ TEST_CASE("a profile search cut by its time limit at any point says so (periodic
     CAPTURE(r.diagnostics.seconds);
     CHECK((r.diagnostics.code == pu::status_code::ok || r.diagnostics.status.find(limit_words) != std::string::npos));
   }
+}
+
+TEST_CASE("split_seed: the two parts share the load as the density's integrals over them do") {
+  // A contact on [-0.3, 1.7] (abscissae of the solve) whose density is the Jacobi weight alone,
+  // bounded at the leading edge and singular at the trailing one (gam = 0.35, del = -0.65: alpha
+  // 0.3): most of its load lies near b, so a share by length would be far off.
+  pd::contact_density g;
+  g.jacobi.lo = -0.3;
+  g.jacobi.hi = 1.7;
+  g.jacobi.gam = 0.35;
+  g.jacobi.del = -0.65;
+  g.jacobi.coefficients = {2.0};
+  g.nu = 0;
+  const double origin = 1e3;  // the window far from x = 0
+  const double lo = 0.9, hi = 0.95;
+  const pd::coarse_patch seed{g.a() + origin, g.b() + origin, 3e-4, 511, false};
+  const auto [before, after] = pd::split_seed(seed, g, lo, hi, origin);
+
+  // The oracle: the weight (u/h)^gam (v/h)^del, u = t - a, v = b - t, integrated by tanh-sinh on
+  // each part in the distance to its own end (the edges' singularities at an end of the variable).
+  boost::math::quadrature::tanh_sinh<double> rule;
+  const double h = g.length() / 2;
+  const auto w = [&](double u, double v) { return std::pow(u / h, g.jacobi.gam) * std::pow(v / h, g.jacobi.del); };
+  const double int_before = rule.integrate([&](double u) { return w(u, g.length() - u); }, 0.0, lo - g.a());
+  const double int_after = rule.integrate([&](double v) { return w(g.length() - v, v); }, 0.0, g.b() - hi);
+  const double share = int_after / (int_before + int_after);
+  // WHY 64 eps: Boost's ibeta behind integral_to and integral_from (a few tens of ulps), the
+  // quadrature's error (~1e-16 here) and the ratio's rounding; a share by length is off by 0.41.
+  constexpr double share_tolerance = 64 * eps;
+  CHECK(after.load / seed.load == doctest::Approx(share).epsilon(share_tolerance));
+  CHECK(before.load + after.load == doctest::Approx(seed.load).epsilon(4 * eps));
+  CHECK(share > 0.75);  // the case tells the integrals from the lengths (share 0.794; by length 0.385)
+  // Edges: the contact's outer ones, the negative part's as inner ones (absolute abscissae).
+  CHECK(before.a == seed.a);
+  CHECK(before.b == lo + origin);
+  CHECK(after.a == hi + origin);
+  CHECK(after.b == seed.b);
+  // Solved loads, no degree cap (the parts' series start free).
+  CHECK(before.load_solved);
+  CHECK(after.load_solved);
+  CHECK(before.degree == 0);
+  CHECK(after.degree == 0);
 }
