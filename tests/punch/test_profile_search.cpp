@@ -131,3 +131,21 @@ TEST_CASE("split_seed: the two parts share the load as the density's integrals o
   CHECK(before.degree == 0);
   CHECK(after.degree == 0);
 }
+
+TEST_CASE("split_seed: a part whose integral is not positive shares the load by length") {
+  // A density negative all over (the coefficient -1): neither integral gives a share, and the
+  // load is shared by the parts' lengths, never by a ratio of negative numbers or 0/0.
+  pd::contact_density g;
+  g.jacobi.lo = 0;
+  g.jacobi.hi = 2;
+  g.jacobi.gam = 0.35;
+  g.jacobi.del = 0.35;
+  g.jacobi.coefficients = {-1.0};
+  g.nu = 0;
+  const pd::coarse_patch seed{g.a(), g.b(), 1e-3, 0, true};
+  const auto [before, after] = pd::split_seed(seed, g, 0.4, 0.5, 0.0);
+  // WHY 4 eps: the lengths' differences and one division.
+  CHECK(after.load / seed.load == doctest::Approx(1.5 / 1.9).epsilon(4 * eps));
+  CHECK(before.load + after.load == doctest::Approx(seed.load).epsilon(4 * eps));
+  CHECK(std::isfinite(before.load));
+}

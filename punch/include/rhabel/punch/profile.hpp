@@ -188,7 +188,7 @@
 //   after 600 s, and ok after 16-22 min (977 contacts; another job on the other core). The same
 //   samples at 6e-3 with seed 2 are ok in 4.5-5.3 min (436 contacts), with seed 3 (~426 patches)
 //   not_converged: a coupled iteration stalls at a light contact's level (measured at
-//   --time-limit 2400). An ok
+//   --time-limit 1500 and 2400). An ok
 //   result bounds the residual of (8), the loads, the pressure's sign, the levels and the
 //   clearance by the acceptance. The clearance is checked at the samples and, between two samples,
 //   where the spline rises above both (its crests stand up to h^2 |z''|/8 above the samples, ~1e-4
