@@ -491,9 +491,9 @@ class colouring {
 /// together (Curtis-Powell-Reid): a condition of contact j is attributed to the moved contact near
 /// j, the rest of its row is body_far_model's (a rigid body) or 0. That neglects the dependence on
 /// farther contacts (the coupling decays like distance^(alpha - 1)): Broyden's updates recover it,
-/// except where a row's unit is tiny (a light contact's level row, whose entries were measured off
-/// by up to a quarter and on which the iteration stalls: docs/theory.md section 7, "Where this
-/// falls short"). 2 colours evaluations for any N: 2 full_width for rows of contacts of similar
+/// except where a row's unit is tiny (a light contact's level row, whose far entries were measured
+/// off by up to a factor 3 and on which the iteration stalls: docs/theory.md section 7, "Where
+/// this falls short"). 2 colours evaluations for any N: 2 full_width for rows of contacts of similar
 /// lengths.
 Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x, const evaluation& ev) {
   problem pb = base;
