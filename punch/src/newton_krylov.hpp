@@ -12,8 +12,9 @@
 // i.e. no unknown moves by more than relative_step of its scale (the edges: 1e-7 of the contact's
 // length). A forward move that F refuses (throws: a gap would close) is taken backward, -h.
 // Accuracy: the difference error is O(h |F''| |v|^2) / |F'(x) v|, ~ relative_step for F of unit
-// curvature on the unknowns' scales, so rtol far above it is met as stated; below it the step is
-// as good as the differences. At most max_products + 1 evaluations of F (GMRES's last true
+// curvature on the unknowns' scales, plus F's own error over h (F evaluated to an accuracy eps
+// errs by ~ eps / h), so rtol far above both is met as stated; below them the step is as good as
+// the differences. At most max_products + 1 evaluations of F (GMRES's last true
 // residual); when they do not reach rtol, the iterate of least residual in the products' space
 // (reached = false).
 #pragma once
