@@ -493,8 +493,8 @@ class colouring {
 /// farther contacts (the coupling decays like distance^(alpha - 1)): Broyden's updates recover it,
 /// except where a row's unit is tiny (a light contact's level row, whose far entries were measured
 /// off by up to a factor 3 and on which the iteration stalls: docs/theory.md section 7, "Where
-/// this falls short"). 2 colours evaluations for any N: 2 full_width for rows of contacts of similar
-/// lengths.
+/// this falls short"). 2 colours evaluations for any N: 2 full_width for rows of contacts of
+/// similar lengths.
 Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x, const evaluation& ev) {
   problem pb = base;
   pb.fixed_degrees = ev.sol.degrees;
