@@ -697,6 +697,21 @@ bool memo_serves(const problem& pb, const unknowns& u, const edges& x) {
   return true;
 }
 
+/// The floor below which an iteration's stall counts as converged (0: none): problem::stall_floor,
+/// raised to capped_floor_factor x the largest tail of a contact whose series stopped at
+/// solve_options::max_degree, at most max_capped_floor. WHY: such a contact's edge conditions
+/// are resolved only to its series' tail, so Newton stalls there (1e5-sample periodic profile,
+/// 230 contacts: tails 6.6e-5 at degree 128, stalls at 2.2e-5; 9.8e-7 at 512, stalls at 1.4e-6),
+/// and a round that ends stalled ends the search at that degree with its set unsettled (without
+/// this floor: the degree-128 search ended stalled at 2.2e-5 after 4 rounds, and the degree-512
+/// rounds from it took 20-70 s each, merging pairs). Accepted at that floor, the round's set is
+/// settled and the next degree (contact_set.cpp, raise_degree) starts from it; the contact's own
+/// residual of (8) still reports the truncation, so the result is not ok at that degree.
+double stall_floor(const problem& pb, const fixed_solution& sol) {
+  if (!(pb.stall_floor > 0)) return 0;
+  return std::max(pb.stall_floor, std::min(capped_floor_factor * capped_tail(sol, *pb.cx), max_capped_floor));
+}
+
 /// jacobian, kept in pb's memo when keeps_jacobian (jacobian_memo).
 Eigen::MatrixXd fresh_jacobian(const problem& pb, const unknowns& u, const edges& x, const evaluation& ev) {
   Eigen::MatrixXd J = jacobian(pb, u, x, ev);
@@ -712,6 +727,7 @@ struct jacobian_state {
   std::size_t flat = 0;         // accepted steps of the current flat run
   bool refreshed_in_flat = false;
   bool krylov = false;  // the steps by krylov_step from now on
+  bool wide = false;    // its products differenced at krylov_wide_step from now on
 
   /// A new finite-difference Jacobian at the accepted point of s.
   void refresh(newton_state& s) {
@@ -832,6 +848,17 @@ flat_verdict flat_run(newton_state& s, jacobian_state& js, const edges& before, 
 constexpr double krylov_after = 0.5;
 constexpr double krylov_rtol = 0.1;
 constexpr std::size_t krylov_products = 12;
+/// The relative step of krylov_step's products (newton_krylov.hpp, relative_step):
+/// krylov_step_size, and krylov_wide_step once the steps at it have stalled (escalate). WHY both: a
+/// product moves every contact at once, most by far less than the one that sets the step, and the
+/// conditions, evaluated to 1e-3 of the acceptance, then change by little more than that accuracy
+/// resolves; at a light contact's stall (docs/theory.md section 7, "Where this falls short") GMRES
+/// on products at 1e-7 left a linear residual of 1.5e-2 of |F| 6.8e-3, at 1e-5 it met 0.1 |F| in 7
+/// products. But at 1e-5 throughout, the curvature's error steers a search that converges now
+/// elsewhere: the 1e5-sample periodic profile of seed 2 at load 6e-3 ended not_converged after 14
+/// min, where it is ok in 5.
+constexpr double krylov_step_size = 1e-7;
+constexpr double krylov_wide_step = 1e-5;
 
 Eigen::VectorXd krylov_step(const newton_state& s, const jacobian_state& js) {
   problem pb = s.pb;
@@ -849,7 +876,33 @@ Eigen::VectorXd krylov_step(const newton_state& s, const jacobian_state& js) {
     const auto z = js.J.solve(v);
     return z ? Eigen::VectorXd(*z) : v;
   };
-  return newton_krylov_step(conditions, s.ev.r, length, precondition, krylov_rtol, krylov_products, 1e-7);
+  return newton_krylov_step(conditions, s.ev.r, length, precondition, krylov_rtol, krylov_products,
+                            js.wide ? krylov_wide_step : krylov_step_size);
+}
+
+/// Where a seeded body's iteration (problem::seeded, with body_load) would stop as stalled above
+/// its floor (stall_floor; a fresh Jacobian's step gaining too little, or none decreasing the
+/// conditions), its next remedy instead: krylov_step's steps if Broyden's were taken, else its
+/// products at krylov_wide_step if not yet; false (stop) when both were tried, for any other
+/// iteration, or where two contacts merge. WHY only there: taken in the pre-solves of the
+/// loads-imposed start (coupled_solve.cpp), the wide products changed the 1e5-sample periodic
+/// profile of seed 3 (load 6e-3) from its first round and it lost contacts; where the floor accepts
+/// the stall, they changed seed 1's path and doubled its time (128 s -> 246 s). Measured on seed 3:
+/// its fourth round, 426 contacts, stalled at 6.8e-3 on a light contact's level row (without them
+/// the search ended not_converged there); with the wide products it converged. Its fifth, 427
+/// contacts, found no decreasing Broyden step from its fresh Jacobian (1.1e-2); with krylov_step's
+/// it converged in 13 steps; the search does not end ok yet (docs/theory.md section 7).
+bool escalate(newton_state& s, jacobian_state& js, bool colouring) {
+  const problem& pb = s.pb;
+  if (!colouring || !pb.seeded || !pb.body_load || s.out.merged || js.wide ||
+      !(s.ev.r.lpNorm<Eigen::Infinity>() > stall_floor(pb, s.ev.sol)))
+    return false;
+  if (js.krylov)
+    js.wide = true;
+  else
+    js.krylov = true;
+  s.out.failure.clear();
+  return true;
 }
 
 /// After an accepted step (t dx, the condition's reduction, the relative step): true when the
@@ -863,10 +916,12 @@ bool newton_step_ends(newton_state& s, jacobian_state& js, bool colouring, bool 
   // the load takes over. A rigid body's steps are often shortened by step_limit far from the
   // solution (a contact about to vanish): only a full step that gains little gives up there.
   // Seeded contacts first go on with krylov_step (a fresh step gaining less than krylov_after),
-  // and give up only when a fresh step gains that little again.
+  // and give up only when a fresh step gains that little again (on a body, above its floor: with
+  // the products at krylov_wide_step too, escalate).
   if (colouring && pb.seeded && step_was_fresh && !js.krylov && reduction > krylov_after && step > 10 * s.tol) {
     js.krylov = true;  // the coloured Jacobian misses a coupling: exact products from now on
-  } else if (colouring && step_was_fresh && reduction > 0.75 && step > 10 * s.tol && (!pb.body_load || t == 1)) {
+  } else if (colouring && step_was_fresh && reduction > 0.75 && step > 10 * s.tol && (!pb.body_load || t == 1) &&
+             !escalate(s, js, colouring)) {
     s.out.failure = "the edge iteration stalled";
     return true;
   }
@@ -954,6 +1009,7 @@ void broyden_steps(newton_state& s) {
         js.refresh(s);
         continue;
       }
+      if (escalate(s, js, colouring)) continue;
       if (out.failure.empty()) out.failure = "the edge iteration stalled";
       break;
     }
@@ -982,21 +1038,6 @@ void broyden_steps(newton_state& s) {
     if (verdict == flat_verdict::stop) break;
     if (newton_step_ends(s, js, colouring, step_was_fresh, t, reduction, step)) break;
   }
-}
-
-/// The floor below which an iteration's stall counts as converged (0: none): problem::stall_floor,
-/// raised to capped_floor_factor x the largest tail of a contact whose series stopped at
-/// solve_options::max_degree, at most max_capped_floor. WHY: such a contact's edge conditions
-/// are resolved only to its series' tail, so Newton stalls there (1e5-sample periodic profile,
-/// 230 contacts: tails 6.6e-5 at degree 128, stalls at 2.2e-5; 9.8e-7 at 512, stalls at 1.4e-6),
-/// and a round that ends stalled ends the search at that degree with its set unsettled (without
-/// this floor: the degree-128 search ended stalled at 2.2e-5 after 4 rounds, and the degree-512
-/// rounds from it took 20-70 s each, merging pairs). Accepted at that floor, the round's set is
-/// settled and the next degree (contact_set.cpp, raise_degree) starts from it; the contact's own
-/// residual of (8) still reports the truncation, so the result is not ok at that degree.
-double stall_floor(const problem& pb, const fixed_solution& sol) {
-  if (!(pb.stall_floor > 0)) return 0;
-  return std::max(pb.stall_floor, std::min(capped_floor_factor * capped_tail(sol, *pb.cx), max_capped_floor));
 }
 
 newton_result newton_iteration(const problem& pb, const edges& start) {
