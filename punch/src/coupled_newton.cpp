@@ -492,9 +492,9 @@ class colouring {
 /// j, the rest of its row is body_far_model's (a rigid body) or 0. That neglects the dependence on
 /// farther contacts (the coupling decays like distance^(alpha - 1)): Broyden's updates recover it,
 /// except where a row's unit is tiny (a light contact's level row, whose far entries were measured
-/// off by up to a factor 3 and on which the iteration stalls: docs/theory.md section 7, "Where
-/// this falls short"). 2 colours evaluations for any N: 2 full_width for rows of contacts of
-/// similar lengths.
+/// off by up to a factor 3 and on which its steps stall, where escalate takes over: docs/theory.md
+/// section 7, "Where this falls short"). 2 colours evaluations for any N: 2 full_width for rows of
+/// contacts of similar lengths.
 Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x, const evaluation& ev) {
   problem pb = base;
   pb.fixed_degrees = ev.sol.degrees;
@@ -920,10 +920,11 @@ bool newton_step_ends(newton_state& s, jacobian_state& js, bool colouring, bool 
   // the products at krylov_wide_step too, escalate).
   if (colouring && pb.seeded && step_was_fresh && !js.krylov && reduction > krylov_after && step > 10 * s.tol) {
     js.krylov = true;  // the coloured Jacobian misses a coupling: exact products from now on
-  } else if (colouring && step_was_fresh && reduction > 0.75 && step > 10 * s.tol && (!pb.body_load || t == 1) &&
-             !escalate(s, js, colouring)) {
-    s.out.failure = "the edge iteration stalled";
-    return true;
+  } else if (colouring && step_was_fresh && reduction > 0.75 && step > 10 * s.tol && (!pb.body_load || t == 1)) {
+    if (!escalate(s, js, colouring)) {
+      s.out.failure = "the edge iteration stalled";
+      return true;
+    }
   }
   // Otherwise Broyden's updates from a start far from the solution crawl (rows of 100
   // parabolas: the condition fell by less than half per step for 12 steps, then converged in 2

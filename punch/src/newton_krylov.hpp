@@ -10,7 +10,8 @@
 // (2004) 357-397):
 //   F'(x) v ~ (F(x + h v) - r) / h,   h = relative_step / max_k (|v_k| / scale_k),
 // i.e. no unknown moves by more than relative_step of its scale (the edges: 1e-7 of the contact's
-// length). A forward move that F refuses (throws: a gap would close) is taken backward, -h.
+// length, 1e-5 once steps at 1e-7 have stalled: coupled_newton.cpp, krylov_wide_step). A forward
+// move that F refuses (throws: a gap would close) is taken backward, -h.
 // Accuracy: the difference error is O(h |F''| |v|^2) / |F'(x) v|, ~ relative_step for F of unit
 // curvature on the unknowns' scales, plus F's own error over h (F evaluated to an accuracy eps
 // errs by ~ eps / h), so rtol far above both is met as stated; below them the step is as good as
