@@ -186,9 +186,12 @@
 //   boundary-element solver's patches and C_f within its estimate
 //   (tests/long/rough_1e5_periodic*.sh); at 1.4e-2 (~980 patches) the search ends not_converged
 //   after 600 s, and ok after 16-22 min (977 contacts; another job on the other core). The same
-//   samples at 6e-3 with seed 2 are ok in 4.5-5.3 min (436 contacts), with seed 3 (~426 patches)
-//   not_converged: a coupled iteration stalls at a light contact's level (measured at
-//   --time-limit 1500 and 2400). An ok
+//   samples at 6e-3 with seed 2 are ok in 4.5-5.3 min (436 contacts), with seed 3 (~428 patches)
+//   not ok within its time limit (measured at --time-limit 600, 1500 and 2400; at 600 its
+//   last converged round is reported: 427 contacts, one with a negative load, tension). A
+//   search whose last round fails reports its last converged round at that load,
+//   not_converged unless its own evidence names another status, with why the search stopped.
+//   An ok
 //   result bounds the residual of (8), the loads, the pressure's sign, the levels and the
 //   clearance by the acceptance. The clearance is checked at the samples and, between two samples,
 //   where the spline rises above both (its crests stand up to h^2 |z''|/8 above the samples, ~1e-4
