@@ -722,8 +722,9 @@ std::vector<std::size_t> restore_lost(const profile_model& m, const scene_states
   return back;
 }
 
-/// The search's state before restore_lost gave contacts back: the round that converged without
-/// them, its runs (seeded from it) and the lost seeds, and the bumps restored. WHY: a round with
+/// The search's state before restore_lost gave contacts back: the runs of the round that converged
+/// without them (seeded from it; the round itself is search_contact_set's last_converged) and the
+/// lost seeds, and the bumps restored. WHY: a round with
 /// contacts restored can fail to converge, and that failure ended the search, the round before it
 /// never reported; the search goes back to that round instead, and gives the contacts back one at
 /// a time, a lone one that fails being lost for good. Measured (16000 samples, seed 4, load 2e-3,
@@ -731,7 +732,6 @@ std::vector<std::size_t> restore_lost(const profile_model& m, const scene_states
 /// converged and the fourth made the others vanish again, so that search too ended short and the
 /// continuation from the highest tip found all 60 (ok in 8 min, as before).
 struct restore_point {
-  round_state converged;
   std::vector<run> runs;
   std::map<std::size_t, coarse_patch> lost;
   std::vector<std::size_t> restored;
@@ -818,7 +818,7 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
   // Set while the contacts restore_lost gave back have not yet converged in a round.
   std::optional<restore_point> restoring;
   // The last round whose coupled solve converged (reported when the search ends in a round that
-  // failed).
+  // failed, and the round a failed restoring goes back to: restoring is set only right after it).
   std::optional<round_state> last_converged;
   // Contacts restore_lost gives back in one round (1 after a round with several failed).
   std::size_t restore_at_most = std::numeric_limits<std::size_t>::max();
@@ -909,7 +909,7 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
         lost_seeds.erase(restoring->restored.front());
       }
       restore_at_most = 1;
-      out.last = std::move(restoring->converged);
+      out.last.emplace(*last_converged);
       restoring.reset();
       continue;
     }
@@ -918,7 +918,6 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
       break;  // reported as it is
     }
     restoring.reset();
-    last_converged.reset();
     last_converged.emplace(last);
     shares.clear();
     for (const auto& state : last.states.st) {
@@ -932,7 +931,7 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
       std::map<std::size_t, coarse_patch> lost_before = lost_seeds;
       auto restored = restore_lost(m, last.states, cx, runs, lost_seeds, dropped, restore_at_most);
       if (!restored.empty()) {
-        restoring = restore_point{last, std::move(runs_before), std::move(lost_before), std::move(restored)};
+        restoring = restore_point{std::move(runs_before), std::move(lost_before), std::move(restored)};
         continue;
       }
     }
