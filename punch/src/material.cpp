@@ -44,10 +44,12 @@ double material_kappa(const material& m) {
 // ---------------------------------------------------------------------------------------------
 // The context of one solve: the material's derived constants and the options.
 
+// The words name no C++ member: the limit is set as `--time-limit` (command line), `time_limit`
+// (Python) or solve_options::time_limit, and each reader knows which one they set.
 std::string context::time_limit_message() const {
-  if (*interrupted) return "interrupted (solve_options::interrupt)";
+  if (*interrupted) return "interrupted";
   std::ostringstream os;
-  os << "stopped at the time limit of " << options.time_limit << " s (solve_options::time_limit)";
+  os << "stopped at the time limit of " << options.time_limit << " s";
   return os.str();
 }
 
