@@ -382,6 +382,7 @@ TEST_CASE("solve_options::time_limit stops a coupled solve with not_converged an
   CAPTURE(r.diagnostics.status);
   CHECK(r.diagnostics.code == status_code::not_converged);
   CHECK(r.diagnostics.status.find("stopped at the time limit of 1e-09 s") != std::string::npos);
+  CHECK(r.diagnostics.status.find("solve_options") == std::string::npos);  // no C++ member for users
   o.time_limit = 0;  // no limit: the scene of "close contacts are solved, not refused"
   CHECK(solve(sc, o).diagnostics.code == status_code::ok);
   // One contact does not check the limit (milliseconds): ok.

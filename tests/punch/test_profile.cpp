@@ -292,6 +292,7 @@ TEST_CASE("solve_options::time_limit: a search stopped by it reports not_converg
   CAPTURE(r.diagnostics.status);
   CHECK(r.diagnostics.code == pu::status_code::not_converged);
   CHECK(r.diagnostics.status.find("time limit of 1e-09 s") != std::string::npos);
+  CHECK(r.diagnostics.status.find("solve_options") == std::string::npos);  // no C++ member for users
   CHECK(r.diagnostics.iterations == 0);
   // Out of time before the coarse solve's first step, the search starts from the highest tip
   // alone at 1/256 of the load: what it reports carries that fraction, and says so first.
