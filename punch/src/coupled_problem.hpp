@@ -191,6 +191,10 @@ struct problem {
   // a starved contact vanishes and a closing gap merges sooner (coupled_newton.cpp,
   // vanishing_share and seeded_merge_gap), as the profile search then drops or merges them.
   bool seeded = false;
+  // Seeded: starved_contact drops a contact with indentor_state::spare_light from any largest
+  // condition too (not only from those up to trusted_residual: coupled_newton.cpp); set by the
+  // retry of an iteration that failed after it kept one (coupled_solve.cpp).
+  bool starve_untrusted = false;
   // > 0: an iteration that stalls (no step descends, or a flat run) with every condition at most
   // this, evaluated to a tenth of it, has converged to the floor of its evaluations (newton).
   double stall_floor = 0;
@@ -270,6 +274,7 @@ struct newton_result {
   std::string failure;
   std::optional<std::pair<std::size_t, std::size_t>> merged;
   std::optional<std::size_t> lost;  // scene::body: the contact that shrank below vanishing_length
+  bool spared = false;  // a starving contact was kept (indentor_state::spare_light)
 };
 
 /// The Jacobian's band (coupled_newton.cpp, jacobian): up to full_width contacts every column is

@@ -593,6 +593,16 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   result.iterations += preload_iterations;
   result.jacobians += preload_jacobians;
   pb.read_memo = false;  // (the retries below copy pb)
+  // A seeded body whose iteration failed after it kept a starving contact (spare_light, far from
+  // the solution: coupled_newton.cpp, trusted_residual): again from the same start,
+  // every starving contact dropped (problem::starve_untrusted); kept when it converged or dropped
+  // one. WHY: a contact kept there can stall the iteration at a large condition on its level.
+  if (seeded && body_load && !result.converged && !result.merged && !result.lost && result.spared) {
+    problem eager = pb;
+    eager.starve_untrusted = true;
+    retry(pb, result, std::move(eager), [&](problem& p) { return attempt(p, start ? *start : isolated); },
+          [](const newton_result& second, const newton_result&) { return second.converged || second.lost; });
+  }
   if (start && !result.converged && !result.merged && !result.lost)
     retry(pb, result, pb, again, [](const newton_result&, const newton_result&) { return true; });
   // Seeded contacts whose series cannot reach the acceptance at this degree: no retries.

@@ -96,6 +96,10 @@ struct indentor_state {
   // With seed on a rigid body: target_load is the seed's own load (a coarse solve's or a solved
   // round's, not a guess), which coupled_solve.cpp's loads-imposed start may impose.
   bool seed_load = false;
+  // With seed on a rigid body: the coupled iteration drops this contact for starving only from
+  // a point near the solution (coupled_newton.cpp, trusted_residual); set by a sampled profile's
+  // search that spares light contacts (contact_set.cpp, search_start::spare).
+  bool spare_light = false;
   contact_density g;
   // A coupled solve in the boundary-layer basis: g as solved, series and poles, before
   // absorb_layer made g one Jacobi series (whose distance from this is in g.tail). The report's

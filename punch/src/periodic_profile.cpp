@@ -199,16 +199,18 @@ profile_result solve_periodic_profile(const profile_scene& s, const context& cx)
   // which would otherwise not know them as lost, as the searches at higher degrees already do.
   // (No measured scene needs it yet: the ~980-patch profile converges in one pass.)
   std::vector<coarse_patch> lost;
+  bool spare = false;  // the last pass kept light contacts far from the solution: so does the next
   for (;;) {
     ++pass;
     const profile_curve wc(curve, first, [field](double at) { return field->value(at); },
                            [field](double at) { return field->slope(at); });
     window.profile.x = wc.x();
     window.profile.z = wc.z();
-    window_solution sol = search_window(window, wc, pass_cx, seeds, memo, lost);
+    window_solution sol = search_window(window, wc, pass_cx, seeds, memo, lost, spare);
     // (before the result moves out: its contacts' residuals of (8) are the window's own)
     std::vector<coarse_patch> next_seeds = sol.contacts_capped(capped_below * cx.options.acceptance);
     lost = sol.lost_seeds();
+    spare = sol.spare;
     rounds += sol.result.diagnostics.rounds;
     iterations += sol.result.diagnostics.iterations;
     out = std::move(sol.result);

@@ -46,6 +46,10 @@ struct window_solution {
   /// Contacts its search lost once at the full load and did not restore: the bump (an index of
   /// this window's bumps) -> the seed it was lost with (contact_set.cpp, restore_lost).
   std::map<std::size_t, coarse_patch> lost;
+  /// Its search kept light contacts far from the solution (contact_set.cpp, search_start::spare).
+  bool spare = false;
+  /// Its search stopped to search again with spare (contact_set.cpp, search_result::respare).
+  bool respare = false;
   /// The seeds of `lost` (absolute edges), for a search of the same window whose bumps may differ.
   std::vector<coarse_patch> lost_seeds() const {
     std::vector<coarse_patch> out;
@@ -79,11 +83,12 @@ struct window_solution {
 /// window (a periodic profile's passes); null: its own. `lost`: contacts an earlier search of the
 /// same window and load lost once and did not restore (window_solution::lost_seeds), each on the
 /// bump that holds its middle, as lost once in this search (restore_lost gives it back where the
-/// profile penetrates there).
+/// profile penetrates there). `spare`: an earlier search of the same window spared light contacts
+/// (window_solution::spare), and so does this one from its start.
 window_solution search_window(const profile_scene& window, const profile_curve& curve, const context& cx,
                               const std::vector<coarse_patch>& seeds,
                               std::shared_ptr<coupled::jacobian_memo> memo = nullptr,
-                              const std::vector<coarse_patch>& lost = {});
+                              const std::vector<coarse_patch>& lost = {}, bool spare = false);
 
 /// A seeded contact (seed: absolute edges, its load) whose density g (abscissae of the solve:
 /// `origin` added for absolute ones) is negative on [lo, hi] inside it, as the two contacts either
