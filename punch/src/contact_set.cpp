@@ -555,10 +555,11 @@ struct search_start {
   /// Every seeded contact kept while the coupled iteration is far from the solution
   /// (indentor_state::spare_light), from the first round. Without it, a search that is about to
   /// add back a contact it dropped, whose seed was not light (needed_share), stops
-  /// (search_result::respare), and solve_model searches again with it. WHY: such a search has dropped a contact the solution needs, and from there it can
-  /// cycle (1e5-sample periodic profile, seed 3, load 6e-3: it lost and regained contacts, seven
-  /// of its last contacts not ok, until --time-limit 900; spared from the start it ends ok with the
-  /// boundary-element oracle's 428 patches). Not from the start for every search: the ~980-patch
+  /// (search_result::respare), and solve_model searches again with it. WHY: such a search has
+  /// dropped a contact the solution needs, and from there it can cycle (1e5-sample periodic
+  /// profile, seed 3, load 6e-3: it lost and regained contacts, seven of its last contacts not ok,
+  /// until --time-limit 900; spared from the start it ends ok with the boundary-element oracle's
+  /// 428 patches). Not from the start for every search: the ~980-patch
   /// profile (seed 1, load 1.4e-2) converges by dropping a coarse seed in its first round, and
   /// with it kept, its search ended at another set that the degree-512 search could not solve.
   bool spare = false;
