@@ -1209,12 +1209,28 @@ bool nearer(const profile_result& p, const profile_result& q) {
   return rank(p) < rank(q);
 }
 
+/// Which result keep_nearer keeps when neither is nearer than the other.
+enum class on_tie { first, second };
+
+/// The nearer of two searches' results (nearer), `tie`'s when neither is, with the rounds and
+/// iterations of both searches.
+window_solution keep_nearer(window_solution first, window_solution second, on_tie tie) {
+  const auto rounds = first.result.diagnostics.rounds + second.result.diagnostics.rounds;
+  const auto iterations = first.result.diagnostics.iterations + second.result.diagnostics.iterations;
+  const bool second_kept =
+      tie == on_tie::first ? nearer(second.result, first.result) : !nearer(first.result, second.result);
+  window_solution out = std::move(second_kept ? second : first);
+  out.result.diagnostics.rounds = rounds;
+  out.result.diagnostics.iterations = iterations;
+  return out;
+}
+
 /// The search from `held_start` (seeds holding their degrees, coarse_patch::degree); when it does
 /// not end ok and `retry` says of its result that a held contact may be why, once more from
-/// `free_start()` (every contact free to climb; made only then), the nearer result of the two (nearer) kept with
-/// the rounds and iterations of both. WHY: a contact held at its degree whose edges then moved can
-/// miss the acceptance there, and the degree ladder (needs_degree) raises only contacts at the
-/// top degree, so the held one would end the search.
+/// `free_start()` (every contact free to climb; made only then), the nearer result of the two
+/// (keep_nearer) kept with the rounds and iterations of both. WHY: a contact held at its degree
+/// whose edges then moved can miss the acceptance there, and the degree ladder (needs_degree)
+/// raises only contacts at the top degree, so the held one would end the search.
 template <class Retry, class FreeStart>
 std::optional<window_solution> search_held(const profile_model& m, const context& cx, const search_start& held_start,
                                            FreeStart free_start, Retry retry, std::string& failure) {
@@ -1224,26 +1240,22 @@ std::optional<window_solution> search_held(const profile_model& m, const context
     return first;
   auto again = search_and_report(m, cx, free_start(), failure);
   if (!again) return first;
-  const auto rounds = first->result.diagnostics.rounds + again->result.diagnostics.rounds;
-  const auto iterations = first->result.diagnostics.iterations + again->result.diagnostics.iterations;
-  if (nearer(again->result, first->result)) first = std::move(again);
-  first->result.diagnostics.rounds = rounds;
-  first->result.diagnostics.iterations = iterations;
-  return first;
+  return keep_nearer(std::move(*first), std::move(*again), on_tie::first);
 }
 
 /// `out` searched again with the series to each of profile_degrees while needs_degree (the clock
 /// and the interrupt shared; rounds and iterations add up), from its own contacts when it reached
 /// the full load (each within capped_below of the acceptance holding its degree), else from
-/// `start`. WHY its contacts: its set is the answer but for the degree
-/// and for the contacts it misses, which the search adds where the surface penetrates; from the
-/// coarse seeds each degree repeated the rounds that found it (self-affine, 1000 samples, seed 1,
-/// load 2e-3: two rounds of 4.6 s and 13 s at degree 1024; 1e5 samples, periodic, 233 contacts:
-/// the degree-128 round ended at the full load with 3 penetrations, and from the coarse seeds the
-/// degree-512 round dropped the same vanishing seeds and merged the same pairs again, each a
-/// round of 1-2 min).
+/// `start`; the nearest of the ladder's results is reported (nearer). WHY its contacts: its set is
+/// the answer but for the degree and for the contacts it misses, which the search adds where the
+/// surface penetrates; from the coarse seeds each degree repeated the rounds that found it
+/// (self-affine, 1000 samples, seed 1, load 2e-3: two rounds of 4.6 s and 13 s at degree 1024; 1e5
+/// samples, periodic, 233 contacts: the degree-128 round ended at the full load with 3
+/// penetrations, and from the coarse seeds the degree-512 round dropped the same vanishing seeds
+/// and merged the same pairs again, each a round of 1-2 min).
 window_solution raise_degree(const profile_model& m, const context& cx, window_solution out, const search_start& start) {
   context wide = cx;
+  std::optional<window_solution> passed;  // the nearest result the ladder went on from (nearer)
   for (const std::size_t degree : profile_degrees) {
     if (!needs_degree(out.result, wide, degree)) continue;
     // A contact held at an earlier search's top degree (capped_below) that then missed the
@@ -1274,8 +1286,17 @@ window_solution raise_degree(const profile_model& m, const context& cx, window_s
     if (!again) break;
     again->result.diagnostics.rounds += out.result.diagnostics.rounds;
     again->result.diagnostics.iterations += out.result.diagnostics.iterations;
+    if (!passed || nearer(out.result, passed->result)) passed = std::move(out);
     out = std::move(*again);
-    if (out.respare) break;  // (solve_model searches again)
+    if (out.respare) return out;  // (solve_model searches again)
+  }
+  // A higher degree's search that ended further from the answer than a lower one's (a contact
+  // lost or in tension, the time limit reached at a lower load): the nearer is reported, with the
+  // rounds and iterations of all.
+  if (passed && nearer(passed->result, out.result)) {
+    passed->result.diagnostics.rounds = out.result.diagnostics.rounds;
+    passed->result.diagnostics.iterations = out.result.diagnostics.iterations;
+    return std::move(*passed);
   }
   return out;
 }
@@ -1315,13 +1336,8 @@ window_solution solve_model(const profile_model& m, const context& cx, const std
     if (seeded && seeded->respare && !cx.out_of_time()) {
       search_start spared = *predicted;
       spared.spare = true;
-      if (auto second = search_seeded(spared)) {
-        const auto rounds = seeded->result.diagnostics.rounds + second->result.diagnostics.rounds;
-        const auto iterations = seeded->result.diagnostics.iterations + second->result.diagnostics.iterations;
-        if (nearer(second->result, seeded->result) || !nearer(seeded->result, second->result)) seeded = std::move(second);
-        seeded->result.diagnostics.rounds = rounds;
-        seeded->result.diagnostics.iterations = iterations;
-      }
+      if (auto second = search_seeded(spared))
+        seeded = keep_nearer(std::move(*seeded), std::move(*second), on_tie::second);
     }
     if (seeded && (seeded->result.diagnostics.code == status_code::ok || cx.out_of_time())) return std::move(*seeded);
   }
@@ -1334,13 +1350,7 @@ window_solution solve_model(const profile_model& m, const context& cx, const std
     throw std::domain_error(std::string(who) + ": no contact found: " + failure);
   }
   window_solution out = raise_degree(m, cx, std::move(*again), predicted ? *predicted : from_tip);
-  if (seeded) {
-    const auto rounds = out.result.diagnostics.rounds + seeded->result.diagnostics.rounds;
-    const auto iterations = out.result.diagnostics.iterations + seeded->result.diagnostics.iterations;
-    if (nearer(seeded->result, out.result)) out = std::move(*seeded);
-    out.result.diagnostics.rounds = rounds;
-    out.result.diagnostics.iterations = iterations;
-  }
+  if (seeded) return keep_nearer(std::move(*seeded), std::move(out), on_tie::second);
   return out;
 }
 
