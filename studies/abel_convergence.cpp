@@ -23,7 +23,10 @@
 //    eps in {0.5, 0.8, 0.9, 0.97, 0.99, 0.999, 0.03, 0.001} (alpha = 0.3, beta = 0.2) and the punch layer's alpha = 0.2, 1e-3, 0,
 //    k = 0.5 wedge (eps = 0.84): int g and int_a^apex g against riemann::solve_abel_rh (the
 //    independent Riemann-Hilbert route), at 65, 195, 585 points and adaptive ("_adaptive").
-//  * kink (F = |s - t0|): int_a^t0 g against the degree-2048 solution (algebraic reference).
+//  * kink (F = |s - t0|): int_a^t0 g against the degree-2048 solution (algebraic reference);
+//    with the kink built in (solve_kinks; rows kink_enriched*), the larger of the error of int g
+//    against the exact projection (solve_piecewise at degree 4: int g depends on c_0 alone) and
+//    the change of int_a^t0 g against the 257-point enriched solution (self-convergence).
 // Timing: median of repeated solves (residual switched off), steady_clock.
 #include "rhabel/abel.hpp"
 #include "rhabel/riemann.hpp"
@@ -355,6 +358,27 @@ int main(int argc, char** argv) {
       const double seconds = median_seconds([&] { (void)solve_piecewise(op, edge::bounded, edge::unbounded, F, {t0}, options); }, 5);
       out << "kink_partial," << alpha << "," << beta << ",0," << n << ","
           << std::abs(sol.density.integral_to(t0) - reference) / std::abs(reference) << ",nan," << seconds << "\n";
+    }
+    // The same kink built in (solve_kinks: F' jumps by 2 at t0) at 17, 33, 65 points and adaptive.
+    const std::vector<kink<double>> kinks{{t0, 1, 2.0}};
+    solve_options<double> fine;
+    fine.degree = 257;
+    fine.residual_points = 0;
+    const double enriched_reference = solve_kinks(op, edge::bounded, edge::unbounded, F, kinks, fine).integral_to(t0);
+    solve_options<double> projection;
+    projection.degree = 4;
+    projection.residual_points = 0;
+    const double exact_integral = solve_piecewise(op, edge::bounded, edge::unbounded, F, {t0}, projection).density.integral();
+    for (std::size_t n : {17, 33, 65, 0}) {
+      solve_options<double> options;
+      options.degree = n;
+      options.residual_points = 0;
+      const auto sol = solve_kinks(op, edge::bounded, edge::unbounded, F, kinks, options);
+      const double seconds = median_seconds([&] { (void)solve_kinks(op, edge::bounded, edge::unbounded, F, kinks, options); }, 5);
+      const double error = std::max(std::abs(sol.integral() - exact_integral) / std::abs(exact_integral),
+                                    std::abs(sol.integral_to(t0) - enriched_reference) / std::abs(enriched_reference));
+      out << "kink_enriched" << (n == 0 ? "_adaptive," : ",") << alpha << "," << beta << ",0," << sol.smooth.degree << ","
+          << error << ",nan," << seconds << "\n";
     }
   }
   return 0;

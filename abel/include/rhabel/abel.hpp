@@ -27,6 +27,12 @@
 //                                   integrate(f, bps), integrate_between, intensities, mobius),
 //                          exponents, solvability_defect, residual, coefficient_tail, degree, status,
 //                          taylor_degree, rounding_floor};  apply(op, g, s)
+//   solve_kinks(op, leading, trailing, F, {kink{position, order, jump}, ...})
+//                                                             F' or F'' jumping at given points (a
+//                                                             cubic spline's knots), each built in
+//     -> kinked_solution{smooth: abel_solution (series, evidence), terms: enriched_density each,
+//                        rounding_floor; g(t), integral(), integral_to(t), intensities}
+//   kink_enrichment(op, leading, trailing, kink)              one kink's term C phi (empty series)
 //   solve_union(parameters, intervals, F per interval, multi_solve_options)   paper 41
 //     -> multi_solution{densities, exponents, solvability_defects, homogeneous, homogeneous_defects,
 //                       residual, condition, degree, status};  apply_union(parameters, densities, s)
