@@ -773,7 +773,8 @@ TEST_CASE("solve_kinks: one jump of F' or F'' at a central t0 converges spectral
                       << " tail=" << sol.smooth.coefficient_tail << " residual=" << sol.smooth.residual);
         CHECK(sol.smooth.status == solve_status::converged);
         CHECK(sol.smooth.degree <= 65);
-        CHECK(sol.smooth.residual <= 1e-12);
+        // The residual relative to max|F|: within 1e-12 plus the images' rounding (rounding_floor).
+        CHECK(sol.smooth.residual <= 1e-12 + 4 * sol.rounding_floor);
         // The plain solve of the same data at the same degree (exact projection split at t0)
         // misses by the kink: residual 1e-3 (k = 1) and 6e-6 (k = 2) measured.
         if (e.nu == 0 || 2 * alpha + beta < 1) {
@@ -806,7 +807,7 @@ TEST_CASE("solve_kinks: several knots of a spline's slope, a kink and a knot at 
       INFO("alpha=" << alpha << " kinks=" << F->kinks.size() << " degree=" << sol.smooth.degree
                     << " residual=" << sol.smooth.residual << " floor=" << sol.rounding_floor);
       CHECK(sol.smooth.status == solve_status::converged);
-      CHECK(sol.smooth.residual <= 1e-12);
+      CHECK(sol.smooth.residual <= 1e-12 + 4 * sol.rounding_floor);
       solve_options<double> plain;
       plain.degree = 4;
       plain.residual_points = 0;
@@ -834,7 +835,7 @@ TEST_CASE("solve_kinks: a knot near an edge (x0 = 0.8) converges, with a lower T
       // Measured: 129 .. 257 points (q of degree K = 4 .. 6 only: its amplification grows like
       // 9^K here), residual <= 3e-15.
       CHECK(sol.smooth.status == solve_status::converged);
-      CHECK(sol.smooth.residual <= 1e-12);
+      CHECK(sol.smooth.residual <= 1e-12 + 4 * sol.rounding_floor);
       if (2 * alpha + 0.3 < 1) {
         solve_options<double> plain;
         plain.degree = 4;
@@ -862,6 +863,80 @@ TEST_CASE("solve_kinks: g is finite and continuous at a kink, and the edge inten
     const double del = sol.smooth.exponents.del, d = 3e-9;
     CHECK(sol(1.0 - d) * std::pow(d, -del) == doctest::Approx(sol.intensity_trailing()).epsilon(1e-6));
   }
+}
+
+// Hard cases: alpha at 0.999 and across 1/2 and the normalized threshold 0.01, beta near +-1, two
+// kinks 1e-12 apart, 50 kinks, intervals of 1e-9 and 1e6, jumps of 1e300, 1e-300 and 0, kinks next
+// to an edge (digits lost to cancellation, within rounding_floor), and an interval far from the
+// origin (solve's limit: reported, never converged with a wrong answer).
+TEST_CASE("solve_kinks: hard cases converge, or say what they lost") {
+  struct hard {
+    const char* name;
+    double alpha, beta, lo, hi;
+    std::vector<kink<double>> kinks;
+    edge trailing;
+  };
+  std::vector<kink<double>> fifty;
+  for (int i = 0; i < 50; ++i) fifty.push_back({-0.98 + 0.04 * i, 2, (i % 3 - 1) * 0.5});
+  const std::vector<hard> cases{
+      {"alpha 0.999", 0.999, 0.0, -1, 1, {{0.1, 2, 1.0}}, edge::unbounded},
+      {"alpha 0.4999", 0.4999, 0.0, -1, 1, {{0.1, 2, 1.0}}, edge::bounded},
+      {"alpha 0.5", 0.5, 0.0, -1, 1, {{0.1, 2, 1.0}}, edge::unbounded},
+      {"alpha 0.0099", 0.0099, 0.0, -1, 1, {{0.1, 2, 1.0}}, edge::bounded},
+      {"alpha 0.0101", 0.0101, 0.0, -1, 1, {{0.1, 2, 1.0}}, edge::bounded},
+      {"alpha 1e-300", 1e-300, 0.0, -1, 1, {{0.1, 1, 1.0}}, edge::bounded},
+      {"beta 0.99", 0.3, 0.99, -1, 1, {{0.1, 2, 1.0}}, edge::unbounded},
+      {"beta -0.99", 0.3, -0.99, -1, 1, {{0.1, 2, 1.0}}, edge::bounded},
+      {"kinks 1e-12 apart", 0.3, 0.0, -1, 1, {{0.1, 2, 1.0}, {0.1 + 1e-12, 2, -1.0}}, edge::bounded},
+      {"50 kinks", 0.3, 0.0, -1, 1, fifty, edge::bounded},
+      {"interval 1e-9", 0.3, 0.0, 0, 1e-9, {{0.4e-9, 2, 1e18}}, edge::bounded},
+      {"interval 1e6", 0.3, 0.0, 0, 1e6, {{0.4e6, 2, 1e-12}}, edge::bounded},
+      {"jump 1e300", 0.3, 0.0, -1, 1, {{0.1, 2, 1e300}}, edge::bounded},
+      {"jump 1e-300", 0.3, 0.0, -1, 1, {{0.1, 2, 1e-300}}, edge::bounded},
+      {"jump 0", 0.3, 0.0, -1, 1, {{0.1, 2, 0.0}}, edge::bounded},
+      {"1e-3 from an edge", 0.3, 0.0, -1, 1, {{1 - 1e-3, 2, 1.0}}, edge::bounded},
+      {"1e-6 from an edge", 0.3, 0.0, -1, 1, {{-1 + 1e-6, 2, 1.0}}, edge::bounded},
+  };
+  for (const hard& c : cases) {
+    abel_operator<double> op(c.alpha, c.beta, c.lo, c.hi);
+    const double L = c.hi - c.lo;
+    // F = 1 + 0.3 (s - lo)/L + the kinks' terms (F^(k) jumps by the kink's jump).
+    const kinked_data kinks{c.kinks};
+    auto F = [&](double s) {
+      double v = 1.0 + 0.3 * (s - c.lo) / L;
+      for (const auto& k : c.kinks) {
+        const double u = s - k.position;
+        if (u > 0) v += k.jump * (k.order == 1 ? u : u * u / 2);
+      }
+      return v;
+    };
+    const auto sol = solve_kinks(op, edge::bounded, c.trailing, F, c.kinks);
+    INFO(std::string(c.name) << ": degree=" << sol.smooth.degree << " tail=" << sol.smooth.coefficient_tail
+                << " residual=" << sol.smooth.residual << " floor=" << sol.rounding_floor);
+    CHECK(sol.smooth.status == solve_status::converged);
+    CHECK(sol.smooth.residual <= 1e-12 + 4 * sol.rounding_floor);
+    if (sol.smooth.exponents.nu == 0 || 2 * c.alpha + c.beta < 1) {
+      solve_options<double> plain;
+      plain.degree = 4;
+      plain.residual_points = 0;
+      const auto exact = solve_piecewise(op, edge::bounded, c.trailing, F, kinks.breaks(), plain);
+      const double error = std::abs(sol.integral() - exact.density.integral()) / std::abs(exact.density.integral());
+      INFO("relative error of int g " << error);
+      // Measured <= 9.2e-12 (alpha = 0.999: conditioning 1/(1 - alpha) = 1000) away from the
+      // edges; next to them the cancellation the floor estimates (5.9e-9 and 5.7e-8 measured).
+      CHECK(error <= 5e-13 / (1 - c.alpha) + 4 * sol.rounding_floor);
+    }
+  }
+  // Far from the origin the sampling points are rounded (solve's limit): not converged, and said.
+  abel_operator<double> far(0.3, 0.0, 1e6, 1e6 + 1e-6);
+  const kinked_data shifted{{{1e6 + 0.4e-6, 2, 1e12}}};
+  auto G = [&](double s) {
+    const double u = s - shifted.kinks[0].position;
+    return 1.0 + 0.3e6 * (s - 1e6) + (u > 0 ? 1e12 * u * u / 2 : 0.0);
+  };
+  const auto sol = solve_kinks(far, edge::bounded, edge::bounded, G, shifted.kinks);
+  CHECK(sol.smooth.status == solve_status::not_converged);
+  CHECK(sol.smooth.residual > 1e-8);
 }
 
 TEST_CASE("solve_kinks: bad input") {

@@ -40,6 +40,10 @@
 //    an estimate of the relative error of the image expansion; degree; status: converged only
 //    with a finite density (and a finite residual when computed); for piecewise data only with
 //    the residual within piecewise_residual_acceptance.
+// Limit: F is sampled at lo + h (1 + x) rounded to a double, so an interval far from the origin
+// (|lo| >> L) sees its data at abscissae off by ~eps |lo|, a relative error ~eps |lo|/L of the
+// data's variation: smooth data on [1e3, 1e3 + 1e-6] end not_converged with residual 1.4e-8, on
+// [1e6, 1e6 + 1e-6] with 2.7e-5 (throwaway driver). Shift the origin to the interval first.
 #pragma once
 
 #include "rhabel/abel/abel_operator.hpp"

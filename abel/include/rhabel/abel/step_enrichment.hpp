@@ -180,10 +180,11 @@
 // there, and the series cancels it: int g measured within 1.5e-12 (alpha = 0.3) .. 2e-11 (alpha =
 // 0) of the exact projection for a kink at x0 = -0.8, within 3e-15 for |x0| <= 0.2.
 // Accuracy and cost (alpha = 0.3, beta = 0.3, [-2, 1], one kink at x0 = 0.067, residual off; the
-// tests' data; throwaway driver, best of 20, 2026-12-06): 65 points, Chebyshev tail <= 1e-16,
-// 0.23 ms (alpha = 0: 0.43 ms), for F' or F'' jumping; the plain solver on the same data stops at
-// 1024 coefficients with tail 4.6e-7 (F') or 9e-10 (F''), 1.3-1.5 ms. A knot at x0 = 0.8 takes
-// 129-257 points (the lower Taylor degree).
+// tests' data; throwaway driver, best of 20, 2026-12-06): adaptive 17 -> 33 -> 65 points,
+// Chebyshev tail <= 1e-16, 0.47 ms (alpha = 0: 0.86 ms), for F' or F'' jumping; the plain solver
+// on the same data stops at 1024 coefficients with tail 4.6e-7 (F') or 9e-10 (F''), 1.5-1.7 ms.
+// A knot at x0 = 0.8 takes 129-257 points (the lower Taylor degree). On a rough profile's
+// contacts: docs/accuracy.md (study_spline_kinks).
 //
 // Residual: direct quadrature of the one-sided integrals at interior Chebyshev points (never at
 // a sampling node nor at x0) plus the four points next to the apex; for the phi part this is the
@@ -1619,10 +1620,11 @@ struct kinked_solution {
   /// residual of A g = F (both parts; see solve_kinks).
   abel_solution<Real> smooth;
   std::vector<enriched_density<Real>> terms;  ///< C phi of each kink (empty series each)
-  /// Estimated relative rounding floor of g, max over the terms of max|q| eps (and eps/(16
-  /// alpha^2) on the plain path): C phi grows like q away from its kink and the series cancels
-  /// it there (solve_step's rounding_floor). An estimate: int g measured within 1.5e-12 relative of
-  /// the exact value for a kink at x0 = -0.8 (max|q| ~ 1e4), within 3e-15 for |x0| <= 0.2.
+  /// Estimated relative rounding floor of g: C phi grows like q away from its kink and the series
+  /// cancels it there, so the largest of the terms' max|q| eps (and eps/(16 alpha^2) on the plain
+  /// path; solve_step's rounding_floor), 16 eps max|F - sum A[C phi]| / max|F| on the residual's
+  /// grid and 256 eps sum |int C phi| / |int g|. An estimate of the relative error of g and of
+  /// int g (measured errors in solve_kinks' comment).
   Real rounding_floor = 0;
 
   /// g(t) for lo < t < hi.
@@ -1659,19 +1661,46 @@ struct kinked_solution {
 /// Solves A g = F on [lo, hi] for F smooth except at the kinks (header, "Kinks"): each kink's
 /// enrichment (kink_enrichment) is built in with its coefficient from the given jump, and the
 /// remainder F - sum A[C phi] is solved by solve (adaptive Chebyshev interpolation, options as
-/// there; it stops at its rounding plateau). residual_points > 0: the
-/// independent residual of the remainder's solve, which is that of A g = F up to the quadrature
-/// of the terms' images (the same quadrature that formed the remainder; the tests check the
-/// original equation by tanh-sinh). Cost: a term's image is a composite Gauss-Jacobi quadrature
+/// there; it stops at its rounding plateau). residual_points > 0: the independent residual of
+/// the remainder's solve, relative to max|F| (rescaled from solve's max|remainder|): that of
+/// A g = F up to the quadrature of the terms' images (the same quadrature that formed the
+/// remainder; the tests check the original equation by tanh-sinh). Cost: a term's image is a composite Gauss-Jacobi quadrature
 /// (~3 us) at each interpolation point. Kinks whose positions coincide are allowed (orders 1 and 2
-/// at one knot); the positions must lie in (lo, hi).
+/// at one knot); the positions must lie in (lo, hi). A kink whose non-polynomial term |J| d^k/k!
+/// (d: its distance to the nearer edge) is below options.tolerance times F's scale (max |F| at
+/// the centre and the quarter points), or below what building it in would cost next to an edge
+/// (see the body), is left to the interpolation (`terms` has the others). Limits: a kink near an
+/// edge costs digits to cancellation (rounding_floor; int g off by 5.9e-9 at 1e-3 of the
+/// half-length from an edge), and the adaptive loop stops there converged, as solve_step's at its
+/// floor; and, as for solve, an interval far from the origin (|lo| >> hi - lo) has its sampling
+/// points rounded by ~eps |lo|, which the status reports (not_converged at [1e6, 1e6 + 1e-6]):
+/// shift the origin first.
 template <class Real, class F>
 kinked_solution<Real> solve_kinks(const abel_operator<Real>& op, edge leading, edge trailing, F&& f,
                                   const std::vector<kink<Real>>& kinks, const solve_options<Real>& options = {}) {
+  using std::abs;
   using std::max;
   kinked_solution<Real> out;
+  // A kink is left to the interpolation when its non-polynomial term, on its short side
+  // ((s - t0)_+^k = (s - t0)^k - (-1)^k (t0 - s)_+^k), relative to F's scale,
+  //     short = |J| d^k/k! / scale   (d: the distance to the nearer edge),
+  // is at most the tolerance or what building it in would cost: C phi is the term's size on the
+  // whole interval, long = |J| L^k/k! / scale, amplified by q (max|q| ~ (2/d_ref)^K), and the
+  // series cancels it to ~256 eps of that (rounding_floor). The interpolation then errs by about
+  // `short`. WHY: a kink 1e-6 of the half-length from an edge built in left int g off by 5.7e-8,
+  // where its term is 5e-13.
+  const Real mid = op.lo() + op.half_length();
+  const Real data_scale = max(abs(f(mid)), max(abs(f(op.lo() + op.half_length() / 2)), abs(f(mid + op.half_length() / 2))));
   for (const auto& k : kinks) {
-    out.terms.push_back(kink_enrichment(op, leading, trailing, k));
+    auto term = kink_enrichment(op, leading, trailing, k);  // validates k
+    using std::pow;
+    const Real factorial = k.order == 2 ? 2 : 1, length = op.hi() - op.lo();
+    const Real d = std::min(k.position - op.lo(), op.hi() - k.position);
+    const Real short_side = abs(k.jump) * pow(d, Real(k.order)) / factorial;
+    const Real cost = 256 * std::numeric_limits<Real>::epsilon() * abs(k.jump) * pow(length, Real(k.order)) / factorial *
+                      detail::taylor_amplification(term.q, term.x0);
+    if (!(short_side > max(options.tolerance * data_scale, cost))) continue;
+    out.terms.push_back(std::move(term));
     out.rounding_floor = max(out.rounding_floor, detail::step_rounding_floor(out.terms.back(), op.parameters().alpha(), false));
   }
   std::vector<split_integrator<Real>> rules;
@@ -1700,6 +1729,37 @@ kinked_solution<Real> solve_kinks(const abel_operator<Real>& op, edge leading, e
     return v;
   };
   out.smooth = solve(op, leading, trailing, remainder, options);
+  if (out.terms.empty()) return out;
+  // The remainder's scale against the data's, on the residual's grid (without a residual, 9
+  // first-kind points: a scale only): solve's residual is relative to max|remainder|, which the
+  // terms' images can make much larger than max|F| (a kink next to an edge: q ~ 1e4 .. 1e6), and
+  // their rounding, eps times that size, is what the series then cancels (rounding_floor).
+  const chebyshev_grid<Real> grid(options.residual_points > 0
+                                      ? detail::residual_grid_size(options.residual_points, out.smooth.degree)
+                                      : std::size_t(9));
+  Real data = 0, rest = 0;
+  for (std::size_t j = 0; j < grid.x.size(); ++j) {
+    const Real s = grid.one_plus_x[j] <= grid.one_minus_x[j] ? op.lo() + h * grid.one_plus_x[j]
+                                                             : op.hi() - h * grid.one_minus_x[j];
+    data = max(data, abs(f(s)));
+    rest = max(rest, abs(remainder(s)));
+  }
+  if (data > 0) {
+    out.smooth.residual *= rest / data;  // relative to max|F| (NaN stays NaN)
+    // 16 eps: the images' composite quadratures round to ~10-30 eps of their size (measured: the
+    // residual relative to max|F| over eps max|remainder|/max|F|, 12-32 on the tests' cases).
+    out.rounding_floor = max(out.rounding_floor, 16 * std::numeric_limits<Real>::epsilon() * rest / data);
+  } else {
+    out.rounding_floor = std::numeric_limits<Real>::infinity();
+  }
+  // int g = int series + sum int C phi cancels as well: 256 eps of the terms' integrals (the
+  // composite rules of int phi: measured 50-200 eps of their size next to an edge).
+  Real terms = 0;
+  for (const auto& term : out.terms) terms += abs(term.integral());
+  const Real total = abs(out.integral());
+  if (terms > 0)
+    out.rounding_floor = total > 0 ? max(out.rounding_floor, 256 * std::numeric_limits<Real>::epsilon() * terms / total)
+                                   : std::numeric_limits<Real>::infinity();
   return out;
 }
 
