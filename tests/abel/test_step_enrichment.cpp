@@ -939,6 +939,21 @@ TEST_CASE("solve_kinks: hard cases converge, or say what they lost") {
   CHECK(sol.smooth.residual > 1e-8);
 }
 
+TEST_CASE("solve_kinks: nu = +1 with a load: int g of the series and the terms is the load") {
+  abel_operator<double> op(0.3, 0.3, -2.0, 1.0);
+  const kinked_data F{{{-0.4, 2, 0.8}, {0.2, 1, -0.5}}};
+  solve_options<double> options;
+  options.load = 2.5;
+  const auto sol = solve_kinks(op, edge::unbounded, edge::unbounded, F, F.kinks, options);
+  REQUIRE(sol.smooth.exponents.nu == 1);
+  REQUIRE(sol.terms.size() == 2);
+  // To the rounding of the sum: the terms' integrals are ~5e3 times the load here (measured
+  // 1.8e-12 off).
+  const double terms = std::abs(sol.terms[0].integral()) + std::abs(sol.terms[1].integral());
+  CHECK(std::abs(sol.integral() - 2.5) <= 16 * eps * (2.5 + terms));
+  CHECK(sol.smooth.residual <= 1e-12 + 4 * sol.rounding_floor);
+}
+
 TEST_CASE("solve_kinks: bad input") {
   abel_operator<double> op(0.3, 0.2, -1.0, 1.0);
   auto F = [](double s) { return s; };

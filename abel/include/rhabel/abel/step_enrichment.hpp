@@ -1454,17 +1454,9 @@ Real step_residual(const abel_operator<Real>& op, const enriched_solution<Real>&
 /// Solves A g = F on [lo, hi] for F smooth except for a jump at t0 in (lo, hi) (see header).
 /// taylor_degree = 0 (default): automatic factor q (Taylor polynomial of the largest K <= 12 with
 /// max|q| <= 1e4) and, for an apex with |x0| > 1/2, the Moebius map (density.mobius); taylor_degree
-/// = K > 0 forces the Taylor polynomial of degree K without a map. options.degree != 0 fixes the number of
-/// sampling points (m or m + 1, see grid_size_avoiding); otherwise adaptive, 65 -> 195 -> 585 ->
-/// ... up to options.max_degree points. Returns the density with the evidence: status,
-/// coefficient_tail (estimate of the relative error of the image expansion), rounding_floor,
-/// residual (an estimate, see header), solvability_defect (nu = -1), degree and taylor_degree.
-/// Solves A g = F on [lo, hi] for F smooth except for a jump at t0 in (lo, hi) (see header).
-/// taylor_degree = 0 (default): automatic factor q (Taylor polynomial of the largest K <= 12 with
-/// max|q| <= 1e4) and, for an apex with |x0| > 1/2, the Moebius map (density.mobius); taylor_degree
-/// = K > 0 forces the Taylor polynomial of degree K without a map. options.degree != 0 fixes the number of
-/// sampling points (m or m + 1, see grid_size_avoiding); otherwise adaptive, 65 -> 195 -> 585 ->
-/// ... up to options.max_degree points. Returns the density with the evidence: status,
+/// = K > 0 forces the Taylor polynomial of degree K without a map. options.degree != 0 fixes the
+/// number of sampling points (m or m + 1, see grid_size_avoiding); otherwise adaptive, 65 -> 195 ->
+/// 585 -> ... up to options.max_degree points. Returns the density with the evidence: status,
 /// coefficient_tail (estimate of the relative error of the image expansion), rounding_floor,
 /// residual (an estimate, see header), solvability_defect (nu = -1), degree and taylor_degree.
 template <class Real, class F>
@@ -1664,7 +1656,8 @@ struct kinked_solution {
 /// there; it stops at its rounding plateau). residual_points > 0: the independent residual of
 /// the remainder's solve, relative to max|F| (rescaled from solve's max|remainder|): that of
 /// A g = F up to the quadrature of the terms' images (the same quadrature that formed the
-/// remainder; the tests check the original equation by tanh-sinh). Cost: a term's image is a composite Gauss-Jacobi quadrature
+/// remainder; the tests check the original equation by tanh-sinh). nu = +1 with options.load:
+/// int g (series and terms) = load. Cost: a term's image is a composite Gauss-Jacobi quadrature
 /// (~3 us) at each interpolation point. Kinks whose positions coincide are allowed (orders 1 and 2
 /// at one knot); the positions must lie in (lo, hi). A kink whose non-polynomial term |J| d^k/k!
 /// (d: its distance to the nearer edge) is below options.tolerance times F's scale (max |F| at
@@ -1728,7 +1721,11 @@ kinked_solution<Real> solve_kinks(const abel_operator<Real>& op, edge leading, e
     for (std::size_t k = 0; k < out.terms.size(); ++k) v -= scale * out.terms[k].enrichment * image(k, y);
     return v;
   };
-  out.smooth = solve(op, leading, trailing, remainder, options);
+  // nu = +1 with a load: the series carries what the terms do not.
+  solve_options<Real> o = options;
+  if (o.load)
+    for (const auto& term : out.terms) *o.load -= term.integral();
+  out.smooth = solve(op, leading, trailing, remainder, o);
   if (out.terms.empty()) return out;
   // The remainder's scale against the data's, on the residual's grid (without a residual, 9
   // first-kind points: a scale only): solve's residual is relative to max|remainder|, which the
