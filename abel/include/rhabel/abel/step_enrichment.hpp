@@ -268,19 +268,20 @@ struct enriched_density {
     if (dist == 0) return Real(0);  // the limit: |x - x0|^(order - alpha), or times a log
     return E_full(dist, right) * order_power(dist, right);
   }
+  /// The sign of (x - x0)^order on the right or left side of x0.
+  Real order_sign(bool right) const { return right || order % 2 == 0 ? Real(1) : Real(-1); }
   /// (x - x0)^order at distance dist on the right or left side.
   Real order_power(const Real& dist, bool right) const {
     Real p = 1;
     for (unsigned k = 0; k < order; ++k) p *= dist;
-    return right || order % 2 == 0 ? p : -p;
+    return order_sign(right) * p;
   }
   /// Gauss-Jacobi exponent used at x0 for pieces that end there (the rest is E_over_weight):
   /// order - alpha, or order in normalized mode (its log-type factor is E_over_weight's).
   Real x0_exponent() const { return normalized ? Real(order) : Real(order) - alpha; }
   Real E_over_weight(const Real& dist, bool right) const {
-    const Real sign = right || order % 2 == 0 ? Real(1) : Real(-1);  // of (x - x0)^order
-    if (!normalized) return right ? kappa : sign;
-    return sign * E_full(dist, right);
+    if (!normalized) return right ? kappa : order_sign(false);
+    return order_sign(right) * E_full(dist, right);
   }
 
   /// phi(x) with distances 1 + x, 1 - x (reference variable; sigma when mapped).
@@ -747,7 +748,6 @@ Real enrichment_image(const enriched_density<Real>& d, const abel_parameters<Rea
   }
   cuts.push_back(Real(1));
   const Real at_x0 = Real(d.order) - alpha;
-  const Real left_sign = d.order % 2 == 0 ? Real(1) : Real(-1);  // of (x - x0)^order left of x0
   auto exponent_of = [&](int k) { return k == 0 ? at_x0 : alpha - 1; };
   left_exp = {d.smooth.gam, exponent_of(kind[0]), exponent_of(kind[1])};
   right_exp = {exponent_of(kind[0]), exponent_of(kind[1]), d.smooth.del};
@@ -774,7 +774,7 @@ Real enrichment_image(const enriched_density<Real>& d, const abel_parameters<Rea
       const bool is_end = point == k || point == k + 1;
       const bool right_of_point = k >= point;  // node lies right of this point
       if (kind[point - 1] == 0) {
-        coefficient *= right_of_point ? kappa : left_sign;
+        coefficient *= right_of_point ? kappa : d.order_sign(false);
         if (!is_end) powers.times(distance_to(point), at_x0);
       } else {
         coefficient *= right_of_point ? Real(1) : -kappa;  // kernel: (x-y)^(alpha-1) for x > y
@@ -859,7 +859,7 @@ Real enrichment_piece_panels(const enriched_density<Real>& d, const Real& a, con
     if (at_x0) {
       E = d.E_over_weight(dist, right_side);
     } else if (!d.normalized) {
-      E = right_side ? d.kappa : (d.order % 2 == 0 ? Real(1) : Real(-1));
+      E = right_side ? d.kappa : d.order_sign(false);
       powers.times(dist, Real(d.order) - d.alpha);
     } else {
       E = d.E_order(dist, right_side);
@@ -1673,6 +1673,7 @@ kinked_solution<Real> solve_kinks(const abel_operator<Real>& op, edge leading, e
                                   const std::vector<kink<Real>>& kinks, const solve_options<Real>& options = {}) {
   using std::abs;
   using std::max;
+  using std::pow;
   kinked_solution<Real> out;
   // A kink is left to the interpolation when its non-polynomial term, on its short side
   // ((s - t0)_+^k = (s - t0)^k - (-1)^k (t0 - s)_+^k), relative to F's scale,
@@ -1686,7 +1687,6 @@ kinked_solution<Real> solve_kinks(const abel_operator<Real>& op, edge leading, e
   const Real data_scale = max(abs(f(mid)), max(abs(f(op.lo() + op.half_length() / 2)), abs(f(mid + op.half_length() / 2))));
   for (const auto& k : kinks) {
     auto term = kink_enrichment(op, leading, trailing, k);  // validates k
-    using std::pow;
     const Real factorial = k.order == 2 ? 2 : 1, length = op.hi() - op.lo();
     const Real d = std::min(k.position - op.lo(), op.hi() - k.position);
     const Real short_side = abs(k.jump) * pow(d, Real(k.order)) / factorial;
@@ -1697,8 +1697,11 @@ kinked_solution<Real> solve_kinks(const abel_operator<Real>& op, edge leading, e
     out.rounding_floor = max(out.rounding_floor, detail::step_rounding_floor(out.terms.back(), op.parameters().alpha(), false));
   }
   std::vector<split_integrator<Real>> rules;
-  for (const auto& term : out.terms) rules.emplace_back(term.quadrature_nodes() - 4);
-  using std::pow;
+  std::vector<Real> term_integrals;  // int C phi of each term (a composite quadrature each)
+  for (const auto& term : out.terms) {
+    rules.emplace_back(term.quadrature_nodes() - 4);
+    term_integrals.push_back(term.integral());
+  }
   const Real h = op.half_length(), scale = pow(h, op.parameters().alpha());
   // F - sum A[C phi] at s (inside: the terms' images on the reference interval times h^alpha).
   // A kink on an interpolation point, to rounding (the centre x0 = 0 is a node of every odd
@@ -1707,7 +1710,6 @@ kinked_solution<Real> solve_kinks(const abel_operator<Real>& op, edge leading, e
   // right: 2 I(x0 + d) - I(x0 + 2 d) = I(x0) + O(d^2 I''), d = kink_offset.
   const Real kink_offset = Real(1) / 100000000;
   auto image = [&](std::size_t k, const Real& y) {
-    using std::abs;
     const auto& term = out.terms[k];
     if (abs(y - term.x0) > 4 * std::numeric_limits<Real>::epsilon() * (1 + abs(term.x0)))
       return enrichment_image_any(term, op.parameters(), rules[k], y);
@@ -1724,7 +1726,7 @@ kinked_solution<Real> solve_kinks(const abel_operator<Real>& op, edge leading, e
   // nu = +1 with a load: the series carries what the terms do not.
   solve_options<Real> o = options;
   if (o.load)
-    for (const auto& term : out.terms) *o.load -= term.integral();
+    for (const Real& integral : term_integrals) *o.load -= integral;
   out.smooth = solve(op, leading, trailing, remainder, o);
   if (out.terms.empty()) return out;
   // The remainder's scale against the data's, on the residual's grid (without a residual, 9
@@ -1751,9 +1753,12 @@ kinked_solution<Real> solve_kinks(const abel_operator<Real>& op, edge leading, e
   }
   // int g = int series + sum int C phi cancels as well: 256 eps of the terms' integrals (the
   // composite rules of int phi: measured 50-200 eps of their size next to an edge).
-  Real terms = 0;
-  for (const auto& term : out.terms) terms += abs(term.integral());
-  const Real total = abs(out.integral());
+  Real terms = 0, total = out.smooth.density.integral();  // total: as kinked_solution::integral
+  for (const Real& integral : term_integrals) {
+    terms += abs(integral);
+    total += integral;
+  }
+  total = abs(total);
   if (terms > 0)
     out.rounding_floor = total > 0 ? max(out.rounding_floor, 256 * std::numeric_limits<Real>::epsilon() * terms / total)
                                    : std::numeric_limits<Real>::infinity();
