@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rhabel::punch::detail {
 
@@ -60,14 +61,41 @@ double layer_partial(const abel::layer_density<double>& layer, double s, bool to
 
 }  // namespace
 
+abel::enrichment_rule<double> contact_density::kink_rule(double beyond_lo, double beyond_hi) const {
+  abel::enrichment_rule<double> out;
+  for (const auto& term : kinks) {
+    auto rule = abel::enrichment_nodes(term, beyond_lo, beyond_hi);
+    out.one_plus_x.insert(out.one_plus_x.end(), rule.one_plus_x.begin(), rule.one_plus_x.end());
+    out.one_minus_x.insert(out.one_minus_x.end(), rule.one_minus_x.begin(), rule.one_minus_x.end());
+    out.value.insert(out.value.end(), rule.value.begin(), rule.value.end());
+  }
+  return out;
+}
+
+Eigen::VectorXd contact_density::kink_moments(const abel::far_field<double>& field) const {
+  if (kinks.empty()) return Eigen::VectorXd::Zero(static_cast<Eigen::Index>(field.order()));
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto rule = kink_rule(inf, inf);
+  std::vector<double> x(rule.size());
+  for (std::size_t j = 0; j < rule.size(); ++j) x[j] = rule.x(j);
+  return field.interpolation(x).transpose() *
+         Eigen::Map<const Eigen::VectorXd>(rule.value.data(), static_cast<Eigen::Index>(rule.size()));
+}
+
 void contact_density::set_interval(double lo, double hi) {
   // int C phi scales with the half-length (phi lives on the reference axis).
-  if (has_apex && length() > 0) apex_integral *= (hi - lo) / length();
+  if (length() > 0) {
+    if (has_apex) apex_integral *= (hi - lo) / length();
+    kinks_integral *= (hi - lo) / length();
+  }
   jacobi.lo = apex.smooth.lo = layer.lo = lo;
   jacobi.hi = apex.smooth.hi = layer.hi = hi;
+  for (auto& term : kinks) term.smooth.lo = lo, term.smooth.hi = hi;
 }
 
 void contact_density::scale(double factor) {
+  for (auto& term : kinks) term.enrichment *= factor;
+  kinks_integral *= factor;
   for (double& c : jacobi.coefficients) c *= factor;
   for (double& c : apex.smooth.coefficients) c *= factor;  // empty unless mapped
   apex.enrichment *= factor;
@@ -78,13 +106,14 @@ void contact_density::scale(double factor) {
 
 double contact_density::value(double t) const {
   if (line_load || !(t > a()) || !(t < b())) return 0;
-  const double regular = jacobi(t) + layer(t);
+  double regular = jacobi(t) + layer(t);
+  for (const auto& term : kinks) regular += term(t);
   return has_apex ? regular + apex(t) : regular;
 }
 
 double contact_density::integral() const {
   if (line_load) return line_weight;
-  const double regular = jacobi.integral() + layer.integral();
+  const double regular = jacobi.integral() + layer.integral() + kinks_integral;
   return has_apex ? regular + apex_integral : regular;
 }
 
@@ -92,7 +121,8 @@ double contact_density::integral_to(double s) const {
   if (line_load) return s > a() ? line_weight : 0;
   if (!(s > a())) return 0;
   if (!(s < b())) return integral();
-  const double regular = jacobi.integral_to(s) + layer_partial(layer, s, true);
+  double regular = jacobi.integral_to(s) + layer_partial(layer, s, true);
+  for (const auto& term : kinks) regular += term.integral_to(s);
   return has_apex ? regular + apex.integral_to(s) : regular;
 }
 
@@ -103,12 +133,14 @@ double contact_density::integral_from(double s) const {
   double sum = series_integral_from(jacobi, s) + layer_partial(layer, s, false);
   // The enrichment's composite rule cut at s (integrate_between: pieces right of s only).
   if (has_apex) sum += apex.integral_from(s);
+  for (const auto& term : kinks) sum += term.integral_from(s);
   return sum;
 }
 
 double contact_density::intensity(bool trailing) const {
   double K = trailing ? jacobi.intensity_trailing() : jacobi.intensity_leading();
   if (has_apex) K += trailing ? apex.intensity_trailing() : apex.intensity_leading();
+  for (const auto& term : kinks) K += trailing ? term.intensity_trailing() : term.intensity_leading();
   if (!layer.empty()) {
     // The layer's factor at the edge, in jacobi_density's normalisation (2/L)^exponent 2^other.
     const double L = length();

@@ -222,6 +222,8 @@ scene make_scene(const profile_model& m, const std::vector<run>& runs, double lo
     gp.search_hi = x[m.bumps[r.last].last] - apex;
     for (const double c : m.curve.corners())
       if (c > apex + gp.search_lo && c < apex + gp.search_hi) gp.corners.push_back(c - apex);
+    for (const auto& [at, jump] : m.curve.knots(apex + gp.search_lo, apex + gp.search_hi))
+      gp.knots.push_back({at - apex, jump});
     indentor ind;
     ind.shape = std::move(gp);
     ind.apex = apex;

@@ -26,16 +26,62 @@ struct particular {
   double defect = 0;  // nu = -1: A g = F - h^alpha defect on the contact (abel's normalisation)
 };
 
+/// From this alpha on, a general profile's knots inside a contact are built into its particular
+/// (abel::solve_kinks); below it they are left to the series. WHY: the own contact's datum of a
+/// knot's term is exact from exact_datum_alpha on (surface.hpp, datum: one Gauss-Jacobi sum with
+/// the weight shifted by alpha), and its small-alpha forms are not written for the terms.
+constexpr double kink_alpha = 1e-2;
+
+/// How a particular with knots is solved: to `accuracy` (the evaluation's: problem::accuracy, not
+/// below the tolerance; a knot's term is exact, the rest converges spectrally, and at tighter
+/// tolerances the slope data's rounding, ~1e-12 on a short contact, sends the ladder to its cap),
+/// at exactly `degree` image coefficients when non-zero (the Jacobian's differences: the base
+/// point's, problem::fixed_particular_degrees).
+struct kink_settings {
+  double accuracy = 0;
+  std::size_t degree = 0;
+};
+
+/// F with knots, no step inside [a, b]: abel::solve_kinks, the knots' terms into g.kinks.
+particular kinked_particular(const abel::abel_operator<double>& op, const edge_exponents& e, const forcing& F,
+                             std::vector<abel::kink<double>> inside, std::size_t max_degree, const kink_settings& ks,
+                             double load) {
+  abel::solve_options<double> o;
+  o.residual_points = 0;
+  o.tolerance = ks.accuracy;
+  o.max_degree = max_degree + 1;
+  o.degree = ks.degree;
+  if (e.nu == 1) o.load = load;
+  const auto smooth = F.smooth;
+  auto F_at = [&](double s) { return smooth ? smooth(s) : 0.0; };
+  auto sol = abel::solve_kinks(op, leading_edge(e.nu), trailing_edge(e.nu), F_at, inside, o);
+  particular out;
+  out.g.jacobi = std::move(sol.smooth.density);
+  if (e.nu == 1 && out.g.jacobi.coefficients.empty()) out.g.jacobi.coefficients.assign(1, 0.0);
+  out.g.kinks = std::move(sol.terms);
+  for (const auto& term : out.g.kinks) out.g.kinks_integral += term.integral();
+  out.g.nu = e.nu;
+  out.g.tail = std::max(sol.smooth.coefficient_tail, sol.rounding_floor);
+  out.g.particular_degree = sol.smooth.degree;
+  out.defect = e.nu == -1 ? sol.smooth.solvability_defect : 0.0;
+  return out;
+}
+
 /// F of the class e on [a, b] without the apex enrichment: spectral (abel::solve) when no step lies
-/// inside, else the projection with the steps' coefficients in closed form, adaptive in the smooth
-/// part's tail.
+/// inside, with the knots inside built in (kinked_particular), else the projection with the steps'
+/// coefficients in closed form, adaptive in the smooth part's tail.
 particular series_particular(double a, double b, const edge_exponents& e, const forcing& F, const context& cx,
-                              std::size_t cap, double load = 0) {
+                              std::size_t cap, const kink_settings& ks, double load = 0) {
   const std::size_t max_degree = std::max<std::size_t>(cap, 8);
   bool step_inside = false;
   for (const auto& [position, jump] : F.steps) step_inside = step_inside || (position > a && position < b);
   particular out;
   const abel::abel_operator<double> op(cx.par, a, b);
+  std::vector<abel::kink<double>> inside;
+  for (const auto& k : F.kinks)
+    if (k.position > a && k.position < b) inside.push_back(k);
+  if (!step_inside && !inside.empty() && cx.alpha >= kink_alpha && cx.options.profile_knots)
+    return kinked_particular(op, e, F, std::move(inside), max_degree, ks, load);
   if (!step_inside) {
     abel::solve_options<double> o;
     o.residual_points = 0;
@@ -82,11 +128,11 @@ particular split_particular(const indentor_state& st, const context& cx, double 
 }
 
 particular solve_particular(const indentor_state& st, const context& cx, role r, double a, double b, double load,
-                            bool loaded) {
+                            bool loaded, const kink_settings& ks) {
   particular out;
   // The series' degree: solve_options::max_degree, or the contact's own cap below it.
   const std::size_t cap = st.degree_cap > 0 ? std::min(st.degree_cap, cx.options.max_degree) : cx.options.max_degree;
-  if (loaded) return series_particular(a, b, cx.exponents(1), own_forcing(st, cx), cx, cap, load);
+  if (loaded) return series_particular(a, b, cx.exponents(1), own_forcing(st, cx), cx, cap, ks, load);
   if (r == role::line_load) {
     out.g.jacobi.lo = out.g.jacobi.hi = a;
     out.g.line_load = true;
@@ -110,7 +156,7 @@ particular solve_particular(const indentor_state& st, const context& cx, role r,
     out.g = build_wedge_step(a, b, st.apex, -1, cx, F, &out.defect);
     return out;
   }
-  return series_particular(a, b, e, F, cx, cap);
+  return series_particular(a, b, e, F, cx, cap, ks);
 }
 
 // The action of one contact's density at points of another (disjoint) interval [lo, hi].
@@ -134,6 +180,16 @@ class cross_field {
     weighted_.resize(nodes_.x.size());
     g.jacobi.series_evaluator().evaluate(nodes_.x.data(), weighted_.data(), nodes_.x.size());
     for (std::size_t q = 0; q < nodes_.x.size(); ++q) weighted_[q] *= nodes_.weight[q];
+    // The knots' terms by their own composite rules, graded toward the facing end at the gap.
+    if (!g.kinks.empty()) {
+      const double inf = std::numeric_limits<double>::infinity(), h = g.jacobi.half_length(), d = gap / h;
+      const auto rule = g.kink_rule(right_of_ ? d : inf, right_of_ ? inf : d);
+      for (std::size_t j = 0; j < rule.size(); ++j) {
+        nodes_.t_minus_lo.push_back(h * rule.one_plus_x[j]);
+        nodes_.hi_minus_t.push_back(h * rule.one_minus_x[j]);
+        weighted_.push_back(rule.value[j]);
+      }
+    }
     if (g.has_apex) op_ = std::make_unique<abel::abel_operator<double>>(par, g.a(), g.b());
   }
   double operator()(double s) const {
@@ -159,8 +215,9 @@ class cross_field {
 
 /// The action of the contacts' particular solutions on the other contacts through the far field:
 /// each contact's moments from its Jacobi series (exact Gauss-Jacobi quadrature), the local values
-/// of every contact once. A contact with an apex enrichment, and line loads (not among the
-/// targets), act directly on every contact (direct()), and so do near pairs.
+/// of every contact once, the knots' terms through contact_density::kink_moments. A contact with an apex
+/// enrichment, and line loads (not among the targets), act directly on every contact (direct()),
+/// and so do near pairs.
 class particular_field {
  public:
   /// Null when the field would have nothing far (or there is no tree: too few contacts).
@@ -182,6 +239,7 @@ class particular_field {
       out->plain_.push_back(!gi.has_apex);
       W.push_back(gi.has_apex ? Eigen::VectorXd::Zero(static_cast<Eigen::Index>(out->field_->order()))
                               : out->field_->density_moments(k, gi.jacobi));
+      if (!gi.has_apex) W.back() += gi.kink_moments(*out->field_);
     }
     out->local_ = out->field_->far_values(W);
     return out;
@@ -262,9 +320,22 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
   out.g.resize(n);
   out.defect.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
-    auto p = pb.split[i] != 0 ? split_particular(st[i], cx, a[i], b[i], pb.split[i])
-                              : solve_particular(st[i], cx, pb.roles[i], a[i], b[i], pb.load(i),
-                                                 is_loaded(pb, i));
+    const kink_settings ks{std::max(cx.options.tolerance, pb.accuracy),
+                           pb.fixed_particular_degrees.empty() ? 0 : pb.fixed_particular_degrees[i]};
+    const particular_memo::key key{a[i], b[i], pb.load(i), ks.accuracy, nu_of(pb.roles[i]), is_loaded(pb, i), ks.degree};
+    particular p;
+    if (auto kept = pb.split[i] == 0 ? pb.particulars->find(i, key) : std::nullopt) {
+      p.g = std::move(*kept);  // a knotted particular (nu = -1: its defect, kept in `defect`)
+      p.defect = p.g.kinks_defect;
+    } else {
+      p = pb.split[i] != 0 ? split_particular(st[i], cx, a[i], b[i], pb.split[i])
+                           : solve_particular(st[i], cx, pb.roles[i], a[i], b[i], pb.load(i), is_loaded(pb, i), ks);
+      if (!p.g.kinks.empty()) {
+        p.g.kinks_defect = p.defect;
+        pb.particulars->store(i, key, p.g);
+      }
+    }
+    out.particular_degrees.push_back(p.g.kinks.empty() ? 0 : p.g.particular_degree);
     out.g[i] = std::move(p.g);
     out.defect[i] = p.defect;
   }

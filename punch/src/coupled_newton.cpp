@@ -516,6 +516,7 @@ class colouring {
 Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x, const evaluation& ev) {
   problem pb = base;
   pb.fixed_degrees = ev.sol.degrees;
+  pb.fixed_particular_degrees = ev.sol.particular_degrees;
   pb.fixed_poles_per_decade = ev.sol.poles_per_decade;
   const Eigen::VectorXd& r = ev.r;
   const auto m = static_cast<Eigen::Index>(u.state.size());
@@ -881,6 +882,7 @@ constexpr double krylov_wide_step = 1e-5;
 Eigen::VectorXd krylov_step(const newton_state& s, const jacobian_state& js) {
   problem pb = s.pb;
   pb.fixed_degrees = s.ev.sol.degrees;
+  pb.fixed_particular_degrees = s.ev.sol.particular_degrees;
   pb.fixed_poles_per_decade = s.ev.sol.poles_per_decade;
   const unknowns& u = s.u;
   Eigen::VectorXd length(static_cast<Eigen::Index>(u.state.size()));

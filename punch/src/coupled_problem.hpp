@@ -117,6 +117,8 @@ struct fixed_solution {
   std::vector<double> defect;      // per state: nu = -1 defect (abel's normalisation), else 0
   std::size_t degree = 0;          // the most collocation points of a contact's correction (0: none)
   std::vector<std::size_t> degrees;  // per state: its correction's collocation points (0: none)
+  // per state: the image coefficients of a particular with knots built in (0: none)
+  std::vector<std::size_t> particular_degrees;
   std::size_t poles_per_decade = 0;  // the boundary-layer route's (0: the polynomial route)
   double correction_residual = 0;  // its independent residual, relative to the original data
   bool correction_converged = true;
@@ -154,6 +156,44 @@ class degree_hints {
  private:
   mutable std::mutex mutex_;
   std::vector<std::size_t> degrees_;
+};
+
+/// The particulars with knots built in (coupled_fixed.cpp, kinked_particular) of the last
+/// evaluation, per state, with what they were solved for (edges, load, class, accuracy, degree):
+/// an evaluation that asks a state's particular for exactly the same (bit for bit) takes the kept
+/// one. WHY: a Jacobian's difference moves a few contacts' edges and solves all contacts again,
+/// and a knotted particular costs ~3 us a term and interpolation point (abel::solve_kinks): a
+/// 4000-sample periodic profile (86 patches) took 67 s with every particular solved anew, where
+/// the plain series had taken 10 s. Thread-safe (copies of a problem share it).
+class particular_memo {
+ public:
+  struct key {
+    double a = 0, b = 0, load = 0, accuracy = 0;
+    int nu = 0;
+    bool loaded = false;
+    std::size_t degree = 0;  // requested: 0 adaptive, else fixed
+    bool operator==(const key& o) const {
+      return a == o.a && b == o.b && load == o.load && accuracy == o.accuracy && nu == o.nu && loaded == o.loaded;
+    }
+  };
+  /// The kept density for state i when `k` matches and the requested degree is the same request
+  /// or the degree the kept one ended at.
+  std::optional<contact_density> find(std::size_t i, const key& k) const {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (i >= kept_.size() || !kept_[i]) return std::nullopt;
+    const auto& [stored, g] = *kept_[i];
+    if (!(stored == k) || !(k.degree == stored.degree || k.degree == g.particular_degree)) return std::nullopt;
+    return g;
+  }
+  void store(std::size_t i, const key& k, const contact_density& g) {
+    const std::lock_guard<std::mutex> lock(mutex_);
+    if (kept_.size() <= i) kept_.resize(i + 1);
+    kept_[i] = std::pair<key, contact_density>{k, g};
+  }
+
+ private:
+  mutable std::mutex mutex_;
+  std::vector<std::optional<std::pair<key, contact_density>>> kept_;
 };
 
 /// A rigid body's last finite-difference Jacobian of the edge conditions (coupled_newton.cpp,
@@ -210,6 +250,8 @@ struct problem {
   // its residual (the finite differences of the Jacobian: the base point's degrees,
   // fixed_solution::degrees, so that both sides of a difference share one discretisation)
   std::vector<std::size_t> fixed_degrees;
+  // Likewise the particulars with knots (fixed_solution::particular_degrees; 0: adaptive).
+  std::vector<std::size_t> fixed_particular_degrees;
   // With fixed_degrees on the boundary-layer route: the base point's poles a decade.
   std::size_t fixed_poles_per_decade = 0;
   // The Jacobian kept across solves (jacobian_memo; copies share it); null: none. Read only by a
@@ -226,6 +268,8 @@ struct problem {
   // only grows, and one overshoot toward a merge kept every later evaluation at the cap of 600).
   // Per contact (abel's adapt_each_interval): only the contacts with a near neighbour climb.
   std::shared_ptr<degree_hints> hints = std::make_shared<degree_hints>();
+  // The knotted particulars of the last evaluations (copies share them: see particular_memo).
+  std::shared_ptr<particular_memo> particulars = std::make_shared<particular_memo>();
   // > the requested tolerance: the accuracy to which an evaluation solves the correction (an
   // inexact Newton step far from the solution; see newton_iteration).
   double accuracy = 0;

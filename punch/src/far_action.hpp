@@ -3,7 +3,8 @@
 // contacts (internal to punch/src: the report's residual of (8) and the surface displacement).
 //
 // The contacts' Jacobi series enter abel::far_field's treecode (far_field::at_point)
-// through their moments (exact Gauss-Jacobi quadrature); every contact the tree finds near x, a
+// through their moments (exact Gauss-Jacobi quadrature; the knots' terms by their composite rules,
+// contact_density::kink_moments); every contact the tree finds near x, a
 // contact with an apex enrichment (whose moments the series does not carry) and a line load are
 // summed by the caller's own quadrature (`direct`). The far part is accurate to ~eps/100 of the
 // kernel's size (p = 26; tests/abel/test_far_field.cpp), so the sums are those of the direct
@@ -52,6 +53,7 @@ class far_action {
       const bool plain = !g.has_apex && !g.jacobi.coefficients.empty();
       always_direct_[order[k]] = !plain;
       W.push_back(plain ? field_->density_moments(k, g.jacobi) : Eigen::VectorXd::Zero(static_cast<Eigen::Index>(field_->order())));
+      if (plain) W.back() += g.kink_moments(*field_);
     }
     moments_ = field_->upward(W);
   }

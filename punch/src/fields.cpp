@@ -191,7 +191,8 @@ std::vector<double> even_grid(double lo, double hi, std::size_t n) {
 // series' recurrence coefficients once, the series of four samples summed together, the weight
 // w = (1-x)^del (1+x)^gam once per sample): without a map the density whose series is g.jacobi
 // and whose enrichment is g.apex's; mapped (apex near an edge) g.apex itself, whose series lives
-// in the mapped variable, plus g.jacobi's c_0. An isolated wedge with a Riemann-Hilbert solution
+// in the mapped variable, plus g.jacobi's c_0; the knots' terms added one by one. An isolated
+// wedge with a Riemann-Hilbert solution
 // takes its samples from it (rh_pressure).
 double sample_pressure(const pressure_field::source& field, const std::vector<double>& t, std::vector<double>& p) {
   const contact_density& g = field.g;
@@ -218,6 +219,7 @@ double sample_pressure(const pressure_field::source& field, const std::vector<do
     const double x = t[inside[j]];
     double value = values[j];
     if (mapped) value += g.jacobi.value_at_distance(x - g.jacobi.lo, g.jacobi.hi - x);
+    for (const auto& term : g.kinks) value += term.value_at_distance(one_plus[j], one_minus[j]);
     p[inside[j]] = field.scale * value;
   }
   return 0.0;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <limits>
 
 namespace rhabel::punch::detail {
 namespace {
@@ -140,6 +141,13 @@ point_sources density_sources(const contact_density& d, double origin) {
     out.t.push_back(origin + (rule.x_minus_lo[q] <= rule.hi_minus_x[q] ? d.jacobi.lo + d.length() * rule.x_minus_lo[q] / 2
                                                                        : d.jacobi.hi - d.length() * rule.hi_minus_x[q] / 2));
     out.w.push_back(values[q] * rule.weight[q] * d.length() / 2);
+  }
+  // The knots' terms by their composite rules (the kernel is analytic on the contact).
+  const double inf = std::numeric_limits<double>::infinity();
+  const auto kinks = d.kink_rule(inf, inf);
+  for (std::size_t j = 0; j < kinks.size(); ++j) {
+    out.t.push_back(origin + kinks.t(j, d.a(), d.b()));
+    out.w.push_back(kinks.value[j]);
   }
   return out;
 }

@@ -91,6 +91,29 @@ double profile_curve::slope(double x) const {
   return gsl_spline_eval_deriv(pc.spline.get(), std::clamp(x, pc.lo, pc.hi), nullptr) - correction;
 }
 
+std::vector<std::pair<double, double>> profile_curve::knots(double lo, double hi) const {
+  std::vector<std::pair<double, double>> out;
+  const std::size_t n = x_.size();
+  // z'' at x on the piece of the interval whose midpoint is mid (a corner's two pieces differ).
+  auto second = [&](double x, double mid) {
+    const piece& pc = piece_at(reduce(mid));
+    return gsl_spline_eval_deriv2(pc.spline.get(), std::clamp(reduce(x), pc.lo, pc.hi), nullptr);
+  };
+  auto third = [&](double from, double to) {
+    const double mid = (from + to) / 2;
+    return (second(to, mid) - second(from, mid)) / (to - from);
+  };
+  const auto first = static_cast<std::size_t>(std::upper_bound(x_.begin(), x_.end(), lo) - x_.begin());
+  for (std::size_t i = first; i < n && x_[i] < hi; ++i) {
+    if (std::binary_search(corners_.begin(), corners_.end(), x_[i])) continue;
+    const bool periodic = period_ > 0;
+    if (!periodic && (i == 0 || i + 1 == n)) continue;
+    const double left = i > 0 ? x_[i - 1] : x_[n - 1] - period_, right = i + 1 < n ? x_[i + 1] : x_[0] + period_;
+    out.push_back({x_[i], third(x_[i], right) - third(left, x_[i])});
+  }
+  return out;
+}
+
 std::vector<bump> find_bumps(const std::vector<double>& z) {
   std::vector<std::size_t> tips;
   for (std::size_t i = 1; i + 1 < z.size(); ++i) {

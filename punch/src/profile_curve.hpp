@@ -16,6 +16,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <utility>
 #include <vector>
 
 namespace rhabel::punch::detail {
@@ -32,6 +33,11 @@ class profile_curve {
                 std::function<double(double)> dc);
   double value(double x) const;
   double slope(double x) const;
+  /// The spline's knots strictly inside (lo, hi) with the jump of its third derivative there,
+  /// z'''(x+) - z'''(x-) (z''' is constant between knots: (z''(x_k+1) - z''(x_k))/(x_k+1 - x_k)).
+  /// Corners and the data's ends are not knots in this sense (the slope jumps or the data stop);
+  /// a window's correction is smooth and adds none.
+  std::vector<std::pair<double, double>> knots(double lo, double hi) const;
   double lo() const { return x_.front(); }
   double hi() const { return x_.back(); }
   /// The period (> 0) of a periodic profile; 0 for a finite window.

@@ -167,12 +167,22 @@ double max_slope(const indentor_state& st, double a, double b) {
   return m;
 }
 
-// C_f = int f' g / int g for a density without apex part (abel::jacobi_density::integrate, split at the corners).
+// C_f = int f' g / int g for a density without apex part (abel::jacobi_density::integrate, split at
+// the corners; with knots' terms also at the knots, where f''' jumps, and each term by its
+// composite rule).
 double mean_slope(const indentor_state& st, const contact_density& g) {
-  std::vector<double> corners;
-  if (st.k == kind::general)
-    for (double c : std::get<general_profile>(st.source->shape).corners) corners.push_back(st.apex + c);
-  return g.jacobi.integrate([&](double t) { return own_slope(st, t); }, corners) / g.jacobi.integral();
+  std::vector<double> cuts;
+  if (st.k == kind::general) {
+    const auto& gp = std::get<general_profile>(st.source->shape);
+    for (double c : gp.corners) cuts.push_back(st.apex + c);
+    if (!g.kinks.empty())
+      for (const auto& [at, jump] : gp.knots)
+        if (st.apex + at > g.a() && st.apex + at < g.b()) cuts.push_back(st.apex + at);
+  }
+  const auto slope = [&](double t) { return own_slope(st, t); };
+  double moment = g.jacobi.integrate(slope, cuts);
+  for (const auto& term : g.kinks) moment += term.integrate(slope, cuts);
+  return moment / (g.jacobi.integral() + g.kinks_integral);
 }
 
 // F = f'/Gamma(1 - alpha) of the indentor's own profile as smooth part + steps (the coupled solve
@@ -206,6 +216,7 @@ forcing own_forcing(const indentor_state& st, const context& cx) {
         jumps.push_back({apex + c, (slope(c + h) - slope(c - h)) / gf});
       }
       F.steps = jumps;
+      for (const auto& [at, jump] : gp.knots) F.kinks.push_back({apex + at, 2u, jump / gf});
       F.smooth = [=](double s) {
         double v = slope(s - apex) / gf;
         for (const auto& [pos, j] : jumps)

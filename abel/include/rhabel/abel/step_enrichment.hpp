@@ -203,6 +203,8 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <stdexcept>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -816,6 +818,27 @@ struct distance_power {
   bool from_a;
 };
 
+/// A K that records the rule instead of a factor: a factor 1 at every node, it keeps the node's
+/// distances to the reference ends (from those to the original piece's ends a, b) and, through
+/// take(), the node's term of the sum (weight times integrand). enrichment_nodes' collector.
+template <class Real>
+struct node_recorder {
+  Real a, b;  // the original piece, reference axis
+  std::vector<Real>* one_plus_x;
+  std::vector<Real>* one_minus_x;
+  std::vector<Real>* term;
+  Real operator()(const Real&, const Real& u, const Real& v) {
+    one_plus_x->push_back((a + 1) + u);
+    one_minus_x->push_back((1 - b) + v);
+    return Real(1);
+  }
+  void take(const Real& contribution) { term->push_back(contribution); }
+};
+template <class K>
+struct records_nodes : std::false_type {};
+template <class Real>
+struct records_nodes<node_recorder<Real>> : std::true_type {};
+
 /// The factor k at a node (x, distance u from a, v from b): a distance_power joins `powers` and
 /// returns its coefficient; any other callable is called.
 template <class Real, class K>
@@ -865,7 +888,9 @@ Real enrichment_piece_panels(const enriched_density<Real>& d, const Real& a, con
       E = d.E_order(dist, right_side);
     }
     const Real extra = extra_factor(k, powers, x, u + offset_a, v + offset_b);
-    sum += weight * (powers.value() * E * d.q_at(one_plus_x, one_minus_x) * extra);
+    const Real term = weight * (powers.value() * E * d.q_at(one_plus_x, one_minus_x) * extra);
+    sum += term;
+    if constexpr (records_nodes<std::remove_cv_t<K>>::value) k.take(term);
   });
   return sum;
 }
@@ -907,8 +932,18 @@ Real enrichment_piece(const enriched_density<Real>& d, const Real& a, const Real
     return powers.value() * d.q_at(one_plus_x, one_minus_x) * extra * d.order_power(dist, right_side);
   };
   Real log_sum = 0, plain_sum = 0;
-  for (std::size_t i = 0; i < log_rule.x.size(); ++i) log_sum += log_rule.weight[i] * G(D * log_rule.x[i]);
-  for (std::size_t j = 0; j < legendre->size(); ++j) plain_sum += legendre->weight[j] * G(D * legendre->x_minus_lo[j] / 2);
+  const Real log_factor = D * (right_side ? d.kappa : Real(1)) * pow(D, -d.alpha);
+  const Real plain_factor = D * d.E_full(D, right_side);
+  for (std::size_t i = 0; i < log_rule.x.size(); ++i) {
+    const Real term = log_rule.weight[i] * G(D * log_rule.x[i]);
+    log_sum += term;
+    if constexpr (records_nodes<std::remove_cv_t<std::remove_reference_t<K>>>::value) k.take(log_factor * term);
+  }
+  for (std::size_t j = 0; j < legendre->size(); ++j) {
+    const Real term = legendre->weight[j] * G(D * legendre->x_minus_lo[j] / 2);
+    plain_sum += term;
+    if constexpr (records_nodes<std::remove_cv_t<std::remove_reference_t<K>>>::value) k.take(plain_factor * term / 2);
+  }
   plain_sum /= 2;  // Gauss-Legendre on [-1, 1] moved to [0, 1]
   const Real near = D * ((right_side ? d.kappa : Real(1)) * pow(D, -d.alpha) * log_sum + d.E_full(D, right_side) * plain_sum);
   if (x0_at_a)
@@ -1557,6 +1592,46 @@ enriched_solution<Real> solve_step(const abel_operator<Real>& op, edge leading, 
   return sol;
 }
 
+/// The composite rule of an enrichment as weighted nodes (enrichment_nodes): node j at reference
+/// distances one_plus_x[j], one_minus_x[j] from the ends, value[j] = its rule weight times C phi
+/// there times the half-length, so that int_lo^hi f(t) C phi(t) dt ~= sum_j value[j] f(t_j).
+template <class Real>
+struct enrichment_rule {
+  std::vector<Real> one_plus_x, one_minus_x, value;
+  std::size_t size() const { return value.size(); }
+  /// The reference abscissa x_j in [-1, 1] from the nearer end.
+  Real x(std::size_t j) const { return one_plus_x[j] <= one_minus_x[j] ? one_plus_x[j] - 1 : 1 - one_minus_x[j]; }
+  /// t_j from the nearer end (exact next to either end).
+  Real t(std::size_t j, const Real& lo, const Real& hi) const {
+    const Real h = (hi - lo) / 2;
+    return one_plus_x[j] <= one_minus_x[j] ? lo + h * one_plus_x[j] : hi - h * one_minus_x[j];
+  }
+};
+
+/// The nodes of enriched_density::integrate's composite rule for the enrichment C phi of d alone
+/// (d without a Moebius map and with an empty series: a kink's term, kink_enrichment), for
+/// integrands f whose nearest singular points lie beyond_lo half-lengths below lo and beyond_hi
+/// above hi (the panels are graded toward them; infinite: none). The same pieces, nodes and terms
+/// as integrate: sum_j value[j] f(t_j) equals d.integrate(f, {}, beyond_lo, beyond_hi) up to the
+/// order of summation, so its accuracy is integrate's (near double rounding for f analytic on
+/// [lo, hi]). WHY: a density that acts at many points (a contact's action on its neighbours)
+/// evaluates phi once per node instead of once per node and point.
+template <class Real>
+enrichment_rule<Real> enrichment_nodes(const enriched_density<Real>& d, const Real& beyond_lo, const Real& beyond_hi) {
+  if (d.mobius != 0 || !d.smooth.coefficients.empty())
+    throw std::invalid_argument("rhabel::abel::enrichment_nodes: the enrichment alone (no map, empty series)");
+  using detail::piece_end;
+  enrichment_rule<Real> out;
+  const Real x0 = d.x0;
+  detail::node_recorder<Real> left{Real(-1), x0, &out.one_plus_x, &out.one_minus_x, &out.value};
+  detail::node_recorder<Real> right{x0, Real(1), &out.one_plus_x, &out.one_minus_x, &out.value};
+  detail::enrichment_piece(d, Real(-1), x0, piece_end::interval_end, piece_end::x0, beyond_lo, 1 - x0, left);
+  detail::enrichment_piece(d, x0, Real(1), piece_end::x0, piece_end::interval_end, x0 + 1, beyond_hi, right);
+  const Real scale = d.enrichment * d.half_length();
+  for (Real& v : out.value) v *= scale;
+  return out;
+}
+
 /// One kink of the data (solve_kinks): F's derivative of order `order` (1 or 2) jumps by
 /// `jump` = F^(order)(position+) - F^(order)(position-), F and its lower derivatives continuous
 /// there (order 1: a kink; order 2: a knot of a cubic spline's slope).
@@ -1653,7 +1728,10 @@ struct kinked_solution {
 /// Solves A g = F on [lo, hi] for F smooth except at the kinks (header, "Kinks"): each kink's
 /// enrichment (kink_enrichment) is built in with its coefficient from the given jump, and the
 /// remainder F - sum A[C phi] is solved by solve (adaptive Chebyshev interpolation, options as
-/// there; it stops at its rounding plateau). residual_points > 0: the independent residual of
+/// there; it stops at its rounding plateau), on the interval moved to [0, L] (the terms' images
+/// at exactly the interpolation points; WHY: the body). options.tolerance and the reported
+/// coefficient_tail are relative to max|F| (solve's tolerance is scaled by max|F|/max|remainder|
+/// on 9 points). residual_points > 0: the independent residual of
 /// the remainder's solve, relative to max|F| (rescaled from solve's max|remainder|): that of
 /// A g = F up to the quadrature of the terms' images (the same quadrature that formed the
 /// remainder; the tests check the original equation by tanh-sinh). nu = +1 with options.load:
@@ -1665,12 +1743,14 @@ struct kinked_solution {
 /// (see the body), is left to the interpolation (`terms` has the others). Limits: a kink near an
 /// edge costs digits to cancellation (rounding_floor; int g off by 5.9e-9 at 1e-3 of the
 /// half-length from an edge), and the adaptive loop stops there converged, as solve_step's at its
-/// floor; and, as for solve, an interval far from the origin (|lo| >> hi - lo) has its sampling
-/// points rounded by ~eps |lo|, which the status reports (not_converged at [1e6, 1e6 + 1e-6]):
-/// shift the origin first.
+/// floor; and, as for solve, F far from the origin (|lo| >> hi - lo) is sampled at points
+/// rounded by ~eps |lo|, which the status reports (not_converged at [1e6, 1e6 + 1e-6]): shift
+/// the origin first. (A contact 1.2e-4 long at 0.59, F of a spline: residual 2e-12.)
+namespace detail {
+/// solve_kinks on an interval as given (the public one moves it to [0, L] first).
 template <class Real, class F>
-kinked_solution<Real> solve_kinks(const abel_operator<Real>& op, edge leading, edge trailing, F&& f,
-                                  const std::vector<kink<Real>>& kinks, const solve_options<Real>& options = {}) {
+kinked_solution<Real> solve_kinks_as_given(const abel_operator<Real>& op, edge leading, edge trailing, F&& f,
+                                           const std::vector<kink<Real>>& kinks, const solve_options<Real>& options) {
   using std::abs;
   using std::max;
   using std::pow;
@@ -1727,24 +1807,38 @@ kinked_solution<Real> solve_kinks(const abel_operator<Real>& op, edge leading, e
   solve_options<Real> o = options;
   if (o.load)
     for (const Real& integral : term_integrals) *o.load -= integral;
+  // solve's tail is relative to max|remainder|, which the terms' images can make much larger than
+  // max|F| (below): its tolerance is scaled by their ratio on 9 first-kind points, so that the
+  // tail reaches options.tolerance relative to F. WHY: unscaled, a knot at x0 = 0.62 with q ~ 1e3
+  // stopped at 17 points with tail 8e-10 and residual 4e-7 relative to F.
+  auto ratio_on = [&](std::size_t points) {
+    const chebyshev_grid<Real> grid(points);
+    Real data = 0, rest = 0;
+    for (std::size_t j = 0; j < grid.x.size(); ++j) {
+      const Real s = grid.one_plus_x[j] <= grid.one_minus_x[j] ? op.lo() + h * grid.one_plus_x[j]
+                                                               : op.hi() - h * grid.one_minus_x[j];
+      data = max(data, abs(f(s)));
+      rest = max(rest, abs(remainder(s)));
+    }
+    return std::pair<Real, Real>{data, rest};
+  };
+  if (!out.terms.empty()) {
+    const auto [data, rest] = ratio_on(9);
+    // Not below 16 eps (solve's default): there the rounding plateau stops the loop anyway.
+    if (data > 0 && rest > data) o.tolerance = max(options.tolerance * data / rest, 16 * std::numeric_limits<Real>::epsilon());
+  }
   out.smooth = solve(op, leading, trailing, remainder, o);
   if (out.terms.empty()) return out;
   // The remainder's scale against the data's, on the residual's grid (without a residual, 9
   // first-kind points: a scale only): solve's residual is relative to max|remainder|, which the
   // terms' images can make much larger than max|F| (a kink next to an edge: q ~ 1e4 .. 1e6), and
   // their rounding, eps times that size, is what the series then cancels (rounding_floor).
-  const chebyshev_grid<Real> grid(options.residual_points > 0
-                                      ? detail::residual_grid_size(options.residual_points, out.smooth.degree)
-                                      : std::size_t(9));
-  Real data = 0, rest = 0;
-  for (std::size_t j = 0; j < grid.x.size(); ++j) {
-    const Real s = grid.one_plus_x[j] <= grid.one_minus_x[j] ? op.lo() + h * grid.one_plus_x[j]
-                                                             : op.hi() - h * grid.one_minus_x[j];
-    data = max(data, abs(f(s)));
-    rest = max(rest, abs(remainder(s)));
-  }
+  const auto [data, rest] = ratio_on(options.residual_points > 0
+                                          ? detail::residual_grid_size(options.residual_points, out.smooth.degree)
+                                          : std::size_t(9));
   if (data > 0) {
     out.smooth.residual *= rest / data;  // relative to max|F| (NaN stays NaN)
+    out.smooth.coefficient_tail *= rest / data;
     // 16 eps: the images' composite quadratures round to ~10-30 eps of their size (measured: the
     // residual relative to max|F| over eps max|remainder|/max|F|, 12-32 on the tests' cases).
     out.rounding_floor = max(out.rounding_floor, 16 * std::numeric_limits<Real>::epsilon() * rest / data);
@@ -1762,6 +1856,39 @@ kinked_solution<Real> solve_kinks(const abel_operator<Real>& op, edge leading, e
   if (terms > 0)
     out.rounding_floor = total > 0 ? max(out.rounding_floor, 256 * std::numeric_limits<Real>::epsilon() * terms / total)
                                    : std::numeric_limits<Real>::infinity();
+  return out;
+}
+}  // namespace detail
+
+template <class Real, class F>
+kinked_solution<Real> solve_kinks(const abel_operator<Real>& op, edge leading, edge trailing, F&& f,
+                                  const std::vector<kink<Real>>& kinks, const solve_options<Real>& options = {}) {
+  // Solved on the interval moved to [0, L] and moved back. WHY: the terms are large where their
+  // factor q grows (next to the far edge) and the series cancels them, so their images must be
+  // taken at exactly the interpolation points the series is fitted at; on [lo, hi] the point's
+  // reference abscissa comes back from the physical one rounded by ~eps |lo| / h, which that
+  // size amplifies (a contact 1.2e-4 long at 0.59: residual 5e-9, against 2e-12 at the origin).
+  const abel_operator<Real> local(op.parameters(), Real(0), op.hi() - op.lo());
+  std::vector<kink<Real>> moved = kinks;
+  for (auto& k : moved) {
+    if (!(k.position > op.lo() && k.position < op.hi()))
+      throw std::domain_error("rhabel::abel::solve_kinks: a kink's position must lie inside the interval");
+    k.position -= op.lo();
+    // Rounding must not put a kink inside onto an end.
+    const Real margin = std::numeric_limits<Real>::epsilon() * local.hi();
+    if (!(k.position >= margin)) k.position = margin;
+    if (!(k.position <= local.hi() - margin)) k.position = local.hi() - margin;
+  }
+  const Real lo = op.lo();
+  auto at = [&](const Real& u) { return f(lo + u); };
+  auto out = detail::solve_kinks_as_given(local, leading, trailing, at, moved, options);
+  auto place = [&](jacobi_density<Real>& d) {
+    d.lo = op.lo();
+    d.hi = op.hi();
+  };
+  place(out.smooth.density);
+  place(out.smooth.homogeneous);
+  for (auto& term : out.terms) place(term.smooth);
   return out;
 }
 

@@ -22,8 +22,11 @@
 //     part of abel::solve_union_layered (simple poles beyond the ends facing a neighbour, in the
 //     class of `jacobi`); absorb_layer turns it into Jacobi coefficients before the density is
 //     reported, so the report, the fields and the surface see a series and an apex only;
+//   * kinks: for a general profile with knots (f''' jumps) inside the contact, the singular term
+//     C phi of each knot (abel::solve_kinks' terms, enriched_densities with empty series): g =
+//     jacobi + sum kinks. They act on other points through their composite rules (kink_rule);
 //   * forcing: the right side of (8) as smooth part + steps (projected in contact.cpp with the steps'
-//     coefficients in closed form).
+//     coefficients in closed form) + knots.
 #pragma once
 
 #include "rhabel/abel.hpp"
@@ -43,6 +46,8 @@ using edge_exponents = abel::edge_exponents<double>;
 struct forcing {
   std::function<double(double)> smooth;               ///< may be empty (zero)
   std::vector<std::pair<double, double>> steps;       ///< (position, jump)
+  /// Points where smooth'' jumps (a general profile's knots: F = f'/Gamma(1 - alpha)).
+  std::vector<abel::kink<double>> kinks;
 };
 
 /// The density of one contact: Jacobi series + (wedge below the boundary) the apex enrichment of
@@ -66,6 +71,12 @@ struct contact_density {
   /// nearly touching contacts (abel::solve_union_layered), in the class of `jacobi`; empty
   /// otherwise. value, integral, intensity and scale include it; absorb_layer removes it.
   abel::layer_density<double> layer;
+  /// The knots' terms C phi (abel::solve_kinks), each with an empty series, in jacobi's class;
+  /// value, integral(s), intensity, scale and set_interval include them.
+  std::vector<abel::enriched_density<double>> kinks;
+  double kinks_integral = 0;  ///< sum of int C phi over kinks (composite quadratures: kept, scaled)
+  std::size_t particular_degree = 0;  ///< with kinks: the image coefficients of the series' solve
+  double kinks_defect = 0;  ///< with kinks, nu = -1: the particular's solvability defect (kept with it)
 
   double a() const { return jacobi.lo; }
   double b() const { return jacobi.hi; }
@@ -73,6 +84,15 @@ struct contact_density {
   edge_exponents exponents() const { return physical ? *physical : edge_exponents{jacobi.gam, jacobi.del, nu}; }
   /// Abscissa of the apex (has_apex only), from the enrichment's reference breakpoint.
   double apex_position() const { return a() + (1 + apex.apex_reference()) * length() / 2; }
+  /// The kinks' terms as one composite rule (abel::enrichment_nodes of each, concatenated): int f g_kinks
+  /// ~= sum_j value_j f(t_j) for f whose nearest singular points lie beyond_lo / beyond_hi
+  /// half-lengths below a / above b. Empty without kinks.
+  abel::enrichment_rule<double> kink_rule(double beyond_lo, double beyond_hi) const;
+  /// The far field's moments of the knots' terms on the leaf whose interval is [a, b] (the
+  /// Lagrange polynomials of `field`'s grid at the rule's nodes, times their values: kink_rule),
+  /// to add to far_field::density_moments of the series; zero without knots. The polynomials are
+  /// smooth on [a, b], so the rules are as accurate here as for int C phi.
+  Eigen::VectorXd kink_moments(const abel::far_field<double>& field) const;
   /// Moves the density to [lo, hi] (same reference shape).
   void set_interval(double lo, double hi);
   /// Sets apex_integral from apex (call after building the enrichment).
