@@ -215,9 +215,9 @@ class cross_field {
 
 /// The action of the contacts' particular solutions on the other contacts through the far field:
 /// each contact's moments from its Jacobi series (exact Gauss-Jacobi quadrature), the local values
-/// of every contact once, the knots' terms through contact_density::kink_moments. A contact with an apex
-/// enrichment, and line loads (not among the targets), act directly on every contact (direct()),
-/// and so do near pairs.
+/// of every contact once, the knots' terms through contact_density::kink_moments. A contact
+/// with an apex enrichment, and line loads (not among the targets), act directly on every contact
+/// (direct()), and so do near pairs.
 class particular_field {
  public:
   /// Null when the field would have nothing far (or there is no tree: too few contacts).
@@ -325,15 +325,12 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
     const particular_memo::key key{a[i], b[i], pb.load(i), ks.accuracy, nu_of(pb.roles[i]), is_loaded(pb, i), ks.degree};
     particular p;
     if (auto kept = pb.split[i] == 0 ? pb.particulars->find(i, key) : std::nullopt) {
-      p.g = std::move(*kept);  // a knotted particular (nu = -1: its defect, kept in `defect`)
-      p.defect = p.g.kinks_defect;
+      p.g = std::move(kept->g);  // a knotted particular
+      p.defect = kept->defect;
     } else {
       p = pb.split[i] != 0 ? split_particular(st[i], cx, a[i], b[i], pb.split[i])
                            : solve_particular(st[i], cx, pb.roles[i], a[i], b[i], pb.load(i), is_loaded(pb, i), ks);
-      if (!p.g.kinks.empty()) {
-        p.g.kinks_defect = p.defect;
-        pb.particulars->store(i, key, p.g);
-      }
+      if (!p.g.kinks.empty()) pb.particulars->store(i, {key, p.g, p.defect});
     }
     out.particular_degrees.push_back(p.g.kinks.empty() ? 0 : p.g.particular_degree);
     out.g[i] = std::move(p.g);

@@ -176,24 +176,30 @@ class particular_memo {
       return a == o.a && b == o.b && load == o.load && accuracy == o.accuracy && nu == o.nu && loaded == o.loaded;
     }
   };
-  /// The kept density for state i when `k` matches and the requested degree is the same request
-  /// or the degree the kept one ended at.
-  std::optional<contact_density> find(std::size_t i, const key& k) const {
+  /// A kept particular: its density and its solvability defect (nu = -1, abel's normalisation).
+  struct entry {
+    key k;
+    contact_density g;
+    double defect = 0;
+  };
+  /// The kept particular of state i when `k` matches and the requested degree is the same
+  /// request or the degree the kept one ended at.
+  std::optional<entry> find(std::size_t i, const key& k) const {
     const std::lock_guard<std::mutex> lock(mutex_);
     if (i >= kept_.size() || !kept_[i]) return std::nullopt;
-    const auto& [stored, g] = *kept_[i];
-    if (!(stored == k) || !(k.degree == stored.degree || k.degree == g.particular_degree)) return std::nullopt;
-    return g;
+    const entry& e = *kept_[i];
+    if (!(e.k == k) || !(k.degree == e.k.degree || k.degree == e.g.particular_degree)) return std::nullopt;
+    return e;
   }
-  void store(std::size_t i, const key& k, const contact_density& g) {
+  void store(std::size_t i, entry e) {
     const std::lock_guard<std::mutex> lock(mutex_);
     if (kept_.size() <= i) kept_.resize(i + 1);
-    kept_[i] = std::pair<key, contact_density>{k, g};
+    kept_[i] = std::move(e);
   }
 
  private:
   mutable std::mutex mutex_;
-  std::vector<std::optional<std::pair<key, contact_density>>> kept_;
+  std::vector<std::optional<entry>> kept_;
 };
 
 /// A rigid body's last finite-difference Jacobian of the edge conditions (coupled_newton.cpp,

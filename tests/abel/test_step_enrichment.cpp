@@ -939,6 +939,31 @@ TEST_CASE("solve_kinks: hard cases converge, or say what they lost") {
   CHECK(sol.smooth.residual > 1e-8);
 }
 
+TEST_CASE("solve_kinks: a large term on an interval far from its length from the origin") {
+  // A spline's knot on a rough profile's contact: 1.19e-4 long at 0.5884, the knot at x0 = 0.6247
+  // with F'' jumping by 4.5e6, so the term grows ~1e3 times F next to the far edge (its factor
+  // q) and the series cancels it. The residual of A g = F (solve's independent quadrature of the
+  // series) relative to max|F|: solved on [lo, hi] as given it was 5e-9 (images at abscissae
+  // rounded by eps |lo| / h); moved to [0, L], measured 1.8e-12. At tolerance 1e-9 the tail, taken
+  // relative to max|F|, must vouch for the residual: unscaled it stopped at 17 points with tail
+  // 8e-10 and residual 4.4e-7; measured now 33 points, tail 4.1e-10, residual 1.6e-10.
+  const double lo = 0.5884, L = 1.19e-4, J = 4.487e6, s0 = lo + L * (1 + 0.6247) / 2;
+  const abel_operator<double> op(0.3, 0.0, lo, lo + L);
+  auto F = [&](double s) { return 0.1 + 30 * (s - lo) + (s > s0 ? J / 2 * (s - s0) * (s - s0) : 0.0); };
+  const std::vector<kink<double>> knot{{s0, 2u, J}};
+  solve_options<double> o;
+  o.residual_points = 16;
+  o.tolerance = 1e-13;
+  const auto fine = solve_kinks(op, edge::bounded, edge::bounded, F, knot, o);
+  REQUIRE(fine.terms.size() == 1);
+  CHECK(fine.smooth.residual <= 1e-10);
+  o.tolerance = 1e-9;
+  const auto loose = solve_kinks(op, edge::bounded, edge::bounded, F, knot, o);
+  INFO("degree " << loose.smooth.degree << " tail " << loose.smooth.coefficient_tail << " residual " << loose.smooth.residual);
+  CHECK(loose.smooth.residual <= 10 * o.tolerance);
+  CHECK(loose.smooth.residual <= 10 * std::max(loose.smooth.coefficient_tail, loose.rounding_floor));
+}
+
 TEST_CASE("solve_kinks: nu = +1 with a load: int g of the series and the terms is the load") {
   abel_operator<double> op(0.3, 0.3, -2.0, 1.0);
   const kinked_data F{{{-0.4, 2, 0.8}, {0.2, 1, -0.5}}};

@@ -932,17 +932,19 @@ Real enrichment_piece(const enriched_density<Real>& d, const Real& a, const Real
     return powers.value() * d.q_at(one_plus_x, one_minus_x) * extra * d.order_power(dist, right_side);
   };
   Real log_sum = 0, plain_sum = 0;
-  const Real log_factor = D * (right_side ? d.kappa : Real(1)) * pow(D, -d.alpha);
-  const Real plain_factor = D * d.E_full(D, right_side);
+  // A node_recorder takes each node's term with the factors `near` applies to the sums below.
+  constexpr bool recording = records_nodes<std::remove_cv_t<std::remove_reference_t<K>>>::value;
+  const Real log_factor = recording ? D * (right_side ? d.kappa : Real(1)) * pow(D, -d.alpha) : Real(0);
+  const Real plain_factor = recording ? D * d.E_full(D, right_side) : Real(0);
   for (std::size_t i = 0; i < log_rule.x.size(); ++i) {
     const Real term = log_rule.weight[i] * G(D * log_rule.x[i]);
     log_sum += term;
-    if constexpr (records_nodes<std::remove_cv_t<std::remove_reference_t<K>>>::value) k.take(log_factor * term);
+    if constexpr (recording) k.take(log_factor * term);
   }
   for (std::size_t j = 0; j < legendre->size(); ++j) {
     const Real term = legendre->weight[j] * G(D * legendre->x_minus_lo[j] / 2);
     plain_sum += term;
-    if constexpr (records_nodes<std::remove_cv_t<std::remove_reference_t<K>>>::value) k.take(plain_factor * term / 2);
+    if constexpr (recording) k.take(plain_factor * term / 2);
   }
   plain_sum /= 2;  // Gauss-Legendre on [-1, 1] moved to [0, 1]
   const Real near = D * ((right_side ? d.kappa : Real(1)) * pow(D, -d.alpha) * log_sum + d.E_full(D, right_side) * plain_sum);
@@ -1745,7 +1747,7 @@ struct kinked_solution {
 /// half-length from an edge), and the adaptive loop stops there converged, as solve_step's at its
 /// floor; and, as for solve, F far from the origin (|lo| >> hi - lo) is sampled at points
 /// rounded by ~eps |lo|, which the status reports (not_converged at [1e6, 1e6 + 1e-6]): shift
-/// the origin first. (A contact 1.2e-4 long at 0.59, F of a spline: residual 2e-12.)
+/// the origin first. (A contact 1.2e-4 long at 0.59 with a spline-like knot: residual 2e-12.)
 namespace detail {
 /// solve_kinks on an interval as given (the public one moves it to [0, L] first).
 template <class Real, class F>

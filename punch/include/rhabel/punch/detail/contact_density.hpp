@@ -76,7 +76,6 @@ struct contact_density {
   std::vector<abel::enriched_density<double>> kinks;
   double kinks_integral = 0;  ///< sum of int C phi over kinks (composite quadratures: kept, scaled)
   std::size_t particular_degree = 0;  ///< with kinks: the image coefficients of the series' solve
-  double kinks_defect = 0;  ///< with kinks, nu = -1: the particular's solvability defect (kept with it)
 
   double a() const { return jacobi.lo; }
   double b() const { return jacobi.hi; }
