@@ -180,6 +180,11 @@ void validate(const scene& s) {
       for (std::size_t k = 0; k < g->corners.size(); ++k)
         if (!std::isfinite(g->corners[k]))
           bad_field(p + "corners[" + std::to_string(k) + "]", g->corners[k], "finite");
+      for (std::size_t k = 0; k < g->knots.size(); ++k) {
+        const std::string knot = p + "knots[" + std::to_string(k) + "]";
+        if (!std::isfinite(g->knots[k].first)) bad_field(knot + ".first", g->knots[k].first, "finite");
+        if (!std::isfinite(g->knots[k].second)) bad_field(knot + ".second", g->knots[k].second, "finite");
+      }
     }
     validate_scales(m, s.speed, ind, p);
   }

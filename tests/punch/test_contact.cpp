@@ -304,6 +304,14 @@ TEST_CASE("bad input names the field, its value and the requirement") {
   CHECK(message_of(s).find("indentors[1].slope_trailing") != std::string::npos);
   s.indentors[1] = indentor{flat{1.0}, -1.0, 5.0};
   CHECK(message_of(s).find("indentors[1].load = -1") != std::string::npos);
+  general_profile knotted;
+  knotted.slope = [](double x) { return -x; };
+  knotted.knots = {{0.1, 2.0}, {0.2, std::numeric_limits<double>::quiet_NaN()}};
+  s.indentors[1] = indentor{knotted, 1.0, 5.0};
+  CHECK(message_of(s).find("indentors[1].knots[1].second = nan must be finite") != std::string::npos);
+  knotted.knots = {{std::numeric_limits<double>::infinity(), 2.0}};
+  s.indentors[1] = indentor{knotted, 1.0, 5.0};
+  CHECK(message_of(s).find("indentors[1].knots[0].first = inf must be finite") != std::string::npos);
   s.indentors.pop_back();
   s.material.alpha = 1.0;
   CHECK(message_of(s).find("material.alpha = 1 must be in [0, 1)") != std::string::npos);
