@@ -14,10 +14,20 @@ namespace {
 constexpr std::size_t first_panels = 256;
 // Panels at most. Products and the penetration check go through the FFT (toeplitz_product.hpp),
 // O(n log n) each: at 2^17 panels ~9 ms a product and ~16 MB of FFT buffers (measured, one core,
-// -O3). WHY 2^19: at 2^17 a 16000-sample self-affine profile had 8 panels a sample, and the seeded
-// search of its 35 contacts at load 1e-3 lost its way (not ok after 45-60 s); at 2^19 it is ok in
-// 7 s.
-constexpr std::size_t max_panels = std::size_t{1} << 19;
+// -O3). It binds only above 65536 samples (32 panels a sample). WHY 2^21: the coupled solve starts
+// from these edges, and a contact narrower than a sample is known to a panel. At 2^17 a
+// 16000-sample self-affine profile had 8 panels a sample, and the seeded search of its 35 contacts
+// at load 1e-3 lost its way (not ok after 45-60 s; ok in 7 s at 2^19). At 2^19 (5 a sample on 1e5
+// samples) the periodic 1e5-sample profiles' first rounds starved or merged real contacts: seed 1
+// at load 1.4e-2 lost or merged one of its ~980 in each of eight rounds and ended with 977 (one
+// real contact missing) in 16-18 min; seeds 2 and 3 at 6e-3 took 4.5-6.1 min. At 2^21 (21 a
+// sample) every first round keeps its coarse contacts: 980 contacts ok in 12.3 min, seeds 2 and 3
+// in 90 s and 129 s, 233 contacts (load 3e-3) in 22 s instead of 43 s; the coarse solve takes
+// 6-18 s of it and the solve 260-330 MB (one core, another solve on the other). At 2^20 seed 3's
+// first round lost a contact again. The nine periodic 32000-sample profiles (seeds 1-3, loads 2e-3,
+// 3e-3, 6e-3: 68-240 contacts) refine to 32 a sample at most (2^19 then bound) and are ok with the same contacts and C_f
+// either way, in 155 s in all against 162 s.
+constexpr std::size_t max_panels = std::size_t{1} << 21;
 // A contact of fewer panels than this refines the grid on towards fine_panels. WHY 4: the contacts
 // narrower than a sample on a rough profile have 1-3 panels at 8 a sample and need the finer grid
 // (contact_set.cpp, seed_panels); at 16, the 50 cosine bumps' smallest contacts refined too (0.4 s

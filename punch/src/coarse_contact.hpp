@@ -5,7 +5,7 @@
 // with the total load P (in units of int g), by panel_grid.hpp's boundary-element discretisation
 // and active set: every panel active on a grid of 256 panels, then grids refined four times at a
 // time up to `panels`, and on up to `fine_panels` while a contact has fewer than 4 panels (at
-// most 2^19), each level starting from the last level's set.
+// most 2^21), each level starting from the last level's set.
 //
 // ACCURACY. A first-order method: edges to a panel, loads to O(h) of the contacts' loads, so a
 // contact whose load is a few percent of the others' may be missing or extra. That is what the
@@ -38,7 +38,7 @@ struct coarse_patch {
 
 /// The contacts of the coarse solve in the order of x, on `panels` panels, refined on (by 4 at a
 /// time) up to `fine_panels` while a contact has fewer than 4 panels (both clamped to 256 ..
-/// 2^19); empty when its active set did not settle (the caller then searches without it).
+/// 2^21); empty when its active set did not settle (the caller then searches without it).
 /// With `sources`: the finest grid's active panels as point sources too (midpoints, h g: units of
 /// int g; periodic_images.hpp).
 std::vector<coarse_patch> coarse_contacts(const profile_curve& curve, double load, const context& cx,

@@ -16,7 +16,7 @@
 namespace rhabel::punch::detail {
 
 // Panels a sample of the coarse solve that seeds the search (finite and periodic), and up to how
-// many it refines while a contact has fewer than 4 panels (coarse_contact.hpp; at most 2^19
+// many it refines while a contact has fewer than 4 panels (coarse_contact.hpp; at most 2^21
 // panels): its edges start the first round's coupled solve. WHY refined: a contact narrower than a sample has only a few panels
 // at 8 a sample, and its level condition starts far off (self-affine profiles, 1000 / 4000
 // samples, seeds 1-3, loads 5e-4 .. 2e-3 at acceptance 1e-6: 10 of 14 ok at 8 panels a sample, 12

@@ -9,9 +9,10 @@
 # Checked: status ok at the full load, every contact ok; each contact overlapping one boundary-
 # element patch, no two the same, and every patch without a contact one whose load the
 # boundary-element solver cannot tell from zero (within its error); C_f within twice the
-# boundary-element estimate (plus the acceptance's share of C_f). Measured (one core): 233
-# patches ok in 43-50 s, C_f 0.0494308, the boundary-element solver (acceptance 1e-3, 1.6e6
-# panels, 3 s) 233 patches, C_f 0.049472 +- 2.5e-4; 443 patches: see the heavy script.
+# boundary-element estimate (plus the acceptance's share of C_f). Measured (one core, another
+# solve beside it): 233 patches ok in 22-25 s, C_f 0.0494308, the boundary-element solver
+# (acceptance 1e-3, 1.6e6 panels, 3 s) 233 patches, C_f 0.049472 +- 2.5e-4; 443 patches: see the
+# heavy script.
 set -u
 rhabel="$1"; src="$2"; samples="${3:-100000}"; seed="${4:-1}"; load="${5:-3e-3}"; limit="${6:-300}"
 py=/usr/bin/python3; [ -x "$py" ] || py=python3

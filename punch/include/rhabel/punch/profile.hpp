@@ -39,7 +39,7 @@
 //   contacts merged.
 //   The first set comes from a coarse boundary-element solve of the whole profile at the full
 //   load (punch/src/coarse_contact.hpp: piecewise-constant pressure on 8 panels per sample, and
-//   on up to 32 while a contact has fewer than 4 panels, at most 2^19, non-negative, one rigid
+//   on up to 32 while a contact has fewer than 4 panels, at most 2^21, non-negative, one rigid
 //   body, an active set on panels refined from 256 panels up; 0.01-0.21 s for 800-4000 samples at
 //   8 a sample): each coarse contact becomes a contact of its own (the run of basins whose tips
 //   it covers; two coarse contacts may share a basin), with its coarse load as the start of the
@@ -182,14 +182,11 @@
 //   (3 to 85 contacts, 0.10-4.4 s), each with the boundary-element solver's patches and C_f within
 //   its estimate (those of tests/punch/test_rough_profile.cpp against the boundary-element
 //   oracle). 1e5 samples a period with 233 contacts (self_affine_profile.py 100000 1 3e-3
-//   --periodic): ok in 29 s (one core), at 6e-3 443 contacts ok in 1.7 min, each with the
-//   boundary-element solver's patches and C_f within its estimate
-//   (tests/long/rough_1e5_periodic*.sh); at 1.4e-2 (~980 patches) the search ends not_converged
-//   after 600 s, and ok after 16-22 min (977 contacts; another job on the other core). The same
-//   samples at 6e-3 with seed 2 are ok in 4.5-5.3 min (436 contacts), with seed 3 (~428 patches)
-//   not ok within its time limit (measured at --time-limit 600, 1500 and 2400; at 600 its
-//   last converged round is reported: 427 contacts, one with a negative load, tension). A
-//   search whose last round fails reports its last converged round at that load,
+//   --periodic): ok in 22-25 s (one core), at 6e-3 443 contacts ok in 1.5-1.6 min; the same
+//   samples at 6e-3 with seed 2 in 1.1-1.5 min (437 contacts), with seed 3 in 1.7-2.2 min (428);
+//   at 1.4e-2 (980 contacts) not_converged after 600 s, and ok after 12.3 min (another job on the
+//   other core). Each agrees with the boundary-element solver's patches and its C_f within its
+//   estimate (tests/long/rough_1e5_periodic*.sh). A search whose last round fails reports its last converged round at that load,
 //   not_converged unless its own evidence names another status, with why the search stopped.
 //   An ok
 //   result bounds the residual of (8), the loads, the pressure's sign, the levels and the
