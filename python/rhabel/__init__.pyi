@@ -18,7 +18,8 @@ __all__: list[str]
 
 def solve(scene: Mapping[str, Any], grid: int = ..., displacement: bool = ..., tolerance: float = ...,
           residual: bool = ..., acceptance: float | None = ..., threads: int = ..., time_limit: float = ...,
-          layered_below: float = ..., spacing: Literal["uniform", "graded"] = ...) -> Result: ...
+          layered_below: float = ..., spacing: Literal["uniform", "graded"] = ...,
+          profile_knots: bool = ...) -> Result: ...
 def sweep(sweep: Union[Mapping[str, Any], str, PathLike[str]], out: Union[str, PathLike[str], None] = ...,
           threads: int = ..., progress: bool = ..., tolerance: float = ..., acceptance: float | None = ...,
           time_limit: float = ...) -> list[Record]: ...

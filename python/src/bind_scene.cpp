@@ -111,7 +111,7 @@ void attach_pressure(py::object& result, const char* key, const std::vector<punc
 
 py::object solve_scene(const std::string& text, const std::string& directory, std::size_t grid, bool displacement,
                        double tolerance, bool residual, double acceptance, std::size_t threads, double time_limit,
-                       double layered_below, bool graded) {
+                       double layered_below, bool graded, bool profile_knots) {
   const scene::scene_spec spec = parse(text, directory);
   scene::run_request request;
   request.grid = grid;
@@ -123,6 +123,7 @@ py::object solve_scene(const std::string& text, const std::string& directory, st
   request.threads = threads;
   request.time_limit = time_limit;
   request.layered_below = layered_below;
+  request.profile_knots = profile_knots;
   request.spacing = graded ? punch::sample_spacing::graded : punch::sample_spacing::uniform;
   scene::run_outcome outcome;
   try {
@@ -290,7 +291,7 @@ void bind_scene(py::module_& m) {
            py::arg("acceptance"), py::arg("time_limit"), py::arg("progress"));
   m.def("_solve_scene", &solve_scene, py::arg("text"), py::arg("directory"), py::arg("grid"), py::arg("displacement"),
         py::arg("tolerance"), py::arg("residual"), py::arg("acceptance"), py::arg("threads"), py::arg("time_limit"),
-        py::arg("layered_below"), py::arg("graded"));
+        py::arg("layered_below"), py::arg("graded"), py::arg("profile_knots"));
   m.def("_validate_scene", &validate_scene, py::arg("text"), py::arg("directory"));
   m.def("_trial_interval", &trial_interval, py::arg("text"), py::arg("directory"), py::arg("a"), py::arg("b"),
         py::arg("tolerance"));

@@ -380,6 +380,7 @@ run_outcome run_scene(const scene_spec& spec, const run_request& request) {
   options.spacing = request.spacing;
   options.residual = request.residual;
   options.layered_below = request.layered_below;
+  options.profile_knots = request.profile_knots;
   if (request.interrupt) options.interrupt = request.interrupt;
   if (spec.profile)
     return spec.profile->boundary_element ? run_profile_bem(spec, request, options) : run_profile(spec, request, options);

@@ -39,6 +39,9 @@ struct run_request {
   punch::sample_spacing spacing = punch::sample_spacing::uniform;  ///< punch::solve_options::spacing
   bool residual = true;      ///< punch::solve_options::residual (false: not computed; the document has null)
   double layered_below = punch::solve_options{}.layered_below;  ///< punch::solve_options::layered_below
+  /// punch::solve_options::profile_knots: a sampled profile's spline knots inside a contact as
+  /// singular terms of its density (the spectral search; the command line's --profile-knots).
+  bool profile_knots = false;
   /// punch::solve_options::interrupt: polled during a solve; returning true stops it with
   /// punch::interrupted (the Python package's Ctrl-C). Empty: never.
   std::function<bool()> interrupt;
