@@ -182,17 +182,16 @@
 //   (3 to 85 contacts, 0.10-4.4 s), each with the boundary-element solver's patches and C_f within
 //   its estimate (those of tests/punch/test_rough_profile.cpp against the boundary-element
 //   oracle). 1e5 samples a period with 233 contacts (self_affine_profile.py 100000 1 3e-3
-//   --periodic): ok in 22-25 s (one core), at 6e-3 443 contacts ok in 1.5-1.6 min; the same
-//   samples at 6e-3 with seed 2 in 1.1-1.5 min (437 contacts), with seed 3 in 1.7-2.2 min (428);
-//   at 1.4e-2 (980 contacts) not_converged after 600 s, and ok after 12.3 min (another job on the
-//   other core). Each agrees with the boundary-element solver's patches and its C_f within its
-//   estimate (tests/long/rough_1e5_periodic*.sh). A search whose last round fails reports its last converged round at that load,
-//   not_converged unless its own evidence names another status, with why the search stopped.
-//   An ok
-//   result bounds the residual of (8), the loads, the pressure's sign, the levels and the
-//   clearance by the acceptance. The clearance is checked at the samples and, between two samples,
-//   where the spline rises above both (its crests stand up to h^2 |z''|/8 above the samples, ~1e-4
-//   of the span on 16000 samples). A contact narrower than a spacing that carries under a
+//   --periodic): ok in 22-25 s (one core), at 6e-3 443 contacts ok in 1.5-1.6 min; the same samples
+//   at 6e-3 with seed 2 in 1.1-1.5 min (437 contacts), with seed 3 in 1.7-2.2 min (428); at 1.4e-2
+//   (980 contacts) not_converged after 600 s, and ok after 12.3-14.3 min (another job on the other
+//   core). Each agrees with the boundary-element solver's patches and its C_f within its estimate
+//   (tests/long/rough_1e5_periodic*.sh). A search whose last round fails reports its last converged
+//   round at that load, not_converged unless its own evidence names another status, with why the
+//   search stopped. An ok result bounds the residual of (8), the loads, the pressure's sign, the
+//   levels and the clearance by the acceptance. The clearance is checked at the samples and,
+//   between two samples, where the spline rises above both (its crests stand up to h^2 |z''|/8
+//   above the samples, ~1e-4 of the span on 16000 samples). A contact narrower than a spacing that carries under a
 //   hundredth of the mean load can starve in the first rounds' coupled solve; the search gives it
 //   back from its coarse edges once the others settle and the profile penetrates there (on the
 //   tests' profile of 16000 samples, seed 4, load 2e-3, periodic: two contacts 2e-6 and 2.9e-6
