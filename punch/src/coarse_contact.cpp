@@ -23,7 +23,7 @@ constexpr std::size_t first_panels = 256;
 // real contact missing) in 16-18 min; seeds 2 and 3 at 6e-3 took 4.5-6.1 min. At 2^21 (21 a sample)
 // every first round keeps its coarse contacts: 980 contacts ok in 12.3-14.3 min, seeds 2 and 3 in
 // 90 s and 129 s, 233 contacts (load 3e-3) in 22 s instead of 43 s; the coarse solve takes 6-18 s
-// of it and the solve 260-330 MB (one core, another solve on the other). At 2^20 seed 3's first
+// of it and the solve 240-330 MB (one core, another solve on the other). At 2^20 seed 3's first
 // round lost a contact again. The nine periodic 32000-sample profiles (seeds 1-3, loads 2e-3, 3e-3,
 // 6e-3: 68-240 contacts) refine to 32 a sample at most (2^19 then bound) and are ok with the same
 // contacts and C_f either way, in 155 s in all against 162 s.

@@ -191,9 +191,9 @@
 //   search stopped. An ok result bounds the residual of (8), the loads, the pressure's sign, the
 //   levels and the clearance by the acceptance. The clearance is checked at the samples and,
 //   between two samples, where the spline rises above both (its crests stand up to h^2 |z''|/8
-//   above the samples, ~1e-4 of the span on 16000 samples). A contact narrower than a spacing that carries under a
-//   hundredth of the mean load can starve in the first rounds' coupled solve; the search gives it
-//   back from its coarse edges once the others settle and the profile penetrates there (on the
+//   above the samples, ~1e-4 of the span on 16000 samples). A contact narrower than a spacing that
+//   carries under a hundredth of the mean load can starve in the first rounds' coupled solve; the
+//   search gives it back from its coarse edges once the others settle and the profile penetrates there (on the
 //   tests' profile of 16000 samples, seed 4, load 2e-3, periodic: two contacts 2e-6 and 2.9e-6
 //   wide, 3e-5 and 1.2e-4 of the load, lost and restored; ok with the test oracle's 60 patches in
 //   ~70 s, C_f 0.0322901). A lost contact that penetrates by less than the acceptance times the
