@@ -324,7 +324,10 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
                            pb.fixed_particular_degrees.empty() ? 0 : pb.fixed_particular_degrees[i]};
     const particular_memo::key key{a[i], b[i], pb.load(i), ks.accuracy, nu_of(pb.roles[i]), is_loaded(pb, i), ks.degree};
     particular p;
-    if (auto kept = pb.split[i] == 0 ? pb.particulars->find(i, key) : std::nullopt) {
+    // Only knotted particulars are kept (they exist with solve_options::profile_knots alone): the
+    // default path skips the memo's lock, which the Jacobian's threads would otherwise share.
+    const bool memo = cx.options.profile_knots && pb.split[i] == 0;
+    if (auto kept = memo ? pb.particulars->find(i, key) : std::nullopt) {
       p.g = std::move(kept->g);  // a knotted particular
       p.defect = kept->defect;
     } else {
