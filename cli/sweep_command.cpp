@@ -1,5 +1,5 @@
 // rhabel sweep SWEEP.json --out FILE.csv [--jsonl] [--threads N] [--time-limit S] [--tolerance TOL]
-//              [--acceptance TOL] [--print-scenes] [--quiet]
+//              [--acceptance TOL] [--profile-knots] [--print-scenes] [--quiet]
 //
 // Solves every scene of a sweep (rhabel/scene/sweep.hpp) and writes one row per scene: CSV with a header, or
 // JSON lines (--jsonl: one object per line, the same keys). Rows: row, the swept values, status,
@@ -26,7 +26,8 @@
 // what it reached (status not_converged; punch::solve_options::time_limit), so one slow scene does
 // not hold up a long sweep. Such a row depends on the machine's speed. --tolerance and --acceptance:
 // each row's punch::solve_options::tolerance and acceptance, as in `rhabel solve` (a row still equals
-// that solve).
+// that solve). --profile-knots: a sampled profile's spline knots as singular terms of each row's
+// densities (punch::solve_options::profile_knots), as `rhabel solve --profile-knots`.
 //
 // Progress (rows done, rate, remaining time) goes to stderr only when stderr is a terminal
 // (--quiet silences it). Exit codes: 0 every row ok, 3 every row written but some not ok, 2 bad
@@ -66,6 +67,7 @@ struct sweep_arguments {
   double time_limit = 0;  // seconds per row's solve; 0 = none
   double tolerance = 1e-12;
   double acceptance = 0;  // 0: not given, the solver's default (run_request::acceptance)
+  bool profile_knots = false;
   bool print_scenes = false;
   bool quiet = false;
 };
@@ -199,6 +201,7 @@ int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
     request.time_limit = args.time_limit;
     request.tolerance = args.tolerance;
     request.acceptance = args.acceptance;
+    request.profile_knots = args.profile_knots;
     sweep_pool pool(sweep, format, mine, threads, request);
     std::size_t local_done = 0;
     auto store = [&](finished_row&& r) {  // rank 0 only
@@ -281,6 +284,9 @@ void add_sweep_command(CLI::App& app, command_action& action) {
       ->check(number_in(0.0, 1e9));
   add_tolerance_option(cmd, args->tolerance);
   add_acceptance_option(cmd, args->acceptance);
+  cmd->add_flag("--profile-knots", args->profile_knots,
+                "each row as rhabel solve --profile-knots: a sampled profile's spline knots inside each contact "
+                "built into its density (docs/theory.md section 9)");
   cmd->add_flag("--print-scenes", args->print_scenes, "print each row's scene as one JSON line and stop");
   cmd->add_flag("--quiet", args->quiet, "no progress bar");
   cmd->callback([&action, args] {

@@ -262,7 +262,8 @@ def solve(scene, grid=0, displacement=True, tolerance=1e-12, residual=True, acce
                                        spacing == "graded", bool(profile_knots)))
 
 
-def sweep(sweep, out=None, threads=0, progress=True, tolerance=1e-12, acceptance=None, time_limit=0):
+def sweep(sweep, out=None, threads=0, progress=True, tolerance=1e-12, acceptance=None, time_limit=0,
+          profile_knots=False):
     """Solve every scene of a sweep: the rows of ``rhabel sweep SWEEP.json``, by the same code.
 
     Parameters
@@ -281,9 +282,9 @@ def sweep(sweep, out=None, threads=0, progress=True, tolerance=1e-12, acceptance
         Rows solved at the same time (default 0: every core).
     progress : bool
         Show progress (tqdm when installed, else a line on stderr).
-    tolerance, acceptance, time_limit
+    tolerance, acceptance, time_limit, profile_knots
         Each row's solve options, as for solve() (and ``rhabel sweep --tolerance/--acceptance/
-        --time-limit``).
+        --time-limit/--profile-knots``).
 
     Returns
     -------
@@ -322,7 +323,8 @@ def sweep(sweep, out=None, threads=0, progress=True, tolerance=1e-12, acceptance
     jsonl = not out or out.endswith(".jsonl")
     bar = _progress(handle.rows) if progress else None
     try:
-        lines = handle.run(out, jsonl, threads, tolerance, acceptance, time_limit, bar.update if bar else None)
+        lines = handle.run(out, jsonl, threads, tolerance, acceptance, time_limit, bool(profile_knots),
+                           bar.update if bar else None)
     finally:
         if bar:
             bar.close()

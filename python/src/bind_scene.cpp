@@ -201,7 +201,7 @@ class sweep_handle {
   /// exception of progress) stops the rows under way and raises, the rows done kept in `out`.
   /// Returns every row's line, in row order.
   std::vector<std::string> run(const std::string& out, bool jsonl, std::size_t threads, double tolerance,
-                               double acceptance, double time_limit, const py::object& progress) {
+                               double acceptance, double time_limit, bool profile_knots, const py::object& progress) {
     const auto format = jsonl ? scene::row_format::jsonl : scene::row_format::csv;
     std::optional<scene::sweep_output> output;
     std::map<std::size_t, std::string> lines;
@@ -224,6 +224,7 @@ class sweep_handle {
     request.tolerance = tolerance;
     request.acceptance = acceptance;
     request.time_limit = time_limit;
+    request.profile_knots = profile_knots;
     request.interrupt = [stop] { return stop->load(); };
     if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
     std::optional<scene::sweep_pool> pool;
@@ -288,7 +289,7 @@ void bind_scene(py::module_& m) {
       .def("columns", &sweep_handle::columns)
       .def("row_scene", &sweep_handle::row_scene, py::arg("row"))
       .def("run", &sweep_handle::run, py::arg("out"), py::arg("jsonl"), py::arg("threads"), py::arg("tolerance"),
-           py::arg("acceptance"), py::arg("time_limit"), py::arg("progress"));
+           py::arg("acceptance"), py::arg("time_limit"), py::arg("profile_knots"), py::arg("progress"));
   m.def("_solve_scene", &solve_scene, py::arg("text"), py::arg("directory"), py::arg("grid"), py::arg("displacement"),
         py::arg("tolerance"), py::arg("residual"), py::arg("acceptance"), py::arg("threads"), py::arg("time_limit"),
         py::arg("layered_below"), py::arg("graded"), py::arg("profile_knots"));

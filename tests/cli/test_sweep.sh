@@ -262,6 +262,26 @@ for k, ind in enumerate(solve["indentors"]):
 cf, cf0 = float(row["ind0_C_f"]), float(default["ind0_C_f"])
 assert cf != cf0 and abs(cf - cf0) < 1e-4 * abs(cf0), (cf, cf0)
 PY
+# --- --profile-knots reaches every row: the rough example at acceptance 1e-11 is ok with it (its
+# spline's knots in the densities; test_solve.sh measures the single solve) and not ok without (the
+# series alone ends at residual ~4.5e-10: exit 3); each row equals `rhabel solve --profile-knots` --
+printf '{"scene": "%s", "axes": [{"path": "body.load", "values": [5.0, 4.0]}]}' "$src/examples/rough_profile.json" \
+  > "$tmp/knots.json"
+"$rhabel" sweep "$tmp/knots.json" --out "$tmp/knots.csv" --acceptance 1e-11 --profile-knots 2> "$tmp/err"; rc=$?
+[ "$rc" -eq 0 ] || fail "--profile-knots at acceptance 1e-11: exit $rc ($(cat "$tmp/err"))"
+"$rhabel" sweep "$tmp/knots.json" --out "$tmp/plain.csv" --acceptance 1e-11 2> /dev/null; rc=$?
+[ "$rc" -eq 3 ] || fail "the same sweep without --profile-knots: exit $rc, expected 3"
+"$rhabel" sweep "$tmp/knots.json" --print-scenes | sed -n 2p > "$tmp/knots_row1.json"
+"$rhabel" solve "$tmp/knots_row1.json" --acceptance 1e-11 --profile-knots --compact > "$tmp/knots_row1.out" \
+  || fail "row 1 solved with --profile-knots: exit $?"
+"$py" - "$tmp/knots.csv" "$tmp/knots_row1.out" <<'PY' || fail "--profile-knots rows (see above)"
+import csv, json, sys
+rows = list(csv.DictReader(open(sys.argv[1], newline="")))
+assert [r["status"] for r in rows] == ["ok", "ok"], rows
+s = json.load(open(sys.argv[2]))
+assert float(rows[1]["C_f"]) == s["hysteretic_friction"] and int(rows[1]["contacts"]) == len(s["contacts"]), (rows[1], s)
+assert float(rows[1]["residual"]) == s["diagnostics"]["residual"] <= 1e-11
+PY
 for bad in "--tolerance nan" "--tolerance inf" "--tolerance 0" "--tolerance 1e-16" "--tolerance 0.1" "--tolerance abc" \
            "--acceptance nan" "--acceptance 0" "--acceptance 1" "--threads -1" "--threads 4097" "--threads x"; do
   # shellcheck disable=SC2086  # "OPTION VALUE" splits in two on purpose

@@ -59,6 +59,21 @@ def test_a_sweep_dict_equals_the_command_line(cli, tmp_path, threads):
     assert without_seconds(ours) == without_seconds(theirs)
 
 
+def test_profile_knots_reach_every_row(cli, tmp_path):
+    # profile_knots / --profile-knots: the rough example at acceptance 1e-11 is ok with the spline's
+    # knots in its densities, equal to the command line's rows, and not ok without them (the series
+    # alone ends at a residual of ~4.5e-10).
+    knots = {"scene": str(SOURCE_DIR / "examples" / "rough_profile.json"),
+             "axes": [{"path": "body.load", "values": [5.0, 4.0]}]}
+    path = tmp_path / "knots.json"
+    path.write_text(json.dumps(knots))
+    ours = rhabel.sweep(knots, progress=False, acceptance=1e-11, profile_knots=True)
+    theirs = command_line_rows(cli, path, tmp_path, "--acceptance", "1e-11", "--profile-knots")
+    assert [row.status for row in ours] == ["ok", "ok"]
+    assert without_seconds(ours) == without_seconds(theirs)
+    assert all(row.status != "ok" for row in rhabel.sweep(knots, progress=False, acceptance=1e-11))
+
+
 def test_the_output_file_equals_the_command_lines_and_resumes(cli, tmp_path):
     path = tmp_path / "two.json"
     path.write_text(json.dumps(TWO))
