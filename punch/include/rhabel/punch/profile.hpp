@@ -179,7 +179,7 @@
 //   across spline knots at degree 2048 (residual of (8) 1.15e-6 at 1023, 3.5e-8 at 2047).
 //   A search that ends short of the load says which load was reached and where the
 //   profile penetrates. The same 36 as periodic profiles (rough_matrix.py --periodic): all 36 ok
-//   (3 to 85 contacts, 0.10-4.4 s), each with the boundary-element solver's patches and C_f within
+//   (3 to 85 contacts, 0.10-4.6 s), each with the boundary-element solver's patches and C_f within
 //   its estimate (those of tests/punch/test_rough_profile.cpp against the boundary-element
 //   oracle). 1e5 samples a period with 233 contacts (self_affine_profile.py 100000 1 3e-3
 //   --periodic): ok in 22-25 s (one core), at 6e-3 443 contacts ok in 1.5-1.6 min; the same samples
