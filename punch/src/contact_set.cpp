@@ -1272,6 +1272,7 @@ window_solution raise_degree(const profile_model& m, const context& cx, window_s
     wide.options.max_degree = degree;
     // From its own contacts (capped, then free) when it reached the full load, else from the start.
     const bool own = out.result.diagnostics.load_fraction == 1;
+    wide.ladder = own;  // (its rounds polish the set found at the degree below: context::ladder)
     const auto from = [&](bool capped) {
       if (own)
         if (auto seeds = start_from(m, capped ? out.contacts_capped(capped_below * cx.options.acceptance) : out.contacts())) {

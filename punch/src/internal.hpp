@@ -135,6 +135,10 @@ struct context {
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();
   // The operator's parameters for rhabel::abel; on the boundary (kappa = 0 above) kappa is exactly 0.
   abel::abel_parameters<double> par{0.0, 0.0};
+  /// Set for a sampled profile's search at a higher degree from the contacts of the search before
+  /// (contact_set.cpp, raise_degree): its rounds polish a settled set, to ladder_accuracy
+  /// (coupled_solve.cpp) instead of seeded_accuracy.
+  bool ladder = false;
 
   void set_parameters() {
     par = abel::abel_parameters<double>(alpha, beta);

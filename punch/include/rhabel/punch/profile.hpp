@@ -80,10 +80,11 @@
 //   is the start at 4 t), a step that fails halved towards the last settled load (at most three
 //   times), then rounds at P (and the degrees again).
 //   The seeded rounds solve the edges to 1e-3 x acceptance (when that is above
-//   solve_options::tolerance): the evidence is judged at the acceptance, and the steps beyond
-//   that cost time without changing what the checks see (of the 54 self-affine scenes of
-//   rough_matrix.py ok with the edges to the tolerance 1e-12 and ok now, one C_f moved in its 10
-//   printed digits, by 3.5e-8 relative).
+//   solve_options::tolerance; 1e-2 x acceptance in the searches at higher degrees from the
+//   contacts already found, which polish a settled set): the evidence is judged at the
+//   acceptance, and the steps beyond that cost time without changing what the checks see (of the
+//   54 self-affine scenes of rough_matrix.py ok with the edges to the tolerance 1e-12 and ok now,
+//   one C_f moved in its 10 printed digits, by 3.5e-8 relative).
 //   A bump dropped twice at the same load is not added again (the iteration could cycle between
 //   a contact too small to keep and a penetration too deep to ignore): its penetration is then
 //   reported as status penetration with the numbers.
@@ -182,9 +183,9 @@
 //   (3 to 85 contacts, 0.10-4.6 s), each with the boundary-element solver's patches and C_f within
 //   its estimate (those of tests/punch/test_rough_profile.cpp against the boundary-element
 //   oracle). 1e5 samples a period with 233 contacts (self_affine_profile.py 100000 1 3e-3
-//   --periodic): ok in 22-25 s (one core), at 6e-3 443 contacts ok in 1.5-1.6 min; the same samples
-//   at 6e-3 with seed 2 in 1.1-1.5 min (437 contacts), with seed 3 in 1.7-2.2 min (428); at 1.4e-2
-//   (980 contacts) not_converged after 600 s, and ok after 12.3-14.3 min (another job on the other
+//   --periodic): ok in 21-25 s (one core), at 6e-3 443 contacts ok in 68 s; the same samples
+//   at 6e-3 with seed 2 in 72 s (437 contacts), with seed 3 in 76-102 s (428); at 1.4e-2
+//   (980 contacts) not_converged after 600 s, and ok after 10.8 min (another job on the other
 //   core). Each agrees with the boundary-element solver's patches and its C_f within its estimate
 //   (tests/long/rough_1e5_periodic*.sh). A search whose last round fails reports its last converged
 //   round at that load, not_converged unless its own evidence names another status, with why the
