@@ -2,9 +2,10 @@
 //              [--acceptance TOL] [--profile-knots] [--print-scenes] [--quiet]
 //
 // Solves every scene of a sweep (rhabel/scene/sweep.hpp) and writes one row per scene: CSV with a header, or
-// JSON lines (--jsonl: one object per line, the same keys). Rows: row, the swept values, status,
-// alpha, E1, omega0 and alpha_tan_delta (master-curve materials), per indentor i: ind<i>_a, _b,
-// _contact_length, _load, _C_f, _total_friction, then residual, seconds (solve time of the row,
+// JSON lines (--jsonl: one object per line, the same keys). Rows: row, the swept values, the solve
+// options (tolerance, acceptance: empty when the solver's default; profile_knots for a sampled
+// profile), status, alpha, E1, omega0 and alpha_tan_delta (master-curve materials), per indentor
+// i: ind<i>_a, _b, _contact_length, _load, _C_f, _total_friction, then residual, seconds (solve time of the row,
 // the only column that differs between runs) and message. Numbers in the shortest form that reads
 // back to the same double (as `rhabel solve` prints them: a row equals the single solve bit for bit).
 // A failed scene is a row too (status invalid_scene, no_solution or error, and its message).
@@ -12,7 +13,8 @@
 // Resuming: rows are appended to FILE as they complete, each as one whole line written with one
 // write() and flushed, so a killed run leaves a readable file (at worst a last partial line, which
 // the next run cuts off). Rerunning the same command reads FILE, keeps the rows it recognises (same
-// index and the same swept values; another sweep's file is refused, exit 2), solves only the
+// index, the same swept values and the same solve options; another sweep's file, or a row solved
+// with another --tolerance, --acceptance or --profile-knots, is refused, exit 2), solves only the
 // missing ones and, when all are there, rewrites FILE in row order (temporary + rename): every row
 // exactly once, in scene order.
 //
@@ -157,13 +159,18 @@ int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
     return exit_ok;
   }
   if (args.out.empty()) throw input_error("sweep: --out FILE is required (or --print-scenes)");
+  run_request request;  // grid 0, one thread per row (the rows run in parallel)
+  request.time_limit = args.time_limit;
+  request.tolerance = args.tolerance;
+  request.acceptance = args.acceptance;
+  request.profile_knots = args.profile_knots;
   // Rank 0 reads what is there and decides what is missing; the list goes to every rank.
   std::optional<sweep_output> output;
   std::vector<std::size_t> missing;
   std::string scan_error;
   if (mpi.rank == 0) {
     try {
-      output.emplace(sweep, format, args.out);
+      output.emplace(sweep, format, args.out, request);
       missing = output->missing();
     } catch (const std::exception& e) {
       scan_error = e.what();
@@ -197,11 +204,6 @@ int run_sweep(const sweep_arguments& args, mpi_context& mpi) {
   std::size_t received = 0;
   {
     mpi.rows_in_flight = mpi.active;
-    run_request request;  // grid 0, one thread per row (the rows run in parallel)
-    request.time_limit = args.time_limit;
-    request.tolerance = args.tolerance;
-    request.acceptance = args.acceptance;
-    request.profile_knots = args.profile_knots;
     sweep_pool pool(sweep, format, mine, threads, request);
     std::size_t local_done = 0;
     auto store = [&](finished_row&& r) {  // rank 0 only
@@ -271,8 +273,9 @@ void add_sweep_command(CLI::App& app, command_action& action) {
       "sweep",
       "Solve every scene of a sweep (a base scene and axes of values; schema: examples/README.md)\n"
       "and write one row per scene to FILE (CSV, or JSON lines with --jsonl). Rerunning the same\n"
-      "command resumes: rows already in FILE are kept, the missing ones solved. Under mpirun (when\n"
-      "built with RHABEL_WITH_MPI) the rows are distributed over the ranks.");
+      "command resumes: rows already in FILE are kept, the missing ones solved (a FILE solved with\n"
+      "another --tolerance, --acceptance or --profile-knots is refused). Under mpirun (when built\n"
+      "with RHABEL_WITH_MPI) the rows are distributed over the ranks.");
   cmd->footer(exit_code_help);
   cmd->add_option("SWEEP", args->sweep_path, "sweep file (JSON)")->required();
   cmd->add_option("--out", args->out, "output file (rows appended as they complete, sorted at the end)");

@@ -277,7 +277,8 @@ def sweep(sweep, out=None, threads=0, progress=True, tolerance=1e-12, acceptance
         A file the rows are written to as they complete (CSV with a header; JSON lines when the
         name ends in ``.jsonl``), resumable as the command line's ``--out``: rows already in the
         file are kept and only the missing ones solved; at the end it holds every row once, in
-        row order. None (default): no file.
+        row order. A file whose rows were solved with another tolerance, acceptance or
+        profile_knots is refused (ValueError naming both), never mixed. None (default): no file.
     threads : int >= 0
         Rows solved at the same time (default 0: every core).
     progress : bool
@@ -290,7 +291,9 @@ def sweep(sweep, out=None, threads=0, progress=True, tolerance=1e-12, acceptance
     -------
     list of Record
         One per row, in row order, with the columns of the command line's CSV as keys (``row``,
-        the swept paths, ``status``, ``alpha``, ``E1``, ..., ``seconds``, ``message``); numbers
+        the swept paths, the solve options ``tolerance``, ``acceptance`` (None: the solver's
+        default) and, for a sampled profile, ``profile_knots``, then ``status``, ``alpha``,
+        ``E1``, ..., ``seconds``, ``message``); numbers
         equal to the command line's bit for bit (but ``seconds``), empty fields None. A scene
         that fails is a row too (its ``status`` and ``message``).
 

@@ -206,9 +206,16 @@ class sweep_handle {
     std::optional<scene::sweep_output> output;
     std::map<std::size_t, std::string> lines;
     std::vector<std::size_t> todo;
+    const auto stop = std::make_shared<std::atomic<bool>>(false);
+    scene::run_request request;  // grid 0, one thread per row (the rows run in parallel)
+    request.tolerance = tolerance;
+    request.acceptance = acceptance;
+    request.time_limit = time_limit;
+    request.profile_knots = profile_knots;
+    request.interrupt = [stop] { return stop->load(); };
     if (!out.empty()) {
       try {
-        output.emplace(spec_, format, out);
+        output.emplace(spec_, format, out, request);
       } catch (const scene::input_error& e) {
         throw py::value_error(e.what());
       } catch (const scene::write_error& e) {
@@ -219,13 +226,6 @@ class sweep_handle {
     } else {
       for (std::size_t i = 0; i < spec_.rows; ++i) todo.push_back(i);
     }
-    const auto stop = std::make_shared<std::atomic<bool>>(false);
-    scene::run_request request;  // grid 0, one thread per row (the rows run in parallel)
-    request.tolerance = tolerance;
-    request.acceptance = acceptance;
-    request.time_limit = time_limit;
-    request.profile_knots = profile_knots;
-    request.interrupt = [stop] { return stop->load(); };
     if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
     std::optional<scene::sweep_pool> pool;
     pool.emplace(spec_, format, todo, threads, request);

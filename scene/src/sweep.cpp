@@ -8,15 +8,18 @@
 
 #include "rhabel/materials.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <stdexcept>
+#include <utility>
 #include <variant>
 
 namespace rhabel::scene {
@@ -316,6 +319,8 @@ json row_scene(const sweep_spec& sweep, std::size_t row) {
 std::vector<std::string> row_columns(const sweep_spec& sweep) {
   std::vector<std::string> cols{"row"};
   for (const auto& axis : sweep.axes) cols.push_back(axis.path);
+  for (const char* c : {"tolerance", "acceptance"}) cols.emplace_back(c);  // row_options
+  if (sweep.profile) cols.emplace_back("profile_knots");
   for (const char* c : {"status", "alpha", "E1", "omega0", "alpha_tan_delta"}) cols.emplace_back(c);
   for (std::size_t i = 0; i < sweep.indentors; ++i) {
     const std::string p = "ind" + std::to_string(i) + "_";
@@ -347,6 +352,19 @@ std::string row_prefix(const sweep_spec& sweep, std::size_t row, row_format form
   } else {
     out = "{\"row\":" + std::to_string(row) + ",";
     for (std::size_t k = 0; k < values.size(); ++k) out += json(sweep.axes[k].path).dump() + ":" + values[k].dump() + ",";
+  }
+  return out;
+}
+
+std::string row_options(const sweep_spec& sweep, row_format format, const run_request& request) {
+  std::vector<std::pair<const char*, std::string>> fields{
+      {"tolerance", number_text(request.tolerance)},
+      {"acceptance", request.acceptance > 0 ? number_text(request.acceptance) : std::string()}};
+  if (sweep.profile) fields.emplace_back("profile_knots", request.profile_knots ? "true" : "false");
+  std::string out;
+  for (const auto& [name, text] : fields) {
+    if (format == row_format::csv) out += text + ",";
+    else out += json(name).dump() + ":" + (text.empty() ? "null" : text) + ",";
   }
   return out;
 }
@@ -385,7 +403,10 @@ bool is_complete_row(const sweep_spec& sweep, row_format format, std::string_vie
 
 std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format format, bool& ok, const run_request& request) {
   const auto columns = row_columns(sweep);
-  const std::size_t first_output = 1 + sweep.axes.size();
+  // The columns from the status on (those before are row_prefix's and row_options').
+  const auto status_column = std::find(columns.begin() + 1 + static_cast<std::ptrdiff_t>(sweep.axes.size()),
+                                       columns.end(), std::string("status"));
+  const auto first_output = static_cast<std::size_t>(status_column - columns.begin());
   std::vector<std::string> fields(columns.size() - first_output);  // status .. message, as text ("" = empty)
   auto set = [&](const std::string& column, const std::string& text) {
     for (std::size_t j = first_output; j < columns.size(); ++j) {
@@ -466,7 +487,7 @@ std::string solve_row(const sweep_spec& sweep, std::size_t row, row_format forma
   set("message", one_line(message));
   ok = status == "ok";
 
-  std::string line = row_prefix(sweep, row, format);
+  std::string line = row_prefix(sweep, row, format) + row_options(sweep, format, request);
   for (std::size_t j = 0; j < fields.size(); ++j) {
     const auto& name = columns[first_output + j];
     const auto& text = fields[j];

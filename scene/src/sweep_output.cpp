@@ -47,8 +47,30 @@ struct existing_rows {
   bool has_header = false;
 };
 
-// Reads FILE if it exists: the header must be this sweep's, every complete line one of its rows.
-existing_rows scan_existing(const sweep_spec& sweep, row_format format, const std::string& file) {
+// The solve options a row's line records (row_options' text, from `at`), as "tolerance 1e-12,
+// acceptance 1e-06" for a message (the default acceptance as "default").
+std::string options_named(const sweep_spec& sweep, row_format format, const std::string& line, std::size_t at) {
+  const auto columns = row_columns(sweep);
+  const std::size_t first = 1 + sweep.axes.size();
+  std::string out;
+  std::size_t pos = at;
+  for (std::size_t j = first; j < columns.size() && columns[j] != "status"; ++j) {
+    if (format == row_format::jsonl) pos = line.find(':', pos) + 1;  // past "name":
+    if (pos == 0 || pos > line.size()) break;
+    const std::size_t end = std::min(line.find(',', pos), line.size());
+    // (a hand-edited line may hold anything there: one line, at most 40 characters of it)
+    std::string value = one_line(line.substr(pos, std::min<std::size_t>(end - pos, 40)));
+    if (value.empty() || value == "null") value = "default";
+    out += (out.empty() ? "" : ", ") + columns[j] + " " + value;
+    pos = end + 1;
+  }
+  return out;
+}
+
+// Reads FILE if it exists: the header must be this sweep's, every complete line one of its rows
+// solved under `options` (row_options' text).
+existing_rows scan_existing(const sweep_spec& sweep, row_format format, const std::string& file,
+                            const std::string& options) {
   existing_rows out;
   if (::access(file.c_str(), F_OK) != 0) return out;  // a new file
   std::string text;
@@ -91,7 +113,15 @@ existing_rows scan_existing(const sweep_spec& sweep, row_format format, const st
     if (numbered && line.compare(0, prefix.size(), prefix) == 0) {
       // This sweep's row, unless torn (a killed writer, a disk that filled up): then it is dropped
       // and solved again, never copied to the result.
-      if (is_complete_row(sweep, format, line)) out.lines.emplace(row, line);  // a duplicate keeps the first
+      if (!is_complete_row(sweep, format, line)) continue;
+      if (line.compare(prefix.size(), options.size(), options) != 0) {
+        // Solved under other options: resuming would mix two sets of rows under one bar.
+        throw input_error("sweep: --out " + one_line(file) + " line " + std::to_string(line_no) + " was solved with " +
+                          options_named(sweep, format, line, prefix.size()) + ", this run asks " +
+                          options_named(sweep, format, prefix + options, prefix.size()) +
+                          ": rerun with those options, or remove the file or choose another name");
+      }
+      out.lines.emplace(row, line);  // a duplicate keeps the first
       continue;
     }
     // A line cut short inside its row's own prefix (or inside {"row": before the number) is torn
@@ -133,9 +163,13 @@ void rewrite_sorted(const std::string& file, const std::string& header, const st
 
 }  // namespace
 
-sweep_output::sweep_output(const sweep_spec& sweep, row_format format, std::string file)
-    : sweep_(sweep), format_(format), file_(std::move(file)), header_(header_line(sweep, format)) {
-  existing_rows existing = scan_existing(sweep, format, file_);
+sweep_output::sweep_output(const sweep_spec& sweep, row_format format, std::string file, const run_request& request)
+    : sweep_(sweep),
+      format_(format),
+      file_(std::move(file)),
+      header_(header_line(sweep, format)),
+      options_(row_options(sweep, format, request)) {
+  existing_rows existing = scan_existing(sweep, format, file_, options_);
   lines_ = std::move(existing.lines);
   fd_ = ::open(file_.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0666);
   if (fd_ < 0) write_failed(file_, std::strerror(errno));
@@ -174,7 +208,7 @@ void sweep_output::finish() {
 
 bool sweep_output::all_ok() const {
   for (const auto& [row, line] : lines_)
-    if (!status_ok(line, row_prefix(sweep_, row, format_).size(), format_)) return false;
+    if (!status_ok(line, row_prefix(sweep_, row, format_).size() + options_.size(), format_)) return false;
   return true;
 }
 

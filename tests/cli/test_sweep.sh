@@ -282,6 +282,41 @@ s = json.load(open(sys.argv[2]))
 assert float(rows[1]["C_f"]) == s["hysteretic_friction"] and int(rows[1]["contacts"]) == len(s["contacts"]), (rows[1], s)
 assert float(rows[1]["residual"]) == s["diagnostics"]["residual"] <= 1e-11
 PY
+# --- every row records its solve options, and a file is resumed only under the same ones: another
+# --acceptance, --tolerance or --profile-knots is refused (exit 2, naming both, the file untouched);
+# --time-limit (a budget, not a bar) may change -----------------------------------------------------
+"$py" - "$tmp/tol.csv" "$tmp/unlimited.csv" "$tmp/knots.csv" <<'PY' || fail "the rows' option columns (see above)"
+import csv, sys
+tol, default, knots = (list(csv.DictReader(open(f, newline=""))) for f in sys.argv[1:])
+assert all(r["tolerance"] == "1e-06" and r["acceptance"] == "0.0001" for r in tol), tol
+assert all(r["tolerance"] == "1e-12" and r["acceptance"] == "" and "profile_knots" not in r for r in default), default
+assert all(r["acceptance"] == "1e-11" and r["profile_knots"] == "true" for r in knots), knots
+PY
+refused_resume() {  # FILE SWEEP EXPECTED OPTIONS...
+  local file=$1 sweep=$2 expected=$3
+  shift 3
+  cp "$file" "$tmp/resume_before"
+  "$rhabel" sweep "$sweep" --out "$file" "$@" > /dev/null 2> "$tmp/err"; rc=$?
+  [ "$rc" -eq 2 ] && [ "$(wc -l < "$tmp/err")" -eq 1 ] && grep -qF -- "$expected" "$tmp/err" \
+    || fail "resumed with $*: rc $rc, $(cat "$tmp/err")"
+  cmp -s "$file" "$tmp/resume_before" || fail "a refused resume ($*) changed the file"
+}
+refused_resume "$tmp/tol.csv" "$tmp/two.json" \
+  "line 2 was solved with tolerance 1e-06, acceptance 0.0001, this run asks tolerance 1e-06, acceptance 1e-05" \
+  --tolerance 1e-6 --acceptance 1e-5
+refused_resume "$tmp/tol.csv" "$tmp/two.json" "this run asks tolerance 1e-06, acceptance default" --tolerance 1e-6
+refused_resume "$tmp/knots.csv" "$tmp/knots.json" \
+  "solved with tolerance 1e-12, acceptance 1e-11, profile_knots true, this run asks tolerance 1e-12, acceptance 1e-11, profile_knots false" \
+  --acceptance 1e-11
+"$rhabel" sweep "$tmp/two.json" --out "$tmp/tol.jsonl" --jsonl --tolerance 1e-6 --acceptance 1e-4 2> /dev/null \
+  || fail "--jsonl --tolerance 1e-6 --acceptance 1e-4: exit $?"
+refused_resume "$tmp/tol.jsonl" "$tmp/two.json" "solved with tolerance 1e-06, acceptance 0.0001, this run asks tolerance 1e-07" \
+  --jsonl --tolerance 1e-7 --acceptance 1e-4
+cp "$tmp/tol.csv" "$tmp/tol_before.csv"
+"$rhabel" sweep "$tmp/two.json" --out "$tmp/tol.csv" --tolerance 1e-6 --acceptance 1e-4 --time-limit 100 2> "$tmp/err" \
+  || fail "resumed with another --time-limit: exit $? ($(cat "$tmp/err"))"
+cmp -s "$tmp/tol.csv" "$tmp/tol_before.csv" || fail "resuming a complete sweep with another --time-limit changed it"
+
 for bad in "--tolerance nan" "--tolerance inf" "--tolerance 0" "--tolerance 1e-16" "--tolerance 0.1" "--tolerance abc" \
            "--acceptance nan" "--acceptance 0" "--acceptance 1" "--threads -1" "--threads 4097" "--threads x"; do
   # shellcheck disable=SC2086  # "OPTION VALUE" splits in two on purpose

@@ -123,6 +123,23 @@ def test_another_sweeps_file_is_refused(tmp_path):
     assert out.read_text() == "row,speed,status\n0,1,ok\n"
 
 
+def test_a_file_is_resumed_only_under_its_options(tmp_path):
+    # Each row records the options it was solved with; another acceptance or tolerance is refused
+    # (the file untouched), the same ones resume (here: nothing to solve, the file unchanged).
+    out = tmp_path / "two.csv"
+    rows = rhabel.sweep(TWO, out=out, progress=False, tolerance=1e-6, acceptance=1e-4)
+    assert all(row.tolerance == 1e-6 and row.acceptance == 1e-4 for row in rows)
+    assert all(row.acceptance is None for row in rhabel.sweep(TWO, progress=False))
+    before = out.read_text()
+    for options in ({"tolerance": 1e-6}, {"tolerance": 1e-7, "acceptance": 1e-4}):
+        with pytest.raises(ValueError, match=r"line 2 was solved with tolerance 1e-06, acceptance 0\.0001, this run asks"):
+            rhabel.sweep(TWO, out=out, progress=False, **options)
+        assert out.read_text() == before
+    assert without_seconds(rhabel.sweep(TWO, out=out, progress=False, tolerance=1e-6, acceptance=1e-4)) == \
+        without_seconds(rows)
+    assert out.read_text() == before
+
+
 def test_ctrl_c_stops_a_sweep_and_keeps_the_rows_done(tmp_path):
     # Ctrl-C (SIGINT) during a sweep whose rows each refine for seconds (the periodic example at
     # acceptances it cannot reach): KeyboardInterrupt, the rows under way stopped (their solves
@@ -137,5 +154,6 @@ def test_ctrl_c_stops_a_sweep_and_keeps_the_rows_done(tmp_path):
         rhabel.sweep(slow, out=out, threads=2, progress=False, acceptance=1e-9)
     assert sent and time.monotonic() - sent[0] < 5
     lines = out.read_text().splitlines(keepends=True)
-    assert lines[0].startswith("row,speed,status") and all(line.endswith("\n") for line in lines)
+    assert lines[0].startswith("row,speed,tolerance,acceptance,profile_knots,status")
+    assert all(line.endswith("\n") for line in lines)
     assert not any(",error," in line for line in lines[1:])  # a stopped row is not written as a row

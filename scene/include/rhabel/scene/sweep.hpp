@@ -79,9 +79,16 @@ std::vector<std::string> row_columns(const sweep_spec& sweep);
 /// The CSV header line (with '\n'); empty for JSON lines.
 std::string header_line(const sweep_spec& sweep, row_format format);
 
-/// The deterministic beginning of row i's line: its index and inputs, up to and including the
-/// separator before the status (used to recognise rows already written when resuming).
+/// The deterministic beginning of row i's line: its index and swept values, up to and including
+/// the separator before the solve options (used to recognise rows already written when resuming).
 std::string row_prefix(const sweep_spec& sweep, std::size_t row, row_format format);
+
+/// The solve options every row records after its swept values, up to and including the separator
+/// before the status: tolerance, acceptance (empty in CSV, null in JSON: the solver's default) and,
+/// for a sampled profile, profile_knots. A row solved under other options is not resumed
+/// (sweep_output). time_limit is not among them: a budget, not a bar (a row that ran out of time
+/// says so in its status).
+std::string row_options(const sweep_spec& sweep, row_format format, const run_request& request);
 
 /// Whether `line` (with its '\n') is a whole row as solve_row writes it: CSV with exactly the
 /// columns' count of fields (quoted fields as csv_field writes them), or a JSON object with exactly
@@ -129,13 +136,14 @@ class sweep_pool {
 
 /// The output file of a sweep (`rhabel sweep --out`, `rhabel.sweep(out=...)`), resumable: the
 /// constructor reads FILE if it exists (its header must be this sweep's and every complete line one
-/// of its rows, else input_error naming the file and the line; a torn last line is cut off), opens
+/// of its rows solved under `request`'s options (row_options), else input_error naming the file,
+/// the line and, for a row of other options, both options; a torn last line is cut off), opens
 /// it for appending and writes the header when missing; append() writes each new row as one whole
 /// write; finish() rewrites FILE with every row once, in row order (a temporary in the same
 /// directory, then rename). Write failures are write_error, naming the file.
 class sweep_output {
  public:
-  sweep_output(const sweep_spec& sweep, row_format format, std::string file);
+  sweep_output(const sweep_spec& sweep, row_format format, std::string file, const run_request& request);
   ~sweep_output();
   sweep_output(const sweep_output&) = delete;
   sweep_output& operator=(const sweep_output&) = delete;
@@ -151,7 +159,7 @@ class sweep_output {
  private:
   const sweep_spec& sweep_;
   row_format format_;
-  std::string file_, header_;
+  std::string file_, header_, options_;
   std::map<std::size_t, std::string> lines_;
   int fd_ = -1;
 };
