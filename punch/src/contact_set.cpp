@@ -840,10 +840,104 @@ bool seed_needed(const std::map<std::size_t, coarse_patch>& lost, std::size_t b,
   return it->second.load >= needed_share * total / double(runs.size());
 }
 
+/// The round at fraction t of the load on `runs`: its scene and states, each seeded run started
+/// from its seed (its own load: runs may share a tip; spare: indentor_state::spare_light), else
+/// the loads split by `shares` (start_split).
+round_state prepare_round(const profile_model& m, const context& cx, const std::vector<run>& runs, double t,
+                          const std::map<std::size_t, double>& shares, bool spare) {
+  round_state next;
+  next.runs = runs;
+  next.t = t;
+  next.sc = make_scene(m, runs, t * m.source->load);
+  next.states = prepare_states(next.sc, cx);
+  next.states.jacobian = m.jacobian;
+  if (std::all_of(runs.begin(), runs.end(), [](const run& r) { return r.seed.has_value(); })) {
+    for (auto& state : next.states.st) {
+      const coarse_patch& p = *runs[state.scene_index].seed;
+      state.seed = std::pair{p.a - next.states.origin, p.b - next.states.origin};
+      state.target_load = p.load * t;
+      state.degree_cap = p.degree;
+      state.seed_load = p.load_solved;
+      state.spare_light = spare;
+    }
+  } else {
+    start_split(m, runs, shares, next.states);
+  }
+  return next;
+}
+
+/// After a converged round: each tip's share of the load per unit t and, seeded, each run's seed
+/// from its solved contact (the next round starts from this one's contacts).
+void keep_solved(const profile_model& m, const round_state& last, bool seeded, std::vector<run>& runs,
+                 std::map<std::size_t, double>& shares) {
+  shares.clear();
+  for (const auto& state : last.states.st) {
+    shares[m.tip(runs[state.scene_index])] = state.target_load / last.t;
+    if (seeded)
+      runs[state.scene_index].seed = coarse_patch{state.g.a() + last.states.origin, state.g.b() + last.states.origin,
+                                                  state.target_load / last.t, state.degree_cap};
+  }
+}
+
+/// The bumps to add after a converged round: those addable whose penetration is at least
+/// add_fraction of the deepest, when the deepest exceeds tol (relative to the span); none else.
+std::vector<std::size_t> growth(const profile_model& m, const scene_states& states, const clearance_check& clear,
+                                const std::vector<run>& runs, const std::vector<std::size_t>& dropped, bool seeded,
+                                double tol) {
+  const auto candidate = addable(m, states, clear, runs, dropped, seeded);
+  double deepest = 0;
+  for (std::size_t b = 0; b < m.bumps.size(); ++b)
+    if (candidate[b]) deepest = std::max(deepest, clear.depth[b]);
+  std::vector<std::size_t> added;
+  if (!(deepest > tol)) return added;
+  for (std::size_t b = 0; b < m.bumps.size(); ++b)
+    if (candidate[b] && clear.depth[b] >= add_fraction * deepest) added.push_back(b);
+  return added;
+}
+
+/// A run for each added bump (seeded: at its deepest penetration, with a quarter of the smallest
+/// share as its load), the runs sorted again.
+void add_runs(const profile_model& m, const clearance_check& clear, const std::vector<std::size_t>& added, bool seeded,
+              const std::map<std::size_t, double>& shares, std::vector<run>& runs) {
+  double smallest = std::numeric_limits<double>::infinity();
+  for (const auto& [tip, share] : shares) smallest = std::min(smallest, share);
+  for (std::size_t b : added)
+    runs.push_back({b, b, seeded ? std::optional(new_seed(m, clear.deepest_at[b], smallest / 4)) : std::nullopt});
+  sort_runs(runs);
+}
+
+/// A search that ends in a round that failed (its coupled solve, or stopped by its time or round
+/// limit) reports the best state it reached instead: the last converged round at the same load,
+/// whose clearances (below) name the contacts it misses, with why the search went no further.
+/// WHY: a round that fails is no solution (1e5-sample periodic profile, seed 3, load 6e-3,
+/// --time-limit 240: reported as its last round, with residual 1 and C_f 0 after a later search's
+/// round; as its best state, 425 contacts, residual 7.4e-5 (a degree-128 round) and C_f 0.052018,
+/// where the boundary-element solver gives 0.05202 +- 2.1e-4).
+void report_best(const profile_model& m, const context& cx, std::optional<round_state> last_converged,
+                 search_result& out) {
+  if (out.last && out.last->outcome.code != status_code::ok && last_converged && last_converged->t >= out.last->t) {
+    const std::string& why = out.last->outcome.message;
+    if (out.failure.empty())
+      out.failure = "the round after it, with " + std::to_string(out.last->runs.size()) + " contacts, did not converge" +
+                    (why.empty() ? "" : ": " + rename(why, m, out.last->runs));
+    out.last.emplace(std::move(*last_converged));
+  }
+  // The evidence of the round that is reported when it was not the last one checked (a later
+  // round failed to solve, the round limit came, or its own solve did not converge): its
+  // clearances, recomputed (for a failed solve they locate the contacts it misses).
+  if (out.last && (out.last->outcome.code != status_code::ok || !out.failure.empty())) {
+    try {
+      out.clear = check_clearance(m, out.last->states, cx);
+    } catch (const std::exception&) {
+      out.clear = {};
+    }
+  }
+}
+
 /// The active-set search from `start`, with load continuation when start.t < 1 (profile.hpp, "THE
 /// CONTACT SET").
 search_result search_contact_set(const profile_model& m, const context& cx, const search_start& start) {
-  const double tol = cx.options.acceptance, load = m.source->load;
+  const double tol = cx.options.acceptance;
   search_result out;
   std::vector<run> runs = start.runs;
   // Times each bump was dropped at the current load; at max_drops it is not added again.
@@ -885,25 +979,8 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
       break;
     }
     ++out.rounds;
-    round_state next;
-    next.runs = runs;
-    next.t = t;
-    next.sc = make_scene(m, runs, t * load);
-    next.states = prepare_states(next.sc, cx);
-    next.states.jacobian = m.jacobian;
     const bool seeded = std::all_of(runs.begin(), runs.end(), [](const run& r) { return r.seed.has_value(); });
-    if (seeded) {
-      for (auto& state : next.states.st) {  // each run its own load (runs may share a tip)
-        const coarse_patch& p = *runs[state.scene_index].seed;
-        state.seed = std::pair{p.a - next.states.origin, p.b - next.states.origin};
-        state.target_load = p.load * t;
-        state.degree_cap = p.degree;
-        state.seed_load = p.load_solved;
-        state.spare_light = start.spare;
-      }
-    } else {
-      start_split(m, runs, shares, next.states);
-    }
+    round_state next = prepare_round(m, cx, runs, t, shares, start.spare);
     try {
       next.outcome = solve_states(next.sc, next.states, cx);
     } catch (const std::domain_error& e) {
@@ -957,13 +1034,7 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
     }
     restoring.reset();
     last_converged.emplace(last);
-    shares.clear();
-    for (const auto& state : last.states.st) {
-      shares[m.tip(runs[state.scene_index])] = state.target_load / t;
-      if (seeded)  // the next round starts from this one's contacts
-        runs[state.scene_index].seed = coarse_patch{state.g.a() + last.states.origin, state.g.b() + last.states.origin,
-                                                    state.target_load / t, state.degree_cap};
-    }
+    keep_solved(m, last, seeded, runs, shares);
     if (seeded && !lost_seeds.empty()) {
       std::vector<run> runs_before = runs;
       std::map<std::size_t, coarse_patch> lost_before = lost_seeds;
@@ -982,31 +1053,16 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
     if (seeded && repair_tension(m, last.states, runs, repaired, tol)) continue;
     if (widen(m, runs, last.states)) continue;
     out.clear = check_clearance(m, last.states, cx);
-    const auto candidate = addable(m, last.states, out.clear, runs, dropped, seeded);
-    double deepest = 0;
-    for (std::size_t b = 0; b < m.bumps.size(); ++b)
-      if (candidate[b]) deepest = std::max(deepest, out.clear.depth[b]);
-    const bool grow = deepest > tol;
-    if (grow && seeded && !start.spare) {
-      bool again = false;
-      for (std::size_t b = 0; b < m.bumps.size(); ++b)
-        again = again || (candidate[b] && out.clear.depth[b] >= add_fraction * deepest && dropped[b] > 0 &&
-                          seed_needed(lost_seeds, b, runs));
-      if (again) {
-        out.respare = true;
-        out.failure = needed_again;
-        break;
-      }
+    const auto added = growth(m, last.states, out.clear, runs, dropped, seeded, tol);
+    if (seeded && !start.spare && std::any_of(added.begin(), added.end(), [&](std::size_t b) {
+          return dropped[b] > 0 && seed_needed(lost_seeds, b, runs);
+        })) {
+      out.respare = true;
+      out.failure = needed_again;
+      break;
     }
-    if (grow) {
-      double smallest = std::numeric_limits<double>::infinity();
-      for (const auto& [tip, share] : shares) smallest = std::min(smallest, share);
-      for (std::size_t b = 0; b < m.bumps.size(); ++b)
-        if (candidate[b] && out.clear.depth[b] >= add_fraction * deepest)
-          runs.push_back(
-              {b, b, seeded ? std::optional(new_seed(m, out.clear.deepest_at[b], smallest / 4)) : std::nullopt});
-      sort_runs(runs);
-    }
+    const bool grow = !added.empty();  // else nothing penetrates by more than tol: settled at this load
+    if (grow) add_runs(m, out.clear, added, seeded, shares, runs);
     if (t == 1) {
       if (grow) continue;
       break;  // settled at the full load
@@ -1023,30 +1079,7 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
   if (t == 1)
     for (const auto& [b, seed] : lost_seeds)
       if (dropped[b] < max_drops) out.lost.emplace(b, seed);
-  // A search that ends in a round that failed (its coupled solve, or stopped by its time or round
-  // limit) reports the best state it reached instead: the last converged round at the same load,
-  // whose clearances (below) name the contacts it misses, with why the search went no further.
-  // WHY: a round that fails is no solution (1e5-sample periodic profile, seed 3, load 6e-3,
-  // --time-limit 240: reported as its last round, with residual 1 and C_f 0 after a later search's
-  // round; as its best state, 425 contacts, residual 7.4e-5 (a degree-128 round) and C_f 0.052018,
-  // where the boundary-element solver gives 0.05202 +- 2.1e-4).
-  if (out.last && out.last->outcome.code != status_code::ok && last_converged && last_converged->t >= out.last->t) {
-    const std::string& why = out.last->outcome.message;
-    if (out.failure.empty())
-      out.failure = "the round after it, with " + std::to_string(out.last->runs.size()) + " contacts, did not converge" +
-                    (why.empty() ? "" : ": " + rename(why, m, out.last->runs));
-    out.last.emplace(std::move(*last_converged));
-  }
-  // The evidence of the round that is reported when it was not the last one checked (a later
-  // round failed to solve, the round limit came, or its own solve did not converge): its
-  // clearances, recomputed (for a failed solve they locate the contacts it misses).
-  if (out.last && (out.last->outcome.code != status_code::ok || !out.failure.empty())) {
-    try {
-      out.clear = check_clearance(m, out.last->states, cx);
-    } catch (const std::exception&) {
-      out.clear = {};
-    }
-  }
+  report_best(m, cx, std::move(last_converged), out);
   return out;
 }
 

@@ -127,11 +127,15 @@ particular split_particular(const indentor_state& st, const context& cx, double 
   return out;
 }
 
+/// The series' largest degree: solve_options::max_degree, or the contact's own cap below it.
+std::size_t series_cap(const indentor_state& st, const context& cx) {
+  return st.degree_cap > 0 ? std::min(st.degree_cap, cx.options.max_degree) : cx.options.max_degree;
+}
+
 particular solve_particular(const indentor_state& st, const context& cx, role r, double a, double b, double load,
                             bool loaded, const kink_settings& ks) {
   particular out;
-  // The series' degree: solve_options::max_degree, or the contact's own cap below it.
-  const std::size_t cap = st.degree_cap > 0 ? std::min(st.degree_cap, cx.options.max_degree) : cx.options.max_degree;
+  const std::size_t cap = series_cap(st, cx);
   if (loaded) return series_particular(a, b, cx.exponents(1), own_forcing(st, cx), cx, cap, ks, load);
   if (r == role::line_load) {
     out.g.jacobi.lo = out.g.jacobi.hi = a;
@@ -322,18 +326,19 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
   for (std::size_t i = 0; i < n; ++i) {
     const kink_settings ks{std::max(cx.options.tolerance, pb.accuracy),
                            pb.fixed_particular_degrees.empty() ? 0 : pb.fixed_particular_degrees[i]};
-    const particular_memo::key key{a[i], b[i], pb.load(i), ks.accuracy, nu_of(pb.roles[i]), is_loaded(pb, i), ks.degree};
+    const particular_memo::key key{a[i],      b[i],     pb.load(i), ks.accuracy, nu_of(pb.roles[i]), is_loaded(pb, i),
+                                   ks.degree, series_cap(st[i], cx)};
     particular p;
-    // Only knotted particulars are kept (they exist with solve_options::profile_knots alone): the
-    // default path skips the memo's lock, which the Jacobian's threads would otherwise share.
-    const bool memo = cx.options.profile_knots && pb.split[i] == 0;
+    // Knotted particulars (solve_options::profile_knots) and a sampled profile's are kept; the
+    // other scenes skip the memo's lock, which the Jacobian's threads would otherwise share.
+    const bool memo = (cx.options.profile_knots || pb.seeded) && pb.split[i] == 0;
     if (auto kept = memo ? pb.particulars->find(i, key) : std::nullopt) {
       p.g = std::move(kept->g);  // a knotted particular
       p.defect = kept->defect;
     } else {
       p = pb.split[i] != 0 ? split_particular(st[i], cx, a[i], b[i], pb.split[i])
                            : solve_particular(st[i], cx, pb.roles[i], a[i], b[i], pb.load(i), is_loaded(pb, i), ks);
-      if (!p.g.kinks.empty()) pb.particulars->store(i, {key, p.g, p.defect});
+      if (memo) pb.particulars->store(i, {key, p.g, p.defect});
     }
     out.particular_degrees.push_back(p.g.kinks.empty() ? 0 : p.g.particular_degree);
     out.g[i] = std::move(p.g);

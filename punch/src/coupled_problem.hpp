@@ -158,13 +158,15 @@ class degree_hints {
   std::vector<std::size_t> degrees_;
 };
 
-/// The particulars with knots built in (coupled_fixed.cpp, kinked_particular) of the last
-/// evaluation, per state, with what they were solved for (edges, load, class, accuracy, degree):
-/// an evaluation that asks a state's particular for exactly the same (bit for bit) takes the kept
-/// one. WHY: a Jacobian's difference moves a few contacts' edges and solves all contacts again,
-/// and a knotted particular costs ~3 us a term and interpolation point (abel::solve_kinks): a
-/// 4000-sample periodic profile (86 patches) took 67 s with every particular solved anew, where
-/// the plain series had taken 10 s. Thread-safe (copies of a problem share it).
+/// The particulars of the last evaluation, per state, with what they were solved for (edges, load,
+/// class, accuracy, degree and cap): an evaluation that asks a state's particular for exactly the
+/// same (bit for bit) takes the kept one. WHY: a Jacobian's difference moves a few contacts' edges
+/// and solves all contacts again. A knotted particular costs ~3 us a term and interpolation point
+/// (abel::solve_kinks): a 4000-sample periodic profile (86 patches) took 67 s with every particular
+/// solved anew, where the plain series had taken 10 s. A plain series of a seeded (sampled-profile)
+/// problem is kept too, the same bits for less time: a coloured Jacobian's column moves a few
+/// contacts of hundreds (1e5-sample periodic profile, 233 contacts: 22.3 s -> 21.5 s). Thread-safe
+/// (copies of a problem share it).
 class particular_memo {
  public:
   struct key {
@@ -172,8 +174,10 @@ class particular_memo {
     int nu = 0;
     bool loaded = false;
     std::size_t degree = 0;  // requested: 0 adaptive, else fixed
+    std::size_t cap = 0;     // the series' largest degree (coupled_fixed.cpp, series_cap)
     bool operator==(const key& o) const {
-      return a == o.a && b == o.b && load == o.load && accuracy == o.accuracy && nu == o.nu && loaded == o.loaded;
+      return a == o.a && b == o.b && load == o.load && accuracy == o.accuracy && nu == o.nu && loaded == o.loaded &&
+             cap == o.cap;
     }
   };
   /// A kept particular: its density and its solvability defect (nu = -1, abel's normalisation).
@@ -274,7 +278,7 @@ struct problem {
   // only grows, and one overshoot toward a merge kept every later evaluation at the cap of 600).
   // Per contact (abel's adapt_each_interval): only the contacts with a near neighbour climb.
   std::shared_ptr<degree_hints> hints = std::make_shared<degree_hints>();
-  // The knotted particulars of the last evaluations (copies share them: see particular_memo).
+  // The particulars of the last evaluations (copies share them: see particular_memo).
   std::shared_ptr<particular_memo> particulars = std::make_shared<particular_memo>();
   // > the requested tolerance: the accuracy to which an evaluation solves the correction (an
   // inexact Newton step far from the solution; see newton_iteration).

@@ -540,12 +540,11 @@ std::optional<edges> loads_imposed_start(const problem& pb, const edges& seeds, 
   return r.x;
 }
 
-}  // namespace
-}  // namespace coupled
-
-coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx, std::optional<double> body_load,
-                              std::shared_ptr<coupled::jacobian_memo> memo) {
-  using namespace coupled;
+/// The problem of st (roles, splits, loaded forms, starting lengths; a seeded one's floor and
+/// accuracy) and its starting edges `isolated`: a seeded contact's seed, else the isolated
+/// contact's solution (solve_isolated, which sets st[i].g).
+problem set_up(std::vector<indentor_state>& st, const context& cx, std::optional<double> body_load,
+               std::shared_ptr<jacobian_memo> memo, edges& isolated) {
   problem pb;
   pb.st = &st;
   pb.cx = &cx;
@@ -556,15 +555,13 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   // load 2e-3, degree 1024 from the contacts solved at 512: the largest condition 5.8e-7 at the
   // start, no step descended from it, and the retries spent 55 s (the residual of (8) there: 5.1e-7,
   // within the acceptance 1e-6).
-  const bool seeded = any_seeded(st);
-  pb.seeded = seeded;
-  if (seeded) {
+  pb.seeded = any_seeded(st);
+  if (pb.seeded) {
     pb.stall_floor = cx.options.acceptance;
     pb.accuracy = std::max(cx.options.tolerance, (cx.ladder ? ladder_accuracy : seeded_accuracy) * cx.options.acceptance);
   }
-  edges isolated;
   for (auto& s : st) {
-    s.solved.reset();  // set below for a result in the boundary-layer basis
+    s.solved.reset();  // set by hand_back for a result in the boundary-layer basis
     pb.roles.push_back(role_of(s, cx));
     if (s.seed && s.k == kind::general) {
       // A seeded start (contact_set.cpp): its edges instead of the isolated contact's.
@@ -590,8 +587,21 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
     pb.loaded.push_back(loaded_form(s, pb.roles.back(), cx, body_load.has_value(), st.size()));
   }
   for (std::size_t i = 0; i < st.size(); ++i) pb.start_length.push_back(isolated.b[i] - isolated.a[i]);
-  coupled_outcome out;
-  auto any = [](const auto& flags) { return std::any_of(flags.begin(), flags.end(), [](auto v) { return v != 0; }); };
+  return pb;
+}
+
+bool any_set(const std::vector<int>& flags) {
+  return std::any_of(flags.begin(), flags.end(), [](int v) { return v != 0; });
+}
+bool any_set(const std::vector<bool>& flags) { return std::any_of(flags.begin(), flags.end(), [](bool v) { return v; }); }
+
+/// Newton from the start, then the retries in turn while it fails, each kept when it does better
+/// (retry): pb ends as the variant whose result is returned, with the densities of a loaded form
+/// re-solved in the bounded class.
+newton_result solve_with_retries(problem& pb, const edges& isolated) {
+  const auto& st = *pb.st;
+  const auto& cx = *pb.cx;
+  const bool seeded = pb.seeded;
   auto again = [&](problem& p) { return attempt(p, isolated); };
   // A seeded body: from the edges that carry the seeds' loads (loads_imposed_start), and when the
   // iteration from there stalls, from the seeds themselves. WHY the latter: a 1000-sample periodic
@@ -600,7 +610,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   // the seeds in 9 iterations.
   std::size_t preload_iterations = 0, preload_jacobians = 0;
   const auto start =
-      seeded && body_load ? loads_imposed_start(pb, isolated, preload_iterations, preload_jacobians) : std::nullopt;
+      seeded && pb.body_load ? loads_imposed_start(pb, isolated, preload_iterations, preload_jacobians) : std::nullopt;
   newton_result result = attempt(pb, start ? *start : isolated);
   result.iterations += preload_iterations;
   result.jacobians += preload_jacobians;
@@ -609,7 +619,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   // the solution: coupled_newton.cpp, trusted_residual): again from the same start,
   // every starving contact dropped (problem::starve_untrusted); kept when it converged or dropped
   // one. WHY: a contact kept there can stall the iteration at a large condition on its level.
-  if (seeded && body_load && !result.converged && !result.merged && !result.lost && result.spared) {
+  if (seeded && pb.body_load && !result.converged && !result.merged && !result.lost && result.spared) {
     problem eager = pb;
     eager.starve_untrusted = true;
     retry(pb, result, std::move(eager), [&](problem& p) { return attempt(p, start ? *start : isolated); },
@@ -620,7 +630,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   // Seeded contacts whose series cannot reach the acceptance at this degree: no retries.
   const bool capped = seeded && !result.converged && series_capped(result.sol, cx);
   // The loads-imposed iteration failed (or saw contacts merge): again in the bounded class.
-  if (!result.converged && any(pb.loaded))
+  if (!result.converged && any_set(pb.loaded))
     retry(pb, result, bounded_form(pb), again,
           [](const newton_result& second, const newton_result& first) { return second.converged || !first.merged; });
   // A seeded start from which Newton failed: the homotopy from the seeds' own conditions.
@@ -642,7 +652,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
           [](const newton_result& second, const newton_result&) { return second.converged || second.lost.has_value(); });
   // A split wedge whose apex left its contact (its contact moved onto one face) or that did not
   // converge: again with the plain forms, which take any position of the apex.
-  if (!result.converged && !result.merged && any(pb.split)) {
+  if (!result.converged && !result.merged && any_set(pb.split)) {
     problem plain = pb;
     plain.split.assign(plain.split.size(), 0);
     retry(pb, result, std::move(plain), again, [](const newton_result& second, const newton_result& first) {
@@ -655,14 +665,14 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   if (!pb.body_load && !result.converged && !result.lost && st.size() > 1 && parabolas_only(st) && !cx.out_of_time()) {
     std::vector<std::pair<double, double>> from;
     for (std::size_t i = 0; i < st.size(); ++i) from.emplace_back(isolated.a[i], isolated.b[i]);
-    if (const auto start = coarse_bodies(st, from, cx)) {
-      edges seeded;
-      for (const auto& [a, b] : *start) seeded.a.push_back(a), seeded.b.push_back(b);
+    if (const auto coarse = coarse_bodies(st, from, cx)) {
+      edges coarse_start;
+      for (const auto& [a, b] : *coarse) coarse_start.a.push_back(a), coarse_start.b.push_back(b);
       // Kept when it converged, or when it stalled nearer to it than the continuations got (a
       // light contact's edge conditions may stall at ~1e-10 from a start whose edges are a panel
       // off: that state, not_converged with its residuals, is closer to the answer than a merge
       // met on the way).
-      retry(pb, result, pb, [&](problem& p) { p.load_factor = 1; return newton(p, seeded); },
+      retry(pb, result, pb, [&](problem& p) { p.load_factor = 1; return newton(p, coarse_start); },
             [](const newton_result& second, const newton_result& first) {
               return second.converged || (!second.merged && second.residual < first.residual);
             });
@@ -674,7 +684,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
   if (!pb.body_load && !result.converged && !result.lost && unequal)
     retry(pb, result, pb, [&](problem& p) { return ratio_continuation(p, isolated); },
           [](const newton_result& second, const newton_result&) { return second.converged; });
-  if (any(pb.loaded) && !result.sol.g.empty()) {
+  if (any_set(pb.loaded) && !result.sol.g.empty()) {
     // The reported densities in the bounded class (the iteration's are bounded only to the
     // tolerance of its intensity conditions, and their edge exponents would be the singular ones).
     try {
@@ -684,13 +694,20 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
       result.converged = false;
     }
   }
+  return result;
+}
+
+/// The outcome's code, message and counts from the iteration's result.
+coupled_outcome outcome_of(const problem& pb, const newton_result& result) {
+  const auto& st = *pb.st;
+  coupled_outcome out;
   out.iterations = result.iterations;
   out.jacobians = result.jacobians;
   out.union_degree = result.sol.degree;
   if (!result.converged && result.lost) {
     out.code = status_code::contact_lost;
     std::size_t named = 0;
-    if (seeded) {
+    if (pb.seeded) {
       // From seeds (a sampled profile's coarse contacts, near the physical ones) the
       // contact that shrank is the one named; the equal split's levels mean nothing there (the
       // seeds' densities are not solved), and naming by them dropped the same real contact
@@ -699,7 +716,7 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
       out.message = "a contact vanishes in the iteration: at this body load and these heights " +
                     indentor_name(st[named].scene_index, *st[named].source) + " would carry no load";
     } else {
-      out.message = lost_contact_message(st, cx, named);
+      out.message = lost_contact_message(st, *pb.cx, named);
     }
     out.lost = named;
   }
@@ -721,42 +738,60 @@ coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx
     if (pb.load_factor < 1) os << " (at " << pb.load_factor << " of the loads)";
     out.message = os.str();
   }
-  // Whatever was reached is reported (with a non-ok code when it did not converge), unless the
-  // solve was interrupted: then nothing is (each contact's projection below takes seconds for
-  // contacts nearly touching, and checks nothing inside; the caller wants none of it).
-  if (!result.sol.g.empty()) {
-    for (std::size_t i = 0; i < st.size(); ++i) {
-      cx.throw_if_interrupted("rhabel::punch::solve", true);
-      st[i].g = std::move(result.sol.g[i]);
-      // The report, fields and surface take a Jacobi series (and apex): the layer joins the series;
-      // the residual of (8) is evaluated on the density as solved. The projection's measured error
-      // joins the error estimate, which an ok status needs within the acceptance: projected to a
-      // tenth of it at least (at tolerance 1e-8, to the acceptance's default 1e-9, every scene of
-      // gap 1e-3 L in study_multi_contact came back not_converged).
-      if (!st[i].g.layer.empty()) st[i].solved = st[i].g;
-      // Not ok anyway (not converged, out of time): coarsely (see coarse_projection).
-      if (!result.converged || cx.out_of_time())
-        st[i].g.absorb_layer(coarse_projection, coarse_degree);
-      else
-        st[i].g.absorb_layer(std::min(cx.options.tolerance, 0.1 * cx.options.acceptance),
-                             projection_degree(cx, st.size() - i));
-      if (pb.body_load) st[i].target_load = st[i].g.integral();  // the solved share (checked by the caller)
-      st[i].friction.reset();
-      st[i].rh_unit.reset();
-      st[i].status = "ok";
-      if (st[i].k == kind::wedge && !st[i].g.line_load)
-        st[i].epsilon = (st[i].apex - st[i].g.a()) / st[i].g.length();
-    }
-    cx.throw_if_interrupted("rhabel::punch::solve", true);  // the report's own cost is next
-    if (!result.sol.correction_converged && out.code == status_code::ok) {
-      std::ostringstream os;
-      os.precision(3);
-      os << "coupling correction not converged at up to " << result.sol.degree << " points a contact (residual "
-         << result.sol.correction_residual << " of the data)";
-      out.code = status_code::not_converged;
-      out.message = os.str();
-    }
+  return out;
+}
+
+/// Moves the solved densities into st (pb's states; projected onto a Jacobi series, their loads the solved
+/// shares on a body) and marks a correction that did not converge in out. Whatever was reached
+/// is handed back (with a non-ok code when it did not converge), unless the solve was
+/// interrupted: then nothing is (each contact's projection takes seconds for contacts nearly
+/// touching, and checks nothing inside; the caller wants none of it).
+void hand_back(std::vector<indentor_state>& st, const problem& pb, newton_result& result, coupled_outcome& out) {
+  const auto& cx = *pb.cx;
+  if (result.sol.g.empty()) return;
+  for (std::size_t i = 0; i < st.size(); ++i) {
+    cx.throw_if_interrupted("rhabel::punch::solve", true);
+    st[i].g = std::move(result.sol.g[i]);
+    // The report, fields and surface take a Jacobi series (and apex): the layer joins the series;
+    // the residual of (8) is evaluated on the density as solved. The projection's measured error
+    // joins the error estimate, which an ok status needs within the acceptance: projected to a
+    // tenth of it at least (at tolerance 1e-8, to the acceptance's default 1e-9, every scene of
+    // gap 1e-3 L in study_multi_contact came back not_converged).
+    if (!st[i].g.layer.empty()) st[i].solved = st[i].g;
+    // Not ok anyway (not converged, out of time): coarsely (see coarse_projection).
+    if (!result.converged || cx.out_of_time())
+      st[i].g.absorb_layer(coarse_projection, coarse_degree);
+    else
+      st[i].g.absorb_layer(std::min(cx.options.tolerance, 0.1 * cx.options.acceptance),
+                           projection_degree(cx, st.size() - i));
+    if (pb.body_load) st[i].target_load = st[i].g.integral();  // the solved share (checked by the caller)
+    st[i].friction.reset();
+    st[i].rh_unit.reset();
+    st[i].status = "ok";
+    if (st[i].k == kind::wedge && !st[i].g.line_load) st[i].epsilon = (st[i].apex - st[i].g.a()) / st[i].g.length();
   }
+  cx.throw_if_interrupted("rhabel::punch::solve", true);  // the report's own cost is next
+  if (!result.sol.correction_converged && out.code == status_code::ok) {
+    std::ostringstream os;
+    os.precision(3);
+    os << "coupling correction not converged at up to " << result.sol.degree << " points a contact (residual "
+       << result.sol.correction_residual << " of the data)";
+    out.code = status_code::not_converged;
+    out.message = os.str();
+  }
+}
+
+}  // namespace
+}  // namespace coupled
+
+coupled_outcome solve_coupled(std::vector<indentor_state>& st, const context& cx, std::optional<double> body_load,
+                              std::shared_ptr<coupled::jacobian_memo> memo) {
+  using namespace coupled;
+  edges isolated;
+  problem pb = set_up(st, cx, body_load, std::move(memo), isolated);
+  newton_result result = solve_with_retries(pb, isolated);
+  coupled_outcome out = outcome_of(pb, result);
+  hand_back(st, pb, result, out);
   return out;
 }
 
