@@ -840,18 +840,18 @@ bool seed_needed(const std::map<std::size_t, coarse_patch>& lost, std::size_t b,
   return it->second.load >= needed_share * total / double(runs.size());
 }
 
-/// The round at fraction t of the load on `runs`: its scene and states, each seeded run started
-/// from its seed (its own load: runs may share a tip; spare: indentor_state::spare_light), else
-/// the loads split by `shares` (start_split).
-round_state prepare_round(const profile_model& m, const context& cx, const std::vector<run>& runs, double t,
-                          const std::map<std::size_t, double>& shares, bool spare) {
+/// The round at fraction t of the load on `runs`: its scene and states, seeded (every run has a
+/// seed) each started from its seed (its own load: runs may share a tip; spare:
+/// indentor_state::spare_light), else the loads split by `shares` (start_split).
+round_state prepare_round(const profile_model& m, const context& cx, const std::vector<run>& runs, bool seeded,
+                          double t, const std::map<std::size_t, double>& shares, bool spare) {
   round_state next;
   next.runs = runs;
   next.t = t;
   next.sc = make_scene(m, runs, t * m.source->load);
   next.states = prepare_states(next.sc, cx);
   next.states.jacobian = m.jacobian;
-  if (std::all_of(runs.begin(), runs.end(), [](const run& r) { return r.seed.has_value(); })) {
+  if (seeded) {
     for (auto& state : next.states.st) {
       const coarse_patch& p = *runs[state.scene_index].seed;
       state.seed = std::pair{p.a - next.states.origin, p.b - next.states.origin};
@@ -980,7 +980,7 @@ search_result search_contact_set(const profile_model& m, const context& cx, cons
     }
     ++out.rounds;
     const bool seeded = std::all_of(runs.begin(), runs.end(), [](const run& r) { return r.seed.has_value(); });
-    round_state next = prepare_round(m, cx, runs, t, shares, start.spare);
+    round_state next = prepare_round(m, cx, runs, seeded, t, shares, start.spare);
     try {
       next.outcome = solve_states(next.sc, next.states, cx);
     } catch (const std::domain_error& e) {
