@@ -333,7 +333,7 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
     // other scenes skip the memo's lock, which the Jacobian's threads would otherwise share.
     const bool memo = (cx.options.profile_knots || pb.seeded) && pb.split[i] == 0;
     if (auto kept = memo ? pb.particulars->find(i, key) : std::nullopt) {
-      p.g = std::move(kept->g);  // a knotted particular
+      p.g = std::move(kept->g);
       p.defect = kept->defect;
     } else {
       p = pb.split[i] != 0 ? split_particular(st[i], cx, a[i], b[i], pb.split[i])

@@ -590,10 +590,11 @@ problem set_up(std::vector<indentor_state>& st, const context& cx, std::optional
   return pb;
 }
 
-bool any_set(const std::vector<int>& flags) {
-  return std::any_of(flags.begin(), flags.end(), [](int v) { return v != 0; });
+/// Whether any of a problem's per-contact flags (problem::loaded, problem::split) is set.
+template <class Flags>
+bool any_set(const Flags& flags) {
+  return std::any_of(flags.begin(), flags.end(), [](auto v) { return v != 0; });
 }
-bool any_set(const std::vector<bool>& flags) { return std::any_of(flags.begin(), flags.end(), [](bool v) { return v; }); }
 
 /// Newton from the start, then the retries in turn while it fails, each kept when it does better
 /// (retry): pb ends as the variant whose result is returned, with the densities of a loaded form
@@ -741,9 +742,9 @@ coupled_outcome outcome_of(const problem& pb, const newton_result& result) {
   return out;
 }
 
-/// Moves the solved densities into st (pb's states; projected onto a Jacobi series, their loads the solved
-/// shares on a body) and marks a correction that did not converge in out. Whatever was reached
-/// is handed back (with a non-ok code when it did not converge), unless the solve was
+/// Moves the solved densities into st (pb's states; projected onto a Jacobi series, their loads
+/// the solved shares on a body) and marks a correction that did not converge in out. Whatever was
+/// reached is handed back (with a non-ok code when it did not converge), unless the solve was
 /// interrupted: then nothing is (each contact's projection takes seconds for contacts nearly
 /// touching, and checks nothing inside; the caller wants none of it).
 void hand_back(std::vector<indentor_state>& st, const problem& pb, newton_result& result, coupled_outcome& out) {
