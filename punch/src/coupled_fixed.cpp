@@ -301,16 +301,9 @@ bool nearly_touching(const std::vector<abel::interval_spec<double>>& intervals, 
   return false;
 }
 
-}  // namespace
-
-fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, const std::vector<double>& b) {
+/// Throws merge_error when two contacts meet (gap below 1e-12 of the pair's length).
+void refuse_meeting(const problem& pb, const std::vector<double>& a, const std::vector<double>& b) {
   const auto& st = *pb.st;
-  const auto& cx = *pb.cx;
-  const std::size_t n = st.size();
-  // Order along x (by leading edge); contacts must be disjoint.
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return a[i] < a[j]; });
   for (const auto& [i, j, gap, length] : neighbour_pairs(a, b)) {
     if (!(gap > 1e-12 * length)) {
       std::ostringstream os;
@@ -320,7 +313,13 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
       throw merge_error(i, j, os.str());
     }
   }
-  fixed_solution out;
+}
+
+/// Each contact's particular solution into out.g, out.defect and out.particular_degrees.
+void add_particulars(const problem& pb, const std::vector<double>& a, const std::vector<double>& b, fixed_solution& out) {
+  const auto& st = *pb.st;
+  const auto& cx = *pb.cx;
+  const std::size_t n = st.size();
   out.g.resize(n);
   out.defect.assign(n, 0.0);
   for (std::size_t i = 0; i < n; ++i) {
@@ -344,64 +343,83 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
     out.g[i] = std::move(p.g);
     out.defect[i] = p.defect;
   }
-  // The correction on the intervals (line loads only act).
+}
+
+/// The correction's union problem: the contacts it is solved on (targets, in the order of x, line
+/// loads left out), their intervals and data (minus the other particulars' action), the loads it
+/// carries (o.loads), and max over targets of (scale of its data) / (scale of the contact's own).
+struct correction_problem {
   std::vector<std::size_t> targets;
-  for (std::size_t k : order)
-    if (pb.roles[k] != role::line_load) targets.push_back(k);
-  if (targets.empty()) return out;
   std::vector<abel::interval_spec<double>> intervals;
   std::vector<std::function<double(double)>> data;
   abel::multi_solve_options<double> o;
-  double worst_ratio = 0;  // max over targets of (scale of D) / (scale of the data)
-  const bool any_coupling = n > 1;
-  for (std::size_t j : targets) {
+  double worst_ratio = 0;
+  std::shared_ptr<const particular_field> far;
+};
+
+correction_problem correction_of(const problem& pb, const std::vector<double>& a, const std::vector<double>& b,
+                                 const fixed_solution& out) {
+  const auto& st = *pb.st;
+  const auto& cx = *pb.cx;
+  const std::size_t n = st.size();
+  correction_problem c;
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](std::size_t i, std::size_t j) { return a[i] < a[j]; });
+  for (std::size_t k : order)
+    if (pb.roles[k] != role::line_load) c.targets.push_back(k);
+  if (c.targets.empty()) return c;
+  for (std::size_t j : c.targets) {
     const auto [leading, trailing] = series_edges(pb, j);
-    intervals.push_back({a[j], b[j], leading, trailing});
+    c.intervals.push_back({a[j], b[j], leading, trailing});
   }
   // From iterative_from contacts on, the particulars' action on the other contacts through the
   // far field (abel/far_field.hpp), whose relative accuracy 1e-3 of the tolerance keeps
   // its error below the correction's residual tolerance; near pairs (and apex enrichments, which
   // the moments of a Jacobi series do not cover) by cross_field.
-  const std::shared_ptr<const particular_field> far =
-      particular_field::build(out.g, targets, intervals, cx, n >= iterative_from ? pb.tree.get() : nullptr);
-  for (std::size_t k = 0; k < targets.size(); ++k) {
-    const std::size_t j = targets[k];
+  c.far = particular_field::build(out.g, c.targets, c.intervals, cx, n >= iterative_from ? pb.tree.get() : nullptr);
+  for (std::size_t k = 0; k < c.targets.size(); ++k) {
+    const std::size_t j = c.targets[k];
     auto f = std::make_shared<std::vector<cross_field>>();
     for (std::size_t i = 0; i < n; ++i)
-      if (i != j && (!far || far->direct(k, i))) f->emplace_back(out.g[i], cx.par, a[j], b[j]);
-    data.push_back([f, far, k, lo = a[j], h = (b[j] - a[j]) / 2](double s) {
+      if (i != j && (!c.far || c.far->direct(k, i))) f->emplace_back(out.g[i], cx.par, a[j], b[j]);
+    c.data.push_back([f, far = c.far, k, lo = a[j], h = (b[j] - a[j]) / 2](double s) {
       double v = far ? -far->at(k, (s - lo) / h - 1) : 0.0;
       for (const auto& field : *f) v -= field(s);
       return v;
     });
     // A flat face's correction carries no net load (its particular carries all of it).
-    o.loads.push_back(pb.roles[j] == role::fixed_faces || is_loaded(pb, j) ? std::optional<double>(0.0) : std::nullopt);
+    c.o.loads.push_back(pb.roles[j] == role::fixed_faces || is_loaded(pb, j) ? std::optional<double>(0.0) : std::nullopt);
     // Scales for the correction's residual tolerance.
     double d_scale = 0;
-    for (int k = 0; k <= 8; ++k) d_scale = std::max(d_scale, std::abs(data.back()(a[j] + (b[j] - a[j]) * (0.5 + k) / 9.0)));
+    for (int m = 0; m <= 8; ++m) d_scale = std::max(d_scale, std::abs(c.data.back()(a[j] + (b[j] - a[j]) * (0.5 + m) / 9.0)));
     const double f_scale = data_scale(st[j], cx, a[j], b[j]);
     // A flat face has no data of its own: D (and the load) is all of it.
-    worst_ratio = std::max(worst_ratio, f_scale > 0 ? d_scale / f_scale : 1.0);
+    c.worst_ratio = std::max(c.worst_ratio, f_scale > 0 ? d_scale / f_scale : 1.0);
   }
-  const bool any_face = std::any_of(targets.begin(), targets.end(),
-                                    [&](std::size_t j) { return pb.roles[j] == role::fixed_faces || is_loaded(pb, j); });
-  if (!any_coupling && !any_face) return out;
+  return c;
+}
+
+/// The union solve's tolerance, degrees and route for c (c.o set); the boundary-layer route's
+/// poles a decade, 0 on the polynomial route.
+std::size_t set_correction_options(const problem& pb, correction_problem& c) {
+  const auto& cx = *pb.cx;
+  auto& o = c.o;
   // Residual tolerance of the correction relative to ITS data, so that the error relative to the
   // original data is ~ the tolerance: a weak coupling (D small) needs less relative accuracy.
   const double tol = std::max(cx.options.tolerance, pb.accuracy);
-  o.residual_tolerance = std::clamp(10 * tol / std::max(worst_ratio, 1e-300), 10 * tol, 1e-4);
+  o.residual_tolerance = std::clamp(10 * tol / std::max(c.worst_ratio, 1e-300), 10 * tol, 1e-4);
   constexpr std::size_t first_degree = 16;
   const bool fixed = !pb.fixed_degrees.empty();
   o.residual_points = fixed ? 0 : 8;
-  const std::size_t K = intervals.size();
   // Memory: at most 1 GiB for the union's system (the far route's estimate when it is used).
   o.max_memory_bytes = std::size_t(1) << 30;
-  const std::size_t memory_degree = far ? abel::union_far_degree_limit(*far->field(), o.max_memory_bytes)
-                                        : abel::union_degree_limit<double>(K, o.max_memory_bytes);
+  const std::size_t memory_degree = c.far ? abel::union_far_degree_limit(*c.far->field(), o.max_memory_bytes)
+                                          : abel::union_degree_limit<double>(c.intervals.size(), o.max_memory_bytes);
   const std::size_t top_degree = std::max(first_degree, std::min<std::size_t>(600, memory_degree));
   // Each contact's degree: the base point's (fixed), else one rung below its last (hints), each
   // adapting on its own residual (abel's adapt_each_interval).
-  for (const std::size_t j : targets)
+  for (const std::size_t j : c.targets)
     o.degrees.push_back(fixed ? pb.fixed_degrees[j] : std::min(top_degree, std::max(first_degree, 2 * pb.hints->at(j) / 3)));
   o.degree = *std::max_element(o.degrees.begin(), o.degrees.end());
   o.max_degree = fixed ? 0 : top_degree;
@@ -410,41 +428,61 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
   // From iterative_from contacts: GMRES, with the far part through the particulars' far field
   // (the same intervals): 11-19 products for rows of 10-300 parabolas 1.5 L apart.
   o.iterative_from = iterative_from;
-  if (far) o.far_field = far->field();
+  if (c.far) o.far_field = c.far->field();
   // (A Jacobian's differences take the base point's route: a difference must not cross routes.)
-  const bool layered = !far && (fixed ? pb.fixed_poles_per_decade > 0
-                                                    : nearly_touching(intervals, cx.options.layered_below));
-  std::size_t per_decade = 0;
-  if (layered) {
-    // The boundary-layer route: the polynomial part at layered_degree (it adapts up to twice
-    // that), poles for the layers, or the coarse basis for an inexact evaluation; a Jacobian's
-    // differences at the base point's basis. Its degree is not a hint for the polynomial route.
-    const bool coarse = tol >= coarse_layered_accuracy;
-    const std::size_t first = coarse ? layered_degree / 2 : layered_degree;
-    per_decade = fixed ? pb.fixed_poles_per_decade : (coarse ? layered_poles_per_decade / 2 : layered_poles_per_decade);
-    o.degree = fixed ? o.degree : first;  // (fixed: the base point's one degree for all)
-    o.max_degree = fixed ? 0 : 2 * first;
-    o.degrees.clear();
-  }
-  const auto sol = layered ? abel::solve_union_layered(cx.par, intervals, data, o, per_decade)
-                           : abel::solve_union(cx.par, intervals, data, o);
+  const bool layered = !c.far && (fixed ? pb.fixed_poles_per_decade > 0
+                                        : nearly_touching(c.intervals, cx.options.layered_below));
+  if (!layered) return 0;
+  // The boundary-layer route: the polynomial part at layered_degree (it adapts up to twice
+  // that), poles for the layers, or the coarse basis for an inexact evaluation; a Jacobian's
+  // differences at the base point's basis. Its degree is not a hint for the polynomial route.
+  const bool coarse = tol >= coarse_layered_accuracy;
+  const std::size_t first = coarse ? layered_degree / 2 : layered_degree;
+  o.degree = fixed ? o.degree : first;  // (fixed: the base point's one degree for all)
+  o.max_degree = fixed ? 0 : 2 * first;
+  o.degrees.clear();
+  return fixed ? pb.fixed_poles_per_decade : (coarse ? layered_poles_per_decade / 2 : layered_poles_per_decade);
+}
+
+/// The union solve's correction added to the particulars of out.
+void add_correction(const problem& pb, const correction_problem& c, const abel::multi_solution<double>& sol,
+                    std::size_t per_decade, fixed_solution& out) {
+  const std::size_t K = c.targets.size();
   out.degree = sol.degree;
-  out.degrees.assign(n, 0);
-  for (std::size_t k = 0; k < K; ++k) out.degrees[targets[k]] = sol.degrees[k];
+  out.degrees.assign(pb.st->size(), 0);
+  for (std::size_t k = 0; k < K; ++k) out.degrees[c.targets[k]] = sol.degrees[k];
   out.poles_per_decade = per_decade;
-  if (!fixed && !layered) pb.hints->store(out.degrees);
-  out.correction_residual = sol.residual * std::max(worst_ratio, 0.0);
+  if (pb.fixed_degrees.empty() && per_decade == 0) pb.hints->store(out.degrees);
+  out.correction_residual = sol.residual * std::max(c.worst_ratio, 0.0);
   out.correction_converged = sol.status == abel::solve_status::converged;
   for (std::size_t k = 0; k < K; ++k) {
-    const std::size_t j = targets[k];
+    const std::size_t j = c.targets[k];
     auto& coefficients = out.g[j].jacobi.coefficients;
-    const auto& c = sol.densities[k].coefficients;
-    if (coefficients.size() < c.size()) coefficients.resize(c.size(), 0.0);
-    for (std::size_t m = 0; m < c.size(); ++m) coefficients[m] += c[m];
+    const auto& d = sol.densities[k].coefficients;
+    if (coefficients.size() < d.size()) coefficients.resize(d.size(), 0.0);
+    for (std::size_t m = 0; m < d.size(); ++m) coefficients[m] += d[m];
     if (k < sol.layers.size()) out.g[j].layer = sol.layers[k];
     out.g[j].tail = std::max(out.g[j].tail, sol.status == abel::solve_status::converged ? 0.0 : sol.residual);
     if (sol.exponents[k].nu == -1) out.defect[j] += sol.solvability_defects[k];
   }
+}
+
+}  // namespace
+
+fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, const std::vector<double>& b) {
+  refuse_meeting(pb, a, b);
+  fixed_solution out;
+  add_particulars(pb, a, b, out);
+  // The correction on the intervals (line loads only act).
+  correction_problem c = correction_of(pb, a, b, out);
+  if (c.targets.empty()) return out;
+  const bool any_face = std::any_of(c.targets.begin(), c.targets.end(),
+                                    [&](std::size_t j) { return pb.roles[j] == role::fixed_faces || is_loaded(pb, j); });
+  if (pb.st->size() == 1 && !any_face) return out;
+  const std::size_t per_decade = set_correction_options(pb, c);
+  const auto sol = per_decade > 0 ? abel::solve_union_layered(pb.cx->par, c.intervals, c.data, c.o, per_decade)
+                                  : abel::solve_union(pb.cx->par, c.intervals, c.data, c.o);
+  add_correction(pb, c, sol, per_decade, out);
   return out;
 }
 

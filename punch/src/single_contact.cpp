@@ -347,128 +347,134 @@ forcing shifted(const forcing& F, double origin) {
   return out;
 }
 
-void solve_wedge(indentor_state& st, const context& cx, const forcing& F) {
+/// A wedge whose contact ends at its apex (docs/theory.md section 5): nu = 0, b = apex, one
+/// unknown L.
+void solve_wedge_at_apex(indentor_state& st, const context& cx, const forcing& F) {
   const auto& w = std::get<wedge>(st.source->shape);
   const double alpha = cx.alpha, beta = cx.beta;
-  if (cx.offset >= -boundary_width) {
-    // Contact ends at the apex (docs/theory.md section 5): nu = 0, b = apex, one unknown L.
-    const edge_exponents e = cx.exponents(0);
-    auto load_of = [&](double L) {
-      st.g = build(st.apex - L, st.apex, cx, e, F, true);
-      return st.g.integral();
-    };
-    // Closed-form guess: int g = S1 cos(beta pi/2) L^(1-alpha) B(gam+1, del+1) / (pi Gamma(1-alpha)).
-    const double K = w.slope_leading * std::cos(beta * pi / 2) * boost::math::beta(e.gam + 1, e.del + 1) /
-                     (pi * cx.gamma_factor);
-    const double L0 = std::pow(st.target_load / K, 1 / (1 - alpha));
-    solve_length(load_of, L0, st.target_load, 1 - alpha, cx.options.tolerance);
-    st.epsilon = 1.0;
-    return;
+  const edge_exponents e = cx.exponents(0);
+  auto load_of = [&](double L) {
+    st.g = build(st.apex - L, st.apex, cx, e, F, true);
+    return st.g.integral();
+  };
+  // Closed-form guess: int g = S1 cos(beta pi/2) L^(1-alpha) B(gam+1, del+1) / (pi Gamma(1-alpha)).
+  const double K = w.slope_leading * std::cos(beta * pi / 2) * boost::math::beta(e.gam + 1, e.del + 1) /
+                   (pi * cx.gamma_factor);
+  const double L0 = std::pow(st.target_load / K, 1 / (1 - alpha));
+  solve_length(load_of, L0, st.target_load, 1 - alpha, cx.options.tolerance);
+  st.epsilon = 1.0;
+}
+
+/// A wedge below the boundary (nu = -1, smooth at both edges, the contact wrapping its apex) in
+/// closed form: the exponents, the slopes, eps = (apex - a)/L and 1 - eps, and int g of the
+/// isolated wedge on the unit interval (its load scales like L^(1 - alpha)).
+struct wedge_below {
+  edge_exponents e;
+  double S1 = 0, S2 = 0, eps = 0, one_minus_eps = 0, unit_load = 0;
+
+  wedge_below(const wedge& w, const context& cx) : e(cx.exponents(-1)), S1(w.slope_leading), S2(w.slope_trailing) {
+    // eps from I_eps(del, gam) = S2/(S1 + S2) (docs/theory.md section 5); 1 - eps from the
+    // complementary equation so that both are accurate at extreme slope ratios.
+    eps = boost::math::ibeta_inv(e.del, e.gam, S2 / (S1 + S2));
+    one_minus_eps = boost::math::ibeta_inv(e.gam, e.del, S1 / (S1 + S2));
+    // The moment formula of the Riemann-Hilbert route (riemann/abel_solver.hpp: int g = (c/pi) int
+    // (t-a)^((beta-1)/2) (b-t)^((1-beta)/2-alpha) F) gives (c/(pi Gamma(1-alpha))) [(S1 + S2)
+    // B_eps(del, gam + 1) - S2 B(del, gam + 1)] (c = cos(beta pi/2)), which cancels badly at extreme
+    // slope ratios; with B_x(a, b + 1) = (b B_x(a, b) + x^a (1-x)^b)/(a + b) and the eps condition
+    // (S1 + S2) B_eps(del, gam) = S2 B(del, gam) it is (c/(pi Gamma(1-alpha))) (S1 + S2) eps^del
+    // (1-eps)^gam / (1 - alpha): no cancellation (alpha = 0, S1 = S2 = m: load = E* m L/2, Johnson's
+    // P = E* m a).
+    unit_load = std::cos(cx.beta * pi / 2) / (pi * cx.gamma_factor) * (S1 + S2) * std::pow(eps, e.del) *
+                std::pow(one_minus_eps, e.gam) / (1 - cx.alpha);
   }
-  // Below the boundary: nu = -1, smooth at both edges, contact wraps around the apex.
-  const edge_exponents e = cx.exponents(-1);
-  const double S1 = w.slope_leading, S2 = w.slope_trailing;
-  // eps = (apex - a)/L from I_eps(del, gam) = S2/(S1 + S2) (docs/theory.md section 5); 1 - eps from the
-  // complementary equation so that both are accurate at extreme slope ratios.
-  const double eps = boost::math::ibeta_inv(e.del, e.gam, S2 / (S1 + S2));
-  const double one_minus_eps = boost::math::ibeta_inv(e.gam, e.del, S1 / (S1 + S2));
-  // int g of the isolated wedge on the unit interval, in closed form: the moment formula of the
-  // Riemann-Hilbert route (riemann/abel_solver.hpp: int g = (c/pi) int (t-a)^((beta-1)/2)
-  // (b-t)^((1-beta)/2-alpha) F) gives (c/(pi Gamma(1-alpha))) [(S1 + S2) B_eps(del, gam + 1) -
-  // S2 B(del, gam + 1)] (c = cos(beta pi/2)), which cancels badly at extreme slope ratios; with
-  // B_x(a, b + 1) = (b B_x(a, b) + x^a (1-x)^b)/(a + b) and the eps condition (S1 + S2) B_eps(del, gam)
-  // = S2 B(del, gam) it is (c/(pi Gamma(1-alpha))) (S1 + S2) eps^del (1-eps)^gam / (1 - alpha): no
-  // cancellation (alpha = 0, S1 = S2 = m: load = E* m L/2, Johnson's P = E* m a). int g scales like
-  // L^(1 - alpha).
-  const double unit_load = std::cos(cx.beta * pi / 2) / (pi * cx.gamma_factor) * (S1 + S2) *
-                           std::pow(eps, e.del) * std::pow(one_minus_eps, e.gam) / (1 - alpha);
-  if (one_minus_eps * 1e14 < 1) {
-    // The apex is within 1e-14 L of the trailing edge: to double precision the contact ends at the
-    // apex, as on the boundary (eps -> 1 exponentially fast as alpha + beta/2 -> 1/2 or S2/S1 -> inf).
-    context above = cx;
-    above.offset = 0;
-    solve_wedge(st, above, F);
-    st.status = "eps within 1e-14 of 1: solved as a contact ending at the apex";
-    if (one_minus_eps > 1e-30) {
-      // The apex singularity still carries weight (its amplitude grows with S1 + S2): C_f from the
-      // Riemann-Hilbert route on the true interval. Closer still, C_f = S1 to double precision.
-      const auto rh = wedge_by_rh(cx, S1, S2, eps, one_minus_eps);
-      st.friction = rh.friction;
-      st.friction_error = rh.friction_error;
-      st.status += "; C_f by the Riemann-Hilbert route";
-    }
-    return;
-  }
-  // Isolated wedge with wedge_apex_split off (with it on, the split form below serves every apex
-  // nearer an edge than L/4): C_f and the pressure samples from the Riemann-Hilbert route; the
-  // density is the plain series, which then serves only the residual and the displacement (its
-  // error_estimate says how rough it is: ~1 next to an edge). A coupled wedge within enrich_limit
-  // keeps the plain series for everything (pressure unresolved next to the apex; C_f by Richardson
-  // extrapolation of the series).
-  const double edge_distance = std::min(eps, one_minus_eps);
-  if (cx.options.wedge_apex_split && edge_distance < 0.25) {
-    // Apex in an outer quarter: the long side's constant in closed form plus the short side's
-    // step with the apex mapped to the centre (build_wedge_near_edge), on the unit interval, then
-    // scaled as below. The load is matched by scaling the whole density (c_0 of the closed form
-    // alone would break the cancellation of the singular parts at the near edge).
-    const double L = std::pow(st.target_load / unit_load, 1 / (1 - alpha));
-    st.g = build_wedge_near_edge(eps, one_minus_eps, cx, S1 / cx.gamma_factor, -S2 / cx.gamma_factor);
-    const double load_ratio = st.g.integral() / unit_load;
-    st.g.tail = std::max(st.g.tail, std::abs(load_ratio - 1));
-    st.g.scale(std::pow(L, -alpha) / load_ratio);
+  /// The contact's length at `load`.
+  double length(double load, double alpha) const { return std::pow(load / unit_load, 1 / (1 - alpha)); }
+  /// st.g, solved on the unit interval with the apex at 0 (its load `divisor` times unit_load),
+  /// scaled to the length L and placed.
+  void place(indentor_state& st, double L, double alpha, double divisor = 1) const {
+    st.g.scale(std::pow(L, -alpha) / divisor);
     st.g.set_interval(st.apex - eps * L, st.apex + one_minus_eps * L);
     st.epsilon = eps;
-    return;
   }
-  const bool enrich = cx.options.wedge_apex_split && edge_distance > enrich_limit;
-  if (!enrich) {
-    auto load_of = [&](double L) {
-      const double a = st.apex - eps * L, b = st.apex + one_minus_eps * L;
-      st.g = build(a, b, cx, e, F, false);
-      return st.g.integral();
-    };
-    load_of(1.0);
-    set_load(st.g, unit_load);
-    const double L = std::pow(st.target_load / unit_load, 1 / (1 - alpha));
-    // The step makes the density's coefficients decay only like n^(alpha - 1/2): report the size of
-    // their tail (the last quarter relative to the largest), which flags the unresolved apex.
-    {
-      double largest = 0, tail = 0;
-      const std::size_t N = st.g.jacobi.coefficients.size();
-      for (std::size_t n = 0; n < N; ++n) {
-        largest = std::max(largest, std::abs(st.g.jacobi.coefficients[n]));
-        if (4 * n >= 3 * N) tail = std::max(tail, std::abs(st.g.jacobi.coefficients[n]));
-      }
-      st.g.tail = largest > 0 ? tail / largest : 0;
-      st.status = "wedge_apex_split disabled: plain Jacobi series for the "
-                  "residual and the displacement; C_f and the pressure grid by the Riemann-Hilbert route";
-    }
-    const auto rh = wedge_by_rh(cx, S1, S2, eps, one_minus_eps);
+};
+
+/// The apex within 1e-14 L of the trailing edge: to double precision the contact ends at the apex,
+/// as on the boundary (eps -> 1 exponentially fast as alpha + beta/2 -> 1/2 or S2/S1 -> inf).
+void solve_wedge_nearly_at_apex(indentor_state& st, const context& cx, const forcing& F, const wedge_below& wb) {
+  context above = cx;
+  above.offset = 0;
+  solve_wedge_at_apex(st, above, F);
+  st.status = "eps within 1e-14 of 1: solved as a contact ending at the apex";
+  if (wb.one_minus_eps > 1e-30) {
+    // The apex singularity still carries weight (its amplitude grows with S1 + S2): C_f from the
+    // Riemann-Hilbert route on the true interval. Closer still, C_f = S1 to double precision.
+    const auto rh = wedge_by_rh(cx, wb.S1, wb.S2, wb.eps, wb.one_minus_eps);
     st.friction = rh.friction;
     st.friction_error = rh.friction_error;
-    st.rh_unit = rh.unit;
-    st.rh_one_minus_eps = one_minus_eps;
-    st.g.scale(std::pow(L, -alpha));
-    st.g.set_interval(st.apex - eps * L, st.apex + one_minus_eps * L);
-    st.epsilon = eps;
-    return;
+    st.status += "; C_f by the Riemann-Hilbert route";
   }
-  {
-    // Solved at L = 1 with the apex at 0 (no rounding of apex +- eps), then scaled: g_L(t) =
-    // L^-alpha g_1((t - apex)/L), int g_L = L^(1 - alpha) int g_1.
-    const forcing F0 = shifted(F, st.apex);
-    const double exact_unit_load = unit_load;
-    const double L = std::pow(st.target_load / unit_load, 1 / (1 - alpha));
-    st.g = build_wedge_step(-eps, one_minus_eps, 0.0, -1, cx, F0);
-    // The enriched density must carry the exact load: its defect joins the error estimate, then c_0
-    // is set to the exact value.
-    st.g.tail = std::max(st.g.tail, std::abs(st.g.integral() / exact_unit_load - 1));
-    set_load(st.g, exact_unit_load);
-    st.g.scale(std::pow(L, -alpha));
-    st.g.set_interval(st.apex - eps * L, st.apex + one_minus_eps * L);
-    st.epsilon = eps;
-    return;
+}
+
+/// Apex in an outer quarter (wedge_apex_split): the long side's constant in closed form plus the
+/// short side's step with the apex mapped to the centre (build_wedge_near_edge), on the unit
+/// interval, then scaled. The load is matched by scaling the whole density (c_0 of the closed form
+/// alone would break the cancellation of the singular parts at the near edge).
+void solve_wedge_apex_near_edge(indentor_state& st, const context& cx, const wedge_below& wb) {
+  st.g = build_wedge_near_edge(wb.eps, wb.one_minus_eps, cx, wb.S1 / cx.gamma_factor, -wb.S2 / cx.gamma_factor);
+  const double load_ratio = st.g.integral() / wb.unit_load;
+  st.g.tail = std::max(st.g.tail, std::abs(load_ratio - 1));
+  wb.place(st, wb.length(st.target_load, cx.alpha), cx.alpha, load_ratio);
+}
+
+/// wedge_apex_split off: the plain Jacobi series serves the residual and the displacement (its
+/// tail flags the unresolved apex), C_f and the pressure samples come from the Riemann-Hilbert
+/// route on the true interval.
+void solve_wedge_plain(indentor_state& st, const context& cx, const forcing& F, const wedge_below& wb) {
+  st.g = build(st.apex - wb.eps, st.apex + wb.one_minus_eps, cx, wb.e, F, false);
+  set_load(st.g, wb.unit_load);
+  // The step makes the density's coefficients decay only like n^(alpha - 1/2): report the size of
+  // their tail (the last quarter relative to the largest), which flags the unresolved apex.
+  double largest = 0, tail = 0;
+  const std::size_t N = st.g.jacobi.coefficients.size();
+  for (std::size_t n = 0; n < N; ++n) {
+    largest = std::max(largest, std::abs(st.g.jacobi.coefficients[n]));
+    if (4 * n >= 3 * N) tail = std::max(tail, std::abs(st.g.jacobi.coefficients[n]));
   }
+  st.g.tail = largest > 0 ? tail / largest : 0;
+  st.status = "wedge_apex_split disabled: plain Jacobi series for the "
+              "residual and the displacement; C_f and the pressure grid by the Riemann-Hilbert route";
+  const auto rh = wedge_by_rh(cx, wb.S1, wb.S2, wb.eps, wb.one_minus_eps);
+  st.friction = rh.friction;
+  st.friction_error = rh.friction_error;
+  st.rh_unit = rh.unit;
+  st.rh_one_minus_eps = wb.one_minus_eps;
+  wb.place(st, wb.length(st.target_load, cx.alpha), cx.alpha);
+}
+
+/// The apex inside (wedge_apex_split, farther than enrich_limit from both edges): the series
+/// enriched by the apex's step (build_wedge_step), solved at L = 1 with the apex at 0 (no rounding
+/// of apex +- eps), then scaled: g_L(t) = L^-alpha g_1((t - apex)/L), int g_L = L^(1 - alpha) int g_1.
+void solve_wedge_enriched(indentor_state& st, const context& cx, const forcing& F, const wedge_below& wb) {
+  st.g = build_wedge_step(-wb.eps, wb.one_minus_eps, 0.0, -1, cx, shifted(F, st.apex));
+  // The enriched density must carry the exact load: its defect joins the error estimate, then c_0
+  // is set to the exact value.
+  st.g.tail = std::max(st.g.tail, std::abs(st.g.integral() / wb.unit_load - 1));
+  set_load(st.g, wb.unit_load);
+  wb.place(st, wb.length(st.target_load, cx.alpha), cx.alpha);
+}
+
+void solve_wedge(indentor_state& st, const context& cx, const forcing& F) {
+  if (cx.offset >= -boundary_width) return solve_wedge_at_apex(st, cx, F);
+  const wedge_below wb(std::get<wedge>(st.source->shape), cx);
+  if (wb.one_minus_eps * 1e14 < 1) return solve_wedge_nearly_at_apex(st, cx, F, wb);
+  // An isolated wedge with wedge_apex_split off: C_f and the pressure samples from the
+  // Riemann-Hilbert route, the density the plain series (its error_estimate says how rough it is:
+  // ~1 next to an edge). A coupled wedge within enrich_limit keeps the plain series for everything
+  // (pressure unresolved next to the apex; C_f by Richardson extrapolation of the series).
+  const double edge_distance = std::min(wb.eps, wb.one_minus_eps);
+  if (cx.options.wedge_apex_split && edge_distance < 0.25) return solve_wedge_apex_near_edge(st, cx, wb);
+  if (!(cx.options.wedge_apex_split && edge_distance > enrich_limit)) return solve_wedge_plain(st, cx, F, wb);
+  solve_wedge_enriched(st, cx, F, wb);
 }
 
 void solve_flat(indentor_state& st, const context& cx, const forcing& F) {

@@ -67,6 +67,23 @@ std::string options_named(const sweep_spec& sweep, row_format format, const std:
   return out;
 }
 
+// This sweep's CSV header without the option columns (row_options): that of a file written before
+// rows recorded their solve options, which is refused by name, not taken for another sweep's.
+std::string header_without_options(const sweep_spec& sweep) {
+  std::string line = header_line(sweep, row_format::csv);
+  for (const std::string column : {",tolerance", ",acceptance", ",profile_knots"}) {
+    const std::size_t at = line.find(column + ",");
+    if (at != std::string::npos) line.erase(at, column.size());
+  }
+  return line;
+}
+
+[[noreturn]] void refuse_without_options(const std::string& file, const std::string& where) {
+  throw input_error("sweep: --out " + one_line(file) + where +
+                    " has no solve-option columns (tolerance, acceptance): it was written by an earlier rhabel, "
+                    "and its rows cannot be resumed under known options: remove it or choose another name");
+}
+
 // Reads FILE if it exists: the header must be this sweep's, every complete line one of its rows
 // solved under `options` (row_options' text).
 existing_rows scan_existing(const sweep_spec& sweep, row_format format, const std::string& file,
@@ -87,6 +104,7 @@ existing_rows scan_existing(const sweep_spec& sweep, row_format format, const st
     if (text.empty()) return out;
     if (text.compare(0, header.size(), header) != 0) {
       if (header.compare(0, text.size(), text) == 0 && text.find('\n') == std::string::npos) return out;  // cut header
+      if (text.compare(0, text.find('\n') + 1, header_without_options(sweep)) == 0) refuse_without_options(file, "");
       throw input_error("sweep: --out " + one_line(file) +
                         " exists with another header (from another sweep?): remove it or choose another name");
     }
@@ -111,6 +129,9 @@ existing_rows scan_existing(const sweep_spec& sweep, row_format format, const st
     const bool numbered = stop != digits && errno == 0 && row < sweep.rows;
     const std::string prefix = numbered ? row_prefix(sweep, row, format) : std::string();
     if (numbered && line.compare(0, prefix.size(), prefix) == 0) {
+      // A row whose status follows its swept values: written without the option columns.
+      if (format == row_format::jsonl && line.compare(prefix.size(), 9, "\"status\":") == 0)
+        refuse_without_options(file, " line " + std::to_string(line_no));
       // This sweep's row, unless torn (a killed writer, a disk that filled up): then it is dropped
       // and solved again, never copied to the result.
       if (!is_complete_row(sweep, format, line)) continue;

@@ -316,6 +316,14 @@ cp "$tmp/tol.csv" "$tmp/tol_before.csv"
 "$rhabel" sweep "$tmp/two.json" --out "$tmp/tol.csv" --tolerance 1e-6 --acceptance 1e-4 --time-limit 100 2> "$tmp/err" \
   || fail "resumed with another --time-limit: exit $? ($(cat "$tmp/err"))"
 cmp -s "$tmp/tol.csv" "$tmp/tol_before.csv" || fail "resuming a complete sweep with another --time-limit changed it"
+# A file whose rows do not record their options (written before they did) is refused by name,
+# not taken for another sweep's (CSV) or for torn rows solved again (JSON lines).
+sed '1s/,tolerance,acceptance,/,/' "$tmp/tol.csv" > "$tmp/old.csv"
+sed 's/"tolerance":[^,]*,"acceptance":[^,]*,//' "$tmp/tol.jsonl" > "$tmp/old.jsonl"
+{ head -1 "$tmp/old.csv" | grep -q tolerance || grep -q '"tolerance":' "$tmp/old.jsonl"; } &&
+  fail "the option columns were not stripped from the old-format files"
+refused_resume "$tmp/old.csv" "$tmp/two.json" "has no solve-option columns (tolerance, acceptance)" --tolerance 1e-6 --acceptance 1e-4
+refused_resume "$tmp/old.jsonl" "$tmp/two.json" "line 1 has no solve-option columns" --jsonl --tolerance 1e-6 --acceptance 1e-4
 
 for bad in "--tolerance nan" "--tolerance inf" "--tolerance 0" "--tolerance 1e-16" "--tolerance 0.1" "--tolerance abc" \
            "--acceptance nan" "--acceptance 0" "--acceptance 1" "--threads -1" "--threads 4097" "--threads x"; do
