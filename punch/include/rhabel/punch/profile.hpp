@@ -185,7 +185,7 @@
 //   oracle). 1e5 samples a period with 233 contacts (self_affine_profile.py 100000 1 3e-3
 //   --periodic): ok in 21-25 s (one core), at 6e-3 443 contacts ok in 68 s; the same samples
 //   at 6e-3 with seed 2 in 71-82 s (437 contacts), with seed 3 in 76-102 s (428); at 1.4e-2
-//   (980 contacts) not_converged after 600 s, and ok after 10.7-11.6 min (another job on the other
+//   (980 contacts) not_converged after 600 s, and ok after 10.7-12.8 min (another job on the other
 //   core). Each agrees with the boundary-element solver's patches and its C_f within its estimate
 //   (tests/long/rough_1e5_periodic*.sh). A search whose last round fails reports its last converged
 //   round at that load, not_converged unless its own evidence names another status, with why the
