@@ -476,8 +476,8 @@ fixed_solution solve_fixed(const problem& pb, const std::vector<double>& a, cons
   // The correction on the intervals (line loads only act).
   correction_problem c = correction_of(pb, a, b, out);
   if (c.targets.empty()) return out;
-  const bool any_face = std::any_of(c.targets.begin(), c.targets.end(),
-                                    [&](std::size_t j) { return pb.roles[j] == role::fixed_faces || is_loaded(pb, j); });
+  // A flat face or a loaded form (its correction's load imposed as 0, correction_of).
+  const bool any_face = std::any_of(c.o.loads.begin(), c.o.loads.end(), [](const auto& load) { return load.has_value(); });
   if (pb.st->size() == 1 && !any_face) return out;
   const std::size_t per_decade = set_correction_options(pb, c);
   const auto sol = per_decade > 0 ? abel::solve_union_layered(pb.cx->par, c.intervals, c.data, c.o, per_decade)

@@ -387,11 +387,10 @@ struct wedge_below {
     unit_load = std::cos(cx.beta * pi / 2) / (pi * cx.gamma_factor) * (S1 + S2) * std::pow(eps, e.del) *
                 std::pow(one_minus_eps, e.gam) / (1 - cx.alpha);
   }
-  /// The contact's length at `load`.
-  double length(double load, double alpha) const { return std::pow(load / unit_load, 1 / (1 - alpha)); }
   /// st.g, solved on the unit interval with the apex at 0 (its load `divisor` times unit_load),
-  /// scaled to the length L and placed.
-  void place(indentor_state& st, double L, double alpha, double divisor = 1) const {
+  /// scaled to the length L at st.target_load and placed.
+  void place(indentor_state& st, double alpha, double divisor = 1) const {
+    const double L = std::pow(st.target_load / unit_load, 1 / (1 - alpha));
     st.g.scale(std::pow(L, -alpha) / divisor);
     st.g.set_interval(st.apex - eps * L, st.apex + one_minus_eps * L);
     st.epsilon = eps;
@@ -423,7 +422,7 @@ void solve_wedge_apex_near_edge(indentor_state& st, const context& cx, const wed
   st.g = build_wedge_near_edge(wb.eps, wb.one_minus_eps, cx, wb.S1 / cx.gamma_factor, -wb.S2 / cx.gamma_factor);
   const double load_ratio = st.g.integral() / wb.unit_load;
   st.g.tail = std::max(st.g.tail, std::abs(load_ratio - 1));
-  wb.place(st, wb.length(st.target_load, cx.alpha), cx.alpha, load_ratio);
+  wb.place(st, cx.alpha, load_ratio);
 }
 
 /// wedge_apex_split off: the plain Jacobi series serves the residual and the displacement (its
@@ -448,7 +447,7 @@ void solve_wedge_plain(indentor_state& st, const context& cx, const forcing& F, 
   st.friction_error = rh.friction_error;
   st.rh_unit = rh.unit;
   st.rh_one_minus_eps = wb.one_minus_eps;
-  wb.place(st, wb.length(st.target_load, cx.alpha), cx.alpha);
+  wb.place(st, cx.alpha);
 }
 
 /// The apex inside (wedge_apex_split, farther than enrich_limit from both edges): the series
@@ -460,7 +459,7 @@ void solve_wedge_enriched(indentor_state& st, const context& cx, const forcing& 
   // is set to the exact value.
   st.g.tail = std::max(st.g.tail, std::abs(st.g.integral() / wb.unit_load - 1));
   set_load(st.g, wb.unit_load);
-  wb.place(st, wb.length(st.target_load, cx.alpha), cx.alpha);
+  wb.place(st, cx.alpha);
 }
 
 void solve_wedge(indentor_state& st, const context& cx, const forcing& F) {

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <fcntl.h>
@@ -67,13 +68,15 @@ std::string options_named(const sweep_spec& sweep, row_format format, const std:
   return out;
 }
 
-// This sweep's CSV header without the option columns (row_options): that of a file written before
-// rows recorded their solve options, which is refused by name, not taken for another sweep's.
+// This sweep's CSV header without the option columns (row_options', between the swept values and
+// the status): that of a file written before rows recorded their solve options, which is refused
+// by name, not taken for another sweep's.
 std::string header_without_options(const sweep_spec& sweep) {
   std::string line = header_line(sweep, row_format::csv);
-  for (const std::string column : {",tolerance", ",acceptance", ",profile_knots"}) {
-    const std::size_t at = line.find(column + ",");
-    if (at != std::string::npos) line.erase(at, column.size());
+  const auto columns = row_columns(sweep);
+  for (std::size_t j = 1 + sweep.axes.size(); j < columns.size() && columns[j] != "status"; ++j) {
+    const std::size_t at = line.find("," + columns[j] + ",");  // (option names need no quoting)
+    if (at != std::string::npos) line.erase(at, 1 + columns[j].size());
   }
   return line;
 }
@@ -130,7 +133,7 @@ existing_rows scan_existing(const sweep_spec& sweep, row_format format, const st
     const std::string prefix = numbered ? row_prefix(sweep, row, format) : std::string();
     if (numbered && line.compare(0, prefix.size(), prefix) == 0) {
       // A row whose status follows its swept values: written without the option columns.
-      if (format == row_format::jsonl && line.compare(prefix.size(), 9, "\"status\":") == 0)
+      if (format == row_format::jsonl && std::string_view(line).substr(prefix.size()).starts_with("\"status\":"))
         refuse_without_options(file, " line " + std::to_string(line_no));
       // This sweep's row, unless torn (a killed writer, a disk that filled up): then it is dropped
       // and solved again, never copied to the result.
