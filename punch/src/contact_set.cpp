@@ -696,8 +696,8 @@ coarse_patch new_seed(const profile_model& m, double at, double load) {
 /// surface by more than the acceptance (relative to the span) anywhere within those edges and a
 /// quarter spacing about them, gets it back, seeded as it was lost, at most `at_most` of them (in
 /// the order of x); returns the bumps that got one. A contact lost again is lost for good
-/// (`dropped` reaches max_drops), and so is a lone one whose round then fails (search_contact_set,
-/// restore_point).
+/// (`dropped` reaches max_drops), and so is a lone one whose round then fails
+/// (contact_search::undo_restoring, restore_point).
 /// WHY: the rigid body's iteration from the coarse seeds can starve a real contact narrower than a
 /// sample spacing (a seed load under a hundredth of the mean; coupled_newton.cpp, vanishing_share);
 /// from the converged set and its coarse edges it is kept. Measured: 16000 samples, seed 4, load
@@ -738,7 +738,7 @@ std::vector<std::size_t> restore_lost(const profile_model& m, const scene_states
 }
 
 /// The search's state before restore_lost gave contacts back: the runs of the round that converged
-/// without them (seeded from it; the round itself is search_contact_set's last_converged) and the
+/// without them (seeded from it; the round itself is contact_search's last_converged_) and the
 /// lost seeds, and the bumps restored. WHY: a round with
 /// contacts restored can fail to converge, and that failure ended the search, the round before it
 /// never reported; the search goes back to that round instead, and gives the contacts back one at
@@ -935,152 +935,212 @@ void report_best(const profile_model& m, const context& cx, std::optional<round_
 }
 
 /// The active-set search from `start`, with load continuation when start.t < 1 (profile.hpp, "THE
-/// CONTACT SET").
-search_result search_contact_set(const profile_model& m, const context& cx, const search_start& start) {
-  const double tol = cx.options.acceptance;
-  search_result out;
-  std::vector<run> runs = start.runs;
-  // Times each bump was dropped at the current load; at max_drops it is not added again.
-  std::vector<std::size_t> dropped(m.bumps.size(), 0);
-  // Bump -> the seed of the last contact lost on it alone (edges absolute, load per unit t); those
-  // an earlier search at this load lost count as dropped once.
-  std::map<std::size_t, coarse_patch> lost_seeds = start.lost;
-  for (const auto& entry : lost_seeds) dropped[entry.first] = 1;
-  // Set while the contacts restore_lost gave back have not yet converged in a round.
-  std::optional<restore_point> restoring;
-  // The last round whose coupled solve converged (reported when the search ends in a round that
-  // failed, and the round a failed restoring goes back to: restoring is set only right after it).
-  std::optional<round_state> last_converged;
-  // Contacts restore_lost gives back in one round (1 after a round with several failed).
-  std::size_t restore_at_most = std::numeric_limits<std::size_t>::max();
-  // Tip sample -> times a contact on it was started again for a negative pressure.
-  std::map<std::size_t, std::size_t> repaired;
-  // Tip sample -> its load at the last solved set, per unit t.
-  std::map<std::size_t, double> shares = start.shares;
-  // settled: the last fraction at which the set settled (a failed step halves towards it).
-  double t = start.t, settled = 0;
-  std::size_t halvings = 0, shrinks = 0;
-  // A round that failed right after a load step: half the step (in log t), at most max_halvings
-  // times; false when there is no step to halve.
-  const auto halve_step = [&] {
-    if (!(settled > 0 && t > settled * 1.01 && halvings < max_halvings)) return false;
-    t = std::sqrt(t * settled);
-    ++halvings;
-    return true;
-  };
-  const std::size_t max_rounds = 2 * m.bumps.size() + 40;
-  for (;;) {
-    if (out.rounds == max_rounds) {
-      out.failure = "the contact set did not settle in " + std::to_string(max_rounds) + " rounds";
-      break;
-    }
-    if (out.last && cx.out_of_time()) {  // (a first round always runs: it has a result to report)
-      out.failure = cx.time_limit_message() + " after " + std::to_string(out.rounds) + " rounds of the contact search";
-      break;
-    }
-    ++out.rounds;
-    const bool seeded = std::all_of(runs.begin(), runs.end(), [](const run& r) { return r.seed.has_value(); });
-    round_state next = prepare_round(m, cx, runs, seeded, t, shares, start.spare);
-    try {
-      next.outcome = solve_states(next.sc, next.states, cx);
-    } catch (const std::domain_error& e) {
-      // One contact whose edges are not found: before any fraction settled, a smaller fraction of
-      // the load; after, half the step as for a failed solve. WHY not a smaller fraction again:
-      // the search returns to the fraction that failed (1e5 samples: 1/1024 settled, 1/256
-      // settled, 1/64 failed, down to 1/1024, ... for 38 rounds and 250 s).
-      if (runs.size() == 1 && settled == 0 && shrinks < max_shrinks) {
-        t /= shrink_factor;
-        ++shrinks;
-        continue;
+/// CONTACT SET"): one round after another, each solving the current runs and changing them by its
+/// evidence (a contact lost or merged, a restoring that failed, lost contacts given back, a
+/// negative pressure repaired, a run widened, penetrating bumps added), until the set settles at
+/// the full load or a limit stops it.
+class contact_search {
+ public:
+  contact_search(const profile_model& m, const context& cx, const search_start& start)
+      : m_(m), cx_(cx), start_(start), runs_(start.runs), dropped_(m.bumps.size(), 0), lost_seeds_(start.lost),
+        shares_(start.shares), t_(start.t), max_rounds_(2 * m.bumps.size() + 40) {
+    for (const auto& entry : lost_seeds_) dropped_[entry.first] = 1;
+  }
+
+  search_result search() {
+    for (;;) {
+      if (limit_reached()) break;
+      ++out_.rounds;
+      const bool seeded = std::all_of(runs_.begin(), runs_.end(), [](const run& r) { return r.seed.has_value(); });
+      round_state next = prepare_round(m_, cx_, runs_, seeded, t_, shares_, start_.spare);
+      try {
+        next.outcome = solve_states(next.sc, next.states, cx_);
+      } catch (const std::domain_error& e) {
+        if (retry_unsolved()) continue;
+        out_.failure = rename(e.what(), m_, runs_);
+        break;
       }
-      if (runs.size() == 1 && halve_step()) continue;
-      out.failure = rename(e.what(), m, runs);
-      break;
+      out_.iterations += next.outcome.iterations;
+      out_.last = std::move(next);
+      if (after_round(seeded) == step::stop) break;
     }
-    out.iterations += next.outcome.iterations;
-    out.last = std::move(next);
-    const round_state& last = *out.last;
+    if (t_ == 1)
+      for (const auto& [b, seed] : lost_seeds_)
+        if (dropped_[b] < max_drops) out_.lost.emplace(b, seed);
+    report_best(m_, cx_, std::move(last_converged_), out_);
+    return std::move(out_);
+  }
+
+ private:
+  enum class step { again, stop };
+
+  /// The round limit or the time limit, with out_.failure set (a first round always runs: it has a
+  /// result to report).
+  bool limit_reached() {
+    if (out_.rounds == max_rounds_) {
+      out_.failure = "the contact set did not settle in " + std::to_string(max_rounds_) + " rounds";
+      return true;
+    }
+    if (out_.last && cx_.out_of_time()) {
+      out_.failure = cx_.time_limit_message() + " after " + std::to_string(out_.rounds) + " rounds of the contact search";
+      return true;
+    }
+    return false;
+  }
+
+  /// A round that failed right after a load step: half the step (in log t), at most max_halvings
+  /// times; false when there is no step to halve.
+  bool halve_step() {
+    if (!(settled_ > 0 && t_ > settled_ * 1.01 && halvings_ < max_halvings)) return false;
+    t_ = std::sqrt(t_ * settled_);
+    ++halvings_;
+    return true;
+  }
+
+  /// One contact whose edges are not found: before any fraction settled, a smaller fraction of the
+  /// load; after, half the step as for a failed solve. WHY not a smaller fraction again: the
+  /// search returns to the fraction that failed (1e5 samples: 1/1024 settled, 1/256 settled, 1/64
+  /// failed, down to 1/1024, ... for 38 rounds and 250 s).
+  bool retry_unsolved() {
+    if (runs_.size() == 1 && settled_ == 0 && shrinks_ < max_shrinks) {
+      t_ /= shrink_factor;
+      ++shrinks_;
+      return true;
+    }
+    return runs_.size() == 1 && halve_step();
+  }
+
+  /// The set changed by the evidence of the round just solved (out_.last).
+  step after_round(bool seeded) {
+    const round_state& last = *out_.last;
     const auto& co = last.outcome;
-    if (co.code == status_code::contact_lost && co.lost && runs.size() > 1) {
-      const std::size_t k = last.states.st[*co.lost].scene_index;
-      for (std::size_t b = runs[k].first; b <= runs[k].last; ++b) ++dropped[b];
-      if (runs[k].seed && runs[k].first == runs[k].last) lost_seeds[runs[k].first] = *runs[k].seed;
-      runs.erase(runs.begin() + static_cast<std::ptrdiff_t>(k));
-      continue;
+    if (co.code == status_code::contact_lost && co.lost && runs_.size() > 1) {
+      drop(last.states.st[*co.lost].scene_index);
+      return step::again;
     }
     if (co.code == status_code::contacts_merge && co.merged) {
       std::size_t i = last.states.st[co.merged->first].scene_index, j = last.states.st[co.merged->second].scene_index;
       if (i > j) std::swap(i, j);
-      merge_runs(runs, i, j);
-      continue;
+      merge_runs(runs_, i, j);
+      return step::again;
     }
-    if (co.code != status_code::ok && restoring) {
-      // Back to the round that converged without the restored contacts (solved again from its
-      // seeds); several are given back one at a time, a lone one is lost for good.
-      runs = std::move(restoring->runs);
-      lost_seeds = std::move(restoring->lost);
-      if (restoring->restored.size() == 1) {
-        dropped[restoring->restored.front()] = max_drops;
-        lost_seeds.erase(restoring->restored.front());
-      }
-      restore_at_most = 1;
-      out.last.emplace(*last_converged);
-      restoring.reset();
-      continue;
+    if (co.code != status_code::ok && restoring_) {
+      undo_restoring();
+      return step::again;
     }
-    if (co.code != status_code::ok) {
-      if (halve_step()) continue;
-      break;  // reported as it is
+    if (co.code != status_code::ok) return halve_step() ? step::again : step::stop;  // else reported as it is
+    return after_converged(seeded);
+  }
+
+  /// Run k's contact vanished: its bumps count a drop, a lone seeded bump keeps its seed.
+  void drop(std::size_t k) {
+    for (std::size_t b = runs_[k].first; b <= runs_[k].last; ++b) ++dropped_[b];
+    if (runs_[k].seed && runs_[k].first == runs_[k].last) lost_seeds_[runs_[k].first] = *runs_[k].seed;
+    runs_.erase(runs_.begin() + static_cast<std::ptrdiff_t>(k));
+  }
+
+  /// Back to the round that converged without the restored contacts (solved again from its seeds);
+  /// several are given back one at a time, a lone one is lost for good.
+  void undo_restoring() {
+    runs_ = std::move(restoring_->runs);
+    lost_seeds_ = std::move(restoring_->lost);
+    if (restoring_->restored.size() == 1) {
+      dropped_[restoring_->restored.front()] = max_drops;
+      lost_seeds_.erase(restoring_->restored.front());
     }
-    restoring.reset();
-    last_converged.emplace(last);
-    keep_solved(m, last, seeded, runs, shares);
-    if (seeded && !lost_seeds.empty()) {
-      std::vector<run> runs_before = runs;
-      std::map<std::size_t, coarse_patch> lost_before = lost_seeds;
-      auto restored = restore_lost(m, last.states, cx, runs, lost_seeds, dropped, restore_at_most);
-      if (!start.spare && std::any_of(restored.begin(), restored.end(),
-                                      [&](std::size_t b) { return seed_needed(lost_before, b, runs_before); })) {
-        out.respare = true;
-        out.failure = needed_again;
-        break;
-      }
-      if (!restored.empty()) {
-        restoring = restore_point{std::move(runs_before), std::move(lost_before), std::move(restored)};
-        continue;
-      }
+    restore_at_most_ = 1;
+    out_.last.emplace(*last_converged_);
+    restoring_.reset();
+  }
+
+  /// After a round that converged: lost contacts given back, a negative pressure repaired, a run
+  /// widened, else the clearance checked and the penetrating bumps added.
+  step after_converged(bool seeded) {
+    const round_state& last = *out_.last;
+    restoring_.reset();
+    last_converged_.emplace(last);
+    keep_solved(m_, last, seeded, runs_, shares_);
+    if (seeded && !lost_seeds_.empty())
+      if (const auto s = give_back_lost(last)) return *s;
+    if (seeded && repair_tension(m_, last.states, runs_, repaired_, cx_.options.acceptance)) return step::again;
+    if (widen(m_, runs_, last.states)) return step::again;
+    return grow_or_settle(seeded, last);
+  }
+
+  /// restore_lost after a converged round: a round with the contacts it gives back (restoring_
+  /// set), a stop to search again with spare lights (search_result::respare), or nothing to do.
+  std::optional<step> give_back_lost(const round_state& last) {
+    std::vector<run> runs_before = runs_;
+    std::map<std::size_t, coarse_patch> lost_before = lost_seeds_;
+    auto restored = restore_lost(m_, last.states, cx_, runs_, lost_seeds_, dropped_, restore_at_most_);
+    if (!start_.spare && std::any_of(restored.begin(), restored.end(),
+                                     [&](std::size_t b) { return seed_needed(lost_before, b, runs_before); })) {
+      out_.respare = true;
+      out_.failure = needed_again;
+      return step::stop;
     }
-    if (seeded && repair_tension(m, last.states, runs, repaired, tol)) continue;
-    if (widen(m, runs, last.states)) continue;
-    out.clear = check_clearance(m, last.states, cx);
-    const auto added = growth(m, last.states, out.clear, runs, dropped, seeded, tol);
-    if (seeded && !start.spare && std::any_of(added.begin(), added.end(), [&](std::size_t b) {
-          return dropped[b] > 0 && seed_needed(lost_seeds, b, runs);
+    if (restored.empty()) return std::nullopt;
+    restoring_ = restore_point{std::move(runs_before), std::move(lost_before), std::move(restored)};
+    return step::again;
+  }
+
+  /// The clearance of the converged round `last`: the bumps penetrating by more than the
+  /// acceptance are added (again at the full load; below it the grown set starts the next load
+  /// step), none settles the set at the full load.
+  step grow_or_settle(bool seeded, const round_state& last) {
+    out_.clear = check_clearance(m_, last.states, cx_);
+    const auto added = growth(m_, last.states, out_.clear, runs_, dropped_, seeded, cx_.options.acceptance);
+    if (seeded && !start_.spare && std::any_of(added.begin(), added.end(), [&](std::size_t b) {
+          return dropped_[b] > 0 && seed_needed(lost_seeds_, b, runs_);
         })) {
-      out.respare = true;
-      out.failure = needed_again;
-      break;
+      out_.respare = true;
+      out_.failure = needed_again;
+      return step::stop;
     }
     const bool grow = !added.empty();  // else nothing penetrates by more than tol: settled at this load
-    if (grow) add_runs(m, out.clear, added, seeded, shares, runs);
-    if (t == 1) {
-      if (grow) continue;
-      break;  // settled at the full load
-    }
+    if (grow) add_runs(m_, out_.clear, added, seeded, shares_, runs_);
+    if (t_ == 1) return grow ? step::again : step::stop;  // (stop: settled at the full load)
     // Below the full load the grown set is not solved again at this t: it is the start of the
     // next step (the set only grows with the load; a bump lifted at the next step is dropped there).
-    settled = t;
-    halvings = 0;
-    t = std::min(1.0, t * load_step);
+    settled_ = t_;
+    halvings_ = 0;
+    t_ = std::min(1.0, t_ * load_step);
     // A bump dropped at a smaller load may carry load at a larger one.
-    dropped.assign(dropped.size(), 0);
-    lost_seeds.clear();
+    dropped_.assign(dropped_.size(), 0);
+    lost_seeds_.clear();
+    return step::again;
   }
-  if (t == 1)
-    for (const auto& [b, seed] : lost_seeds)
-      if (dropped[b] < max_drops) out.lost.emplace(b, seed);
-  report_best(m, cx, std::move(last_converged), out);
-  return out;
+
+  const profile_model& m_;
+  const context& cx_;
+  const search_start& start_;
+  search_result out_;
+  std::vector<run> runs_;
+  // Times each bump was dropped at the current load; at max_drops it is not added again.
+  std::vector<std::size_t> dropped_;
+  // Bump -> the seed of the last contact lost on it alone (edges absolute, load per unit t); those
+  // an earlier search at this load lost count as dropped once.
+  std::map<std::size_t, coarse_patch> lost_seeds_;
+  // Set while the contacts restore_lost gave back have not yet converged in a round.
+  std::optional<restore_point> restoring_;
+  // The last round whose coupled solve converged (reported when the search ends in a round that
+  // failed, and the round a failed restoring goes back to: restoring_ is set only right after it).
+  std::optional<round_state> last_converged_;
+  // Contacts restore_lost gives back in one round (1 after a round with several failed).
+  std::size_t restore_at_most_ = std::numeric_limits<std::size_t>::max();
+  // Tip sample -> times a contact on it was started again for a negative pressure.
+  std::map<std::size_t, std::size_t> repaired_;
+  // Tip sample -> its load at the last solved set, per unit t.
+  std::map<std::size_t, double> shares_;
+  // t_: the fraction of the load; settled_: the last fraction at which the set settled (a failed
+  // step halves towards it).
+  double t_, settled_ = 0;
+  std::size_t halvings_ = 0, shrinks_ = 0;
+  const std::size_t max_rounds_;
+};
+
+search_result search_contact_set(const profile_model& m, const context& cx, const search_start& start) {
+  return contact_search(m, cx, start).search();
 }
 
 /// The deepest sample of each bump that penetrates by more than tol (relative to the span),
