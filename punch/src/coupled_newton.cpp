@@ -867,15 +867,25 @@ flat_verdict flat_run(newton_state& s, jacobian_state& js, const edges& before, 
 constexpr double krylov_after = 0.5;
 constexpr double krylov_rtol = 0.1;
 constexpr std::size_t krylov_products = 12;
-/// The relative step of krylov_step's products (newton_krylov.hpp, relative_step):
-/// krylov_step_size, and krylov_wide_step once the steps at it have stalled (escalate). WHY both: a
-/// product moves every contact at once, most by far less than the one that sets the step, and the
-/// conditions, evaluated to 1e-3 of the acceptance, then change by little more than that accuracy
-/// resolves; at a light contact's stall (docs/theory.md section 7, "Where this falls short") GMRES
-/// on products at 1e-7 left a linear residual of 1.5e-2 of |F| 6.8e-3, at 1e-5 it met 0.1 |F| in 7
-/// products. But at 1e-5 throughout, the curvature's error steers a search that converges now
-/// elsewhere: the 1e5-sample periodic profile of seed 2 at load 6e-3 ended not_converged after 14
-/// min, where it is ok in 5.
+/// The relative steps of krylov_step's products (newton_krylov.hpp): the edges move by
+/// krylov_step_size of their contacts' lengths in the root mean square, none by more than
+/// krylov_wide_step; once the steps at that have stalled (escalate), every edge up to
+/// krylov_wide_step. WHY the root mean square: the edges are absolute abscissae, so a contact
+/// 1.8e-7 long at x ~ 0.5 resolves its length only to ~6e-10, and the conditions carry that
+/// rounding. With the step set by the largest relative move (every edge within 1e-7 of its
+/// length, as before), a product on the ~980-patch periodic profile moved most edges by ~1e-14
+/// (~100 ulps of their abscissae) to keep the shortest contact's within 1e-7; forward and backward
+/// differences then disagreed by 0.5 % of the product in the median row, 5 % at the 90th
+/// percentile and 35 % at the 99th (1e-5: 5e-5, 5e-4, 0.4 %), GMRES's 12 products rarely met
+/// krylov_rtol, and the degree-128 iteration stalled at 1.2e-6 of the largest condition for ~80 s
+/// per round (traced). With the root mean square it converges below 1e-8 (and stops at its floor,
+/// floor_gain), and the profile is ok in 61 iterations and 6.2-6.6 min instead of 84 and 12.7 min
+/// (docs/theory.md section 7). WHY krylov_wide_step as the cap: at 1e-5 of a length the
+/// curvature's error is still small against the difference (the same trace: a cap of 1e-4 gave the
+/// same iterations); the wide products alone, on every edge, steer a search that converges elsewhere (the 1e5-sample periodic profile of seed 2 at load 6e-3 ended
+/// not_converged after 14 min, where it is ok in 5). At a light contact's stall (docs/theory.md
+/// section 7, "Where this falls short") GMRES on products at 1e-7 left a linear residual of 1.5e-2
+/// of |F| 6.8e-3; at 1e-5 it met 0.1 |F| in 7 products.
 constexpr double krylov_step_size = 1e-7;
 constexpr double krylov_wide_step = 1e-5;
 
@@ -897,7 +907,7 @@ Eigen::VectorXd krylov_step(const newton_state& s, const jacobian_state& js) {
     return z ? Eigen::VectorXd(*z) : v;
   };
   return newton_krylov_step(conditions, s.ev.r, length, precondition, krylov_rtol, krylov_products,
-                            js.wide ? krylov_wide_step : krylov_step_size);
+                            js.wide ? krylov_wide_step : krylov_step_size, krylov_wide_step);
 }
 
 /// Where a seeded body's iteration (problem::seeded, with body_load) would stop as stalled above
@@ -968,6 +978,23 @@ bool newton_step_ends(newton_state& s, jacobian_state& js, bool colouring, bool 
     return true;
   }
   return false;
+}
+
+/// Below its floor (stall_floor), a seeded body's Newton-Krylov step gaining less than this factor
+/// ends the iteration there: stalled at the floor, so converged (newton_iteration). WHY: with the
+/// products' root-mean-square step (krylov_step_size) the steps below the floor still gain, but
+/// a few percent each: the 443-contact periodic profile (1e5 samples, seed 1, load 6e-3) went from
+/// 5.1e-7 to 4.5e-8 of the largest condition in 15 steps and 50 s, its floor 4.8e-4, and took 124
+/// s instead of 69; with this stop, 72 s, C_f the same to 4e-12 (traced, one core, another solve
+/// on the other). A flat run (flat_gain) is the same stop for Broyden's steps.
+constexpr double floor_gain = 0.5;
+
+/// Whether the accepted step just taken (its reduction of the largest condition) ends the
+/// iteration at its floor (floor_gain).
+bool slow_below_floor(const newton_state& s, const jacobian_state& js, double reduction) {
+  if (!js.krylov || !s.pb.seeded || !(reduction > floor_gain)) return false;
+  const double floor = stall_floor(s.pb, s.ev.sol);
+  return floor > 0 && s.ev.r.lpNorm<Eigen::Infinity>() <= floor && s.ev_accuracy <= 0.1 * floor;
 }
 
 /// The Newton-Broyden steps from the evaluated start of s, at most 60.
@@ -1054,6 +1081,10 @@ void broyden_steps(newton_state& s) {
     s.ev_accuracy = s.q.accuracy;
     s.sharpen(out.x);
     ++js.since_fresh;
+    if (slow_below_floor(s, js, reduction)) {
+      out.failure = "the edge iteration stalled";
+      break;
+    }
     const flat_verdict verdict = flat_run(s, js, before, reduction, step);
     if (verdict == flat_verdict::refreshed) continue;
     if (verdict == flat_verdict::stop) break;

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstddef>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 namespace {
 namespace d = rhabel::punch::detail;
@@ -55,7 +57,7 @@ TEST_CASE("newton_krylov_step: |r + F'(x) dx| <= rtol |r| with the analytic Jaco
     const Eigen::VectorXd diagonal = A.diagonal();
     const auto precondition = [&](const Eigen::VectorXd& v) { return Eigen::VectorXd(v.cwiseQuotient(diagonal)); };
     bool reached = false;
-    const Eigen::VectorXd dx = d::newton_krylov_step(moved, r, scale, precondition, rtol, 40, 1e-7, &reached);
+    const Eigen::VectorXd dx = d::newton_krylov_step(moved, r, scale, precondition, rtol, 40, 1e-7, 1e-7, &reached);
     CHECK(reached);
     CHECK((r + J * dx).norm() <= rtol * r.norm());
     CHECK(calls <= 41);  // max_products + 1
@@ -65,7 +67,7 @@ TEST_CASE("newton_krylov_step: |r + F'(x) dx| <= rtol |r| with the analytic Jaco
   SUBCASE("too few products: the best iterate, reached = false, the limit kept") {
     const auto identity = [](const Eigen::VectorXd& v) { return v; };
     bool reached = true;
-    const Eigen::VectorXd dx = d::newton_krylov_step(moved, r, scale, identity, rtol, 3, 1e-7, &reached);
+    const Eigen::VectorXd dx = d::newton_krylov_step(moved, r, scale, identity, rtol, 3, 1e-7, 1e-7, &reached);
     CHECK_FALSE(reached);
     CHECK(calls <= 4);
     CHECK((r + J * dx).norm() < r.norm());  // GMRES never increases the residual from dx = 0
@@ -78,8 +80,46 @@ TEST_CASE("newton_krylov_step: |r + F'(x) dx| <= rtol |r| with the analytic Jaco
     };
     const auto identity = [](const Eigen::VectorXd& v) { return v; };
     bool reached = false;
-    const Eigen::VectorXd dx = d::newton_krylov_step(guarded, r, scale, identity, rtol, 60, 1e-7, &reached);
+    const Eigen::VectorXd dx = d::newton_krylov_step(guarded, r, scale, identity, rtol, 60, 1e-7, 1e-7, &reached);
     CHECK(reached);
     CHECK((r + J * dx).norm() <= rtol * r.norm());
+  }
+}
+
+TEST_CASE("newton_krylov_step: the products move the unknowns by relative_step in the root mean square, none beyond "
+          "max_relative_step") {
+  const Eigen::MatrixXd A = matrix();
+  Eigen::VectorXd x(m), scale(m);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    x[i] = 0.3 * std::sin(double(2 * i + 1));
+    scale[i] = i < 2 ? 1e-4 : 1.0;  // two unknowns with scales far below the others'
+  }
+  const Eigen::VectorXd r = F(A, x);
+  const auto identity = [](const Eigen::VectorXd& v) { return v; };
+  // The relative moves of every product (dx / scale), rms and largest.
+  std::vector<std::pair<double, double>> moves;
+  const auto moved = [&](const Eigen::VectorXd& dx) {
+    const Eigen::ArrayXd move = dx.array() / scale.array();
+    moves.emplace_back(std::sqrt(move.square().mean()), move.abs().maxCoeff());
+    return F(A, x + dx);
+  };
+  // (Relative to the step: the rms and the cap are each met to rounding.)
+  constexpr double rounding = 1e-12;
+  SUBCASE("the cap not reached: the root mean square is relative_step") {
+    d::newton_krylov_step(moved, r, scale, identity, rtol, 6, 1e-7, 1e-3);
+    REQUIRE(moves.size() >= 6);
+    for (const auto& [rms, largest] : moves) {
+      CHECK(std::abs(rms - 1e-7) <= rounding * 1e-7);
+      CHECK(largest <= 1e-3 * (1 + rounding));
+      CHECK(largest > 1e-7);  // the small-scale unknowns move by more than relative_step of theirs
+    }
+  }
+  SUBCASE("max_relative_step = relative_step: no unknown moves by more than it") {
+    d::newton_krylov_step(moved, r, scale, identity, rtol, 6, 1e-7, 1e-7);
+    REQUIRE(moves.size() >= 6);
+    for (const auto& [rms, largest] : moves) {
+      CHECK(std::abs(largest - 1e-7) <= rounding * 1e-7);
+      CHECK(rms < 1e-7);
+    }
   }
 }

@@ -183,10 +183,11 @@
 //   (3 to 85 contacts, 0.10-4.6 s), each with the boundary-element solver's patches and C_f within
 //   its estimate (those of tests/punch/test_rough_profile.cpp against the boundary-element
 //   oracle). 1e5 samples a period with 233 contacts (self_affine_profile.py 100000 1 3e-3
-//   --periodic): ok in 21-25 s (one core), at 6e-3 443 contacts ok in 68 s; the same samples
-//   at 6e-3 with seed 2 in 71-82 s (437 contacts), with seed 3 in 76-102 s (428); at 1.4e-2
-//   (980 contacts) not_converged after 600 s, and ok after 10.7-12.8 min (another job on the other
-//   core). Each agrees with the boundary-element solver's patches and its C_f within its estimate
+//   --periodic): ok in 21-25 s (one core), at 6e-3 443 contacts ok in 72 s; the same samples
+//   at 6e-3 with seed 2 in 55-58 s (437 contacts), with seed 3 in 65 s (428); at 1.4e-2
+//   (~980 patches) ok after 6.2-6.6 min (another job on the other core) with 979 contacts, two of
+//   the boundary-element solver's patches one panel apart solved as one (its pressure dips to
+//   within the acceptance of zero between them). Each agrees with the boundary-element solver's patches and its C_f within its estimate
 //   (tests/long/rough_1e5_periodic*.sh). A search whose last round fails reports its last converged
 //   round at that load, not_converged unless its own evidence names another status, with why the
 //   search stopped. An ok result bounds the residual of (8), the loads, the pressure's sign, the
@@ -200,9 +201,8 @@
 //   ~70 s, C_f 0.0322901). A lost contact that penetrates by less than the acceptance times the
 //   span is not given back (the result is ok without it, and giving it back can cost the search
 //   its path). So what an ok cannot exclude is a missing contact whose penetration stays under the
-//   acceptance times the span (one the coarse solve does not seed, or such a lost one: the
-//   ~980-patch profile ends ok with one, lost in the first round, penetrating by 7.8e-7 of the
-//   span): the clearance is bounded, not the load such a contact would carry.
+//   acceptance times the span (one the coarse solve does not seed, or such a lost one): the
+//   clearance is bounded, not the load such a contact would carry.
 //   Scenes the search does not solve, and many hundreds of patches, are what
 //   rhabel/punch/profile_bem.hpp's boundary-element solver is for (first order, with error
 //   estimates).
