@@ -1074,14 +1074,19 @@ class contact_search {
     std::map<std::size_t, coarse_patch> lost_before = lost_seeds_;
     auto restored = restore_lost(m_, last.states, cx_, runs_, lost_seeds_, dropped_, restore_at_most_);
     if (!start_.spare && std::any_of(restored.begin(), restored.end(),
-                                     [&](std::size_t b) { return seed_needed(lost_before, b, runs_before); })) {
-      out_.respare = true;
-      out_.failure = needed_again;
-      return step::stop;
-    }
+                                     [&](std::size_t b) { return seed_needed(lost_before, b, runs_before); }))
+      return stop_to_respare();
     if (restored.empty()) return std::nullopt;
     restoring_ = restore_point{std::move(runs_before), std::move(lost_before), std::move(restored)};
     return step::again;
+  }
+
+  /// The search stops to search again with spare lights (search_result::respare): it was about to
+  /// give back a contact it dropped whose seed was not light.
+  step stop_to_respare() {
+    out_.respare = true;
+    out_.failure = needed_again;
+    return step::stop;
   }
 
   /// The clearance of the converged round `last`: the bumps penetrating by more than the
@@ -1092,11 +1097,8 @@ class contact_search {
     const auto added = growth(m_, last.states, out_.clear, runs_, dropped_, seeded, cx_.options.acceptance);
     if (seeded && !start_.spare && std::any_of(added.begin(), added.end(), [&](std::size_t b) {
           return dropped_[b] > 0 && seed_needed(lost_seeds_, b, runs_);
-        })) {
-      out_.respare = true;
-      out_.failure = needed_again;
-      return step::stop;
-    }
+        }))
+      return stop_to_respare();
     const bool grow = !added.empty();  // else nothing penetrates by more than tol: settled at this load
     if (grow) add_runs(m_, out_.clear, added, seeded, shares_, runs_);
     if (t_ == 1) return grow ? step::again : step::stop;  // (stop: settled at the full load)

@@ -989,12 +989,17 @@ bool newton_step_ends(newton_state& s, jacobian_state& js, bool colouring, bool 
 /// on the other). A flat run (flat_gain) is the same stop for Broyden's steps.
 constexpr double floor_gain = 0.5;
 
+/// Whether the conditions at the accepted point of s are within its floor (stall_floor), evaluated
+/// to a tenth of it: where a stall counts as converged.
+bool within_floor(const newton_state& s) {
+  const double floor = stall_floor(s.pb, s.ev.sol);
+  return floor > 0 && s.ev.r.lpNorm<Eigen::Infinity>() <= floor && s.ev_accuracy <= 0.1 * floor;
+}
+
 /// Whether the accepted step just taken (its reduction of the largest condition) ends the
 /// iteration at its floor (floor_gain).
 bool slow_below_floor(const newton_state& s, const jacobian_state& js, double reduction) {
-  if (!js.krylov || !s.pb.seeded || !(reduction > floor_gain)) return false;
-  const double floor = stall_floor(s.pb, s.ev.sol);
-  return floor > 0 && s.ev.r.lpNorm<Eigen::Infinity>() <= floor && s.ev_accuracy <= 0.1 * floor;
+  return js.krylov && s.pb.seeded && reduction > floor_gain && within_floor(s);
 }
 
 /// The Newton-Broyden steps from the evaluated start of s, at most 60.
@@ -1112,9 +1117,7 @@ newton_result newton_iteration(const problem& pb, const edges& start) {
   // Stalled at the floor of the evaluations (problem::stall_floor): converged; the caller's
   // independent checks (the residual of (8), loads, pressure) judge the result. (Not when out of
   // time, as after time_limit_reached: the time limit is reported.)
-  const double floor = stall_floor(pb, s.ev.sol);
-  if (!s.out.converged && !s.out.merged && !s.out.lost && floor > 0 && s.out.residual <= floor &&
-      s.ev_accuracy <= 0.1 * floor && !pb.cx->out_of_time()) {
+  if (!s.out.converged && !s.out.merged && !s.out.lost && within_floor(s) && !pb.cx->out_of_time()) {
     s.out.converged = true;
     s.out.failure.clear();
   }
