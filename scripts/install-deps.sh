@@ -9,6 +9,7 @@ packages=(
   libboost-dev              # Boost.Math, Boost.Multiprecision (header-only)
   libeigen3-dev             # Golub-Welsch eigenproblems, dense linear algebra
   libgsl-dev                # comparison baselines in studies and benchmarks
+  libfftw3-dev              # FFTW: the boundary-element products of a sampled profile (punch)
   doctest-dev               # unit tests
   nlohmann-json3-dev        # scene and result JSON in the command line
   libcli11-dev              # command-line parsing

@@ -28,8 +28,14 @@ constexpr std::size_t max_products = 600;
 /// The cost of one FFT product of transform length M (toeplitz_product::transform_length) in units
 /// of a multiply-add of the direct sum (two real transforms, ~5 M log2 M flops together; the direct
 /// sum gathers from the table, ~2x a streamed multiply-add): the direct sum over m active panels is
-/// cheaper when m^2 is below it (measured: M = 8e5, 38 ms a product by FFT; the direct sum over
-/// 13550 panels, 130 ms; 672 active panels of 1.6e6: 0.3 ms).
+/// cheaper when m^2 is below it (measured with Eigen's kissfft: M = 8e5, 38 ms a product by FFT;
+/// the direct sum over 13550 panels, 130 ms; 672 active panels of 1.6e6: 0.3 ms). With FFTW
+/// (toeplitz_product.hpp) a product costs ~1.5 M log2 M such units, so the FFT would pay from
+/// smaller m; the crossing is left here deliberately: moved there, the coarse seeds' rounding
+/// changes and with it the searches' paths. The ~980-patch periodic profile then took 441-456 s
+/// and 68 Newton iterations (without the products' first guess, coupled_problem.hpp: not finished
+/// after 13 min, stopped), against 377 s and 62 with the crossing here (one core, another solve
+/// on the other).
 double fft_cost(std::size_t M) {
   const auto m = static_cast<double>(M);
   return 5 * m * std::log2(m);

@@ -429,6 +429,7 @@ std::size_t set_correction_options(const problem& pb, correction_problem& c) {
   // (the same intervals): 11-19 products for rows of 10-300 parabolas 1.5 L apart.
   o.iterative_from = iterative_from;
   if (c.far) o.far_field = c.far->field();
+  if (fixed) o.first_guess = pb.correction_guess;
   // (A Jacobian's differences take the base point's route: a difference must not cross routes.)
   const bool layered = !c.far && (fixed ? pb.fixed_poles_per_decade > 0
                                         : nearly_touching(c.intervals, cx.options.layered_below));
@@ -455,6 +456,7 @@ void add_correction(const problem& pb, const correction_problem& c, const abel::
   if (pb.fixed_degrees.empty() && per_decade == 0) pb.hints->store(out.degrees);
   out.correction_residual = sol.residual * std::max(c.worst_ratio, 0.0);
   out.correction_converged = sol.status == abel::solve_status::converged;
+  out.correction_unknowns = sol.unknowns;
   for (std::size_t k = 0; k < K; ++k) {
     const std::size_t j = c.targets[k];
     auto& coefficients = out.g[j].jacobi.coefficients;

@@ -894,6 +894,7 @@ Eigen::VectorXd krylov_step(const newton_state& s, const jacobian_state& js) {
   pb.fixed_degrees = s.ev.sol.degrees;
   pb.fixed_particular_degrees = s.ev.sol.particular_degrees;
   pb.fixed_poles_per_decade = s.ev.sol.poles_per_decade;
+  pb.correction_guess = s.ev.sol.correction_unknowns;
   const unknowns& u = s.u;
   Eigen::VectorXd length(static_cast<Eigen::Index>(u.state.size()));
   for (std::size_t k = 0; k < u.state.size(); ++k)

@@ -122,6 +122,9 @@ struct fixed_solution {
   std::size_t poles_per_decade = 0;  // the boundary-layer route's (0: the polynomial route)
   double correction_residual = 0;  // its independent residual, relative to the original data
   bool correction_converged = true;
+  // The correction's unknowns on the matrix-free route (null on the others): the first guess of
+  // the differences about this point (problem::correction_guess).
+  std::shared_ptr<const abel::union_unknowns<double>> correction_unknowns;
 };
 
 /// The largest tail (estimated relative error of the series) among the contacts whose series
@@ -264,6 +267,19 @@ struct problem {
   std::vector<std::size_t> fixed_particular_degrees;
   // With fixed_degrees on the boundary-layer route: the base point's poles a decade.
   std::size_t fixed_poles_per_decade = 0;
+  // With fixed_degrees: the base point's correction (fixed_solution::correction_unknowns), from
+  // which the correction's GMRES starts (abel::multi_solve_options::first_guess); set by the
+  // Newton-Krylov products (coupled_newton.cpp, krylov_step). WHY: a product moves the edges by
+  // 1e-7 .. 1e-5 of their lengths, so the base point's solution is that near the product's; from
+  // zero GMRES reaches its 1e-14 in 15-19 products (233-contact periodic profile, traced).
+  // Measured beside the same code without it (one core each, side by side; 1e5-sample periodic
+  // profiles, acceptance 1e-6; the coarse products' FFT crossing then at 1.5 M log2 M, see
+  // active_solve.cpp, fft_cost): seed 1 at load 6e-3 (443 contacts) 52 s against 62 s, the same 37
+  // iterations; seed 3 (428) 77 s against 81 s, 22 iterations each; seed 1 at 1.4e-2 (979) ok in
+  // 441 s, where the other had not finished after 13 min (stopped). WHY not the Jacobian's columns
+  // too: with them the 443-contact profile took 58 s, and the 16000-sample profile of seed 4
+  // (tests/punch/test_rough_profile.cpp) ended ok with one of its two narrow contacts missing.
+  std::shared_ptr<const abel::union_unknowns<double>> correction_guess;
   // The Jacobian kept across solves (jacobian_memo; copies share it); null: none. Read only by a
   // solve's first attempt (read_memo): a retry follows a failure, and differences its own.
   std::shared_ptr<jacobian_memo> memo;

@@ -600,28 +600,39 @@ TEST_CASE("iterative_from: block-preconditioned GMRES gives the LU's coefficient
   }
 }
 
+namespace {
+/// A row of 40 intervals of the three classes with loads on the nu = +1 ones, gaps of 0.4 ... 2.5
+/// lengths (near pairs and far ones); every interval's upper end moved by `stretch` of its length.
+struct separated_row {
+  std::vector<interval_spec<double>> intervals;
+  std::vector<std::optional<double>> loads;
+  std::vector<std::function<double(double)>> F;
+
+  explicit separated_row(double stretch = 0) {
+    double x = 0;
+    for (std::size_t k = 0; k < 40; ++k) {
+      const double L = 1 + 0.5 * std::sin(1.7 * double(k));
+      const edge e1 = k % 3 == 2 ? edge::unbounded : edge::bounded, e2 = k % 3 == 0 ? edge::bounded : edge::unbounded;
+      intervals.push_back({x, x + L * (1 + stretch), e1, e2});
+      loads.push_back(k % 3 == 2 ? std::optional<double>(0.2 + 0.01 * double(k)) : std::nullopt);
+      x += L * (1.4 + 1.1 * (1 + std::cos(2.3 * double(k))));
+    }
+    for (std::size_t j = 0; j < intervals.size(); ++j)
+      F.push_back([j](double s) { return std::cos(0.1 * s + 0.3 * static_cast<double>(j)) - 0.01 * s; });
+  }
+};
+}  // namespace
+
 // Many intervals with separated pairs: the far-field route (only own and near blocks assembled,
 // the rest applied through far_field.hpp inside GMRES) solves the same collocation system
-// as the LU on the assembled matrix: a row of 40 intervals of the three classes with loads on the
-// nu = +1 ones, gaps of 0.4 ... 2.5 lengths (near pairs and far ones).
+// as the LU on the assembled matrix (separated_row).
 TEST_CASE("iterative_from with separated intervals: the far-field route gives the LU's coefficients and defects") {
   // GMRES's 1e-14 relative residual times the condition (~1e3 here, as in the test above) plus
   // the far field's relative error (residual_tolerance/1000 = 1e-13), with a margin.
   const double coefficient_tolerance = 1e-10;
   const abel_parameters<double> par(0.3, 0.2);
-  std::vector<interval_spec<double>> intervals;
-  std::vector<std::optional<double>> loads;
-  double x = 0;
-  for (std::size_t k = 0; k < 40; ++k) {
-    const double L = 1 + 0.5 * std::sin(1.7 * double(k));
-    const edge e1 = k % 3 == 2 ? edge::unbounded : edge::bounded, e2 = k % 3 == 0 ? edge::bounded : edge::unbounded;
-    intervals.push_back({x, x + L, e1, e2});
-    loads.push_back(k % 3 == 2 ? std::optional<double>(0.2 + 0.01 * double(k)) : std::nullopt);
-    x += L * (1.4 + 1.1 * (1 + std::cos(2.3 * double(k))));
-  }
-  std::vector<std::function<double(double)>> F;
-  for (std::size_t j = 0; j < intervals.size(); ++j)
-    F.push_back([j](double s) { return std::cos(0.1 * s + 0.3 * static_cast<double>(j)) - 0.01 * s; });
+  const separated_row row_problem;
+  const auto& [intervals, loads, F] = row_problem;
   multi_solve_options<double> direct;
   direct.degree = 24;
   direct.loads = loads;
@@ -653,6 +664,50 @@ TEST_CASE("iterative_from with separated intervals: the far-field route gives th
   CHECK(union_far_memory_bytes(row, 16) < 50e6);
   CHECK(union_memory_bytes<double>(1000, 16) > 2e9);
   CHECK(union_far_degree_limit(row, std::size_t(1) << 30) > 100);
+}
+
+// multi_solve_options::first_guess: GMRES on the far-field route started from the unknowns of a
+// nearby solve (every upper end moved by 1e-6 of its length, as a Newton iteration's differences
+// move edges) takes fewer products and reaches the same answer; a guess at other degrees is not
+// used (the same products as from zero, the same coefficients bit for bit).
+TEST_CASE("first_guess: a nearby solve's unknowns start the far-field GMRES, the answer unchanged") {
+  // Both solves meet GMRES's 1e-14 relative residual: their coefficients differ by ~ the
+  // condition (~1e3) times that, as the LU's and GMRES's do above.
+  const double coefficient_tolerance = 1e-10;
+  const abel_parameters<double> par(0.3, 0.2);
+  const separated_row base, moved(1e-6);
+  multi_solve_options<double> options;
+  options.degree = 24;
+  options.loads = base.loads;
+  options.homogeneous = false;
+  options.iterative_from = 6;
+  const auto at_base = solve_union(par, base.intervals, base.F, options);
+  REQUIRE(at_base.unknowns);
+  CHECK(at_base.unknowns->degrees == at_base.degrees);
+  const auto from_zero = solve_union(par, moved.intervals, moved.F, options);
+  auto guessed = options;
+  guessed.first_guess = at_base.unknowns;
+  const auto from_base = solve_union(par, moved.intervals, moved.F, guessed);
+  INFO("GMRES products: " << from_zero.gmres_products << " from zero, " << from_base.gmres_products << " from the base");
+  CHECK(from_zero.gmres_products > 0);
+  CHECK(from_base.gmres_products < from_zero.gmres_products);
+  CHECK(std::abs(from_base.residual - from_zero.residual) <= 1e-12);
+  double size = 0, worst = 0;
+  for (std::size_t j = 0; j < base.intervals.size(); ++j)
+    for (std::size_t n = 0; n < from_zero.densities[j].coefficients.size(); ++n) {
+      size = std::max(size, std::abs(from_zero.densities[j].coefficients[n]));
+      worst = std::max(worst, std::abs(from_zero.densities[j].coefficients[n] - from_base.densities[j].coefficients[n]));
+    }
+  CHECK(worst <= coefficient_tolerance * size);
+  // Other degrees: the guess is not used.
+  auto other = options;
+  other.degree = 20;
+  const auto plain = solve_union(par, moved.intervals, moved.F, other);
+  other.first_guess = at_base.unknowns;
+  const auto ignored = solve_union(par, moved.intervals, moved.F, other);
+  CHECK(ignored.gmres_products == plain.gmres_products);
+  for (std::size_t j = 0; j < base.intervals.size(); ++j)
+    CHECK(ignored.densities[j].coefficients == plain.densities[j].coefficients);
 }
 
 // multi_solve_options::homogeneous = false leaves the homogeneous solutions out and changes

@@ -59,10 +59,13 @@ class block_gmres {
   }
 
   /// Solves A x = b to |b - A x| <= rtol |b|; false if max_iterations products were not enough.
-  bool solve(const vector& b, vector& x, const Real& rtol, std::size_t max_iterations = 200,
-             std::size_t restart = 60) const {
-    x = vector::Zero(size_);
-    return gmres(apply_, [this](const vector& v) { return precondition(v); }, b, x, rtol, max_iterations, restart);
+  /// from_x: GMRES starts from x (of size b's), else from zero; `products`, when given, gets the
+  /// number of products of A taken.
+  bool solve(const vector& b, vector& x, const Real& rtol, bool from_x = false, std::size_t* products = nullptr,
+             std::size_t max_iterations = 200, std::size_t restart = 60) const {
+    if (!from_x || x.size() != size_) x = vector::Zero(size_);
+    return gmres(apply_, [this](const vector& v) { return precondition(v); }, b, x, rtol, max_iterations, restart,
+                 products);
   }
 
  private:

@@ -36,6 +36,14 @@ struct interval_spec {
   edge leading = edge::bounded, trailing = edge::bounded;
 };
 
+/// The unknowns of one matrix-free solve of solve_union (detail/block_gmres.hpp's vector: every
+/// interval's collocation unknowns in order) with the degrees they belong to.
+template <class Real>
+struct union_unknowns {
+  std::vector<std::size_t> degrees;
+  Eigen::Matrix<Real, Eigen::Dynamic, 1> x;
+};
+
 template <class Real>
 struct multi_solve_options {
   std::size_t degree = 32;              ///< collocation points (= unknowns) per interval; the first degree tried
@@ -73,6 +81,13 @@ struct multi_solve_options {
   /// caller has one (the punch layer builds it for its data anyway); null: solve_union builds it
   /// with order_for(residual_tolerance / 1000) points per box.
   std::shared_ptr<const rhabel::abel::far_field<Real>> far_field;
+  /// The first guess of the matrix-free route's GMRES (multi_solution::unknowns of an earlier
+  /// solve of nearby data on nearby intervals); used only where its degrees equal the solve's,
+  /// else (and when null) GMRES starts from zero. It changes the iterations, not the tolerance
+  /// the solution meets. WHY: the finite differences of a Newton iteration on the intervals' edges
+  /// (the punch layer's coupled solve) solve systems within ~1e-7 .. 1e-5 of their base point's,
+  /// whose solution then starts GMRES that much nearer its answer.
+  std::shared_ptr<const union_unknowns<Real>> first_guess;
 };
 
 /// The boundary-layer part of a density on [lo, hi] (solve_union_layered):
@@ -145,6 +160,12 @@ struct multi_solution {
   /// not_converged: residual > options.residual_tolerance (typically nearly touching intervals,
   /// see the header); converged otherwise, or when no residual was computed.
   solve_status status = solve_status::converged;
+  /// The matrix-free route's unknowns of the returned solve (multi_solve_options::first_guess of
+  /// a later one); null on the other routes.
+  std::shared_ptr<const union_unknowns<Real>> unknowns;
+  /// The products of the matrix-free route's GMRES in the returned solve, its homogeneous
+  /// solutions included (0 on the other routes).
+  std::size_t gmres_products = 0;
 };
 
 /// A g at s for densities on a union of disjoint intervals (each with its own class). Own
@@ -263,10 +284,14 @@ class union_degree_system {
 
   /// x = A^-1 right; nothing when the matrix-free GMRES does not reach its tolerance (the dense
   /// route's GMRES falls back to the LU).
-  std::optional<vector> linear_solve(const vector& right) {
+  std::optional<vector> linear_solve(const vector& right, const vector* guess = nullptr) {
     if (far_) {
       vector x;
-      if (gmres_->solve(right, x, Real(1e-14))) return x;
+      if (guess && guess->size() == right.size()) x = *guess;
+      std::size_t products = 0;
+      const bool reached = gmres_->solve(right, x, Real(1e-14), !x.isZero(0), &products);
+      sol.gmres_products += products;
+      if (reached) return x;
       return std::nullopt;
     }
     if (gmres_) {
@@ -526,8 +551,10 @@ std::optional<multi_solution<Real>> solve_union_at_degree(const abel_parameters<
   multi_solution<Real>& sol = system.sol;
   std::vector<Real> c0(K, Real(0));
   for (std::size_t i = 0; i < K; ++i) c0[i] = system.fixed_c0(i);
-  const auto c = system.linear_solve(system.rhs() - system.c0_image(c0));
+  const bool guessed = far && options.first_guess && options.first_guess->degrees == M;
+  const auto c = system.linear_solve(system.rhs() - system.c0_image(c0), guessed ? &options.first_guess->x : nullptr);
   if (!c) return std::nullopt;
+  if (far) sol.unknowns = std::make_shared<const union_unknowns<Real>>(union_unknowns<Real>{M, *c});
   sol.densities = system.unpack(*c, c0);
   sol.solvability_defects = system.defects(*c);
   sol.homogeneous.assign(K, {});
