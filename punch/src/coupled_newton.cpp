@@ -502,6 +502,16 @@ class colouring {
   std::vector<std::vector<std::size_t>> near_;  // sorted, each holding its own contact; empty: all near
 };
 
+/// pb for the differences about the point solved as `sol`: its degrees, particulars' degrees and
+/// route (problem::fixed_degrees), so that both sides of a difference share one discretisation.
+problem at_base_discretisation(const problem& pb, const fixed_solution& sol) {
+  problem out = pb;
+  out.fixed_degrees = sol.degrees;
+  out.fixed_particular_degrees = sol.particular_degrees;
+  out.fixed_poles_per_decade = sol.poles_per_decade;
+  return out;
+}
+
 /// Forward-difference Jacobian of the edge conditions (relative step 1e-7 of each contact's
 /// length; backward where the forward step would close a gap). Up to `full_width` contacts: one
 /// evaluation per unknown. More: the contacts are coloured (colouring: two ranks each side and, on
@@ -514,10 +524,7 @@ class colouring {
 /// section 7, "Where this falls short"). 2 colours evaluations for any N: 2 full_width for rows of
 /// contacts of similar lengths.
 Eigen::MatrixXd jacobian(const problem& base, const unknowns& u, const edges& x, const evaluation& ev) {
-  problem pb = base;
-  pb.fixed_degrees = ev.sol.degrees;
-  pb.fixed_particular_degrees = ev.sol.particular_degrees;
-  pb.fixed_poles_per_decade = ev.sol.poles_per_decade;
+  const problem pb = at_base_discretisation(base, ev.sol);
   const Eigen::VectorXd& r = ev.r;
   const auto m = static_cast<Eigen::Index>(u.state.size());
   const std::size_t n = pb.roles.size();
@@ -890,10 +897,7 @@ constexpr double krylov_step_size = 1e-7;
 constexpr double krylov_wide_step = 1e-5;
 
 Eigen::VectorXd krylov_step(const newton_state& s, const jacobian_state& js) {
-  problem pb = s.pb;
-  pb.fixed_degrees = s.ev.sol.degrees;
-  pb.fixed_particular_degrees = s.ev.sol.particular_degrees;
-  pb.fixed_poles_per_decade = s.ev.sol.poles_per_decade;
+  problem pb = at_base_discretisation(s.pb, s.ev.sol);
   pb.correction_guess = s.ev.sol.correction_unknowns;
   const unknowns& u = s.u;
   Eigen::VectorXd length(static_cast<Eigen::Index>(u.state.size()));

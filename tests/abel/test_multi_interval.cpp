@@ -540,6 +540,21 @@ TEST_CASE("cross nodes: degree_graded_cross_nodes integrate w P_n exactly up to 
     }
 }
 
+namespace {
+/// The largest coefficient of a's densities and the largest difference from b's coefficients
+/// (a's count on each interval).
+std::pair<double, double> coefficient_difference(const multi_solution<double>& a, const multi_solution<double>& b) {
+  double size = 0, worst = 0;
+  for (std::size_t j = 0; j < a.densities.size(); ++j)
+    for (std::size_t n = 0; n < a.densities[j].coefficients.size(); ++n) {
+      size = std::max(size, std::abs(a.densities[j].coefficients[n]));
+      worst = std::max(worst, std::abs(a.densities[j].coefficients[n] - b.densities[j].coefficients[n]));
+    }
+  return {size, worst};
+}
+
+}  // namespace
+
 // The iterative route (multi_solve_options::iterative_from; detail/block_gmres.hpp) solves the
 // same collocation system as the LU: six intervals of all three classes (bounded/bounded nu = -1,
 // bounded/unbounded nu = 0, unbounded/unbounded nu = +1 with a load), gaps from 0.2 to 2 of a
@@ -581,12 +596,7 @@ TEST_CASE("iterative_from: block-preconditioned GMRES gives the LU's coefficient
     }
     CHECK(std::abs(b.residual - a.residual) <= 1e-12);
     CHECK(std::isnan(b.condition));
-    double size = 0, worst = 0;
-    for (std::size_t j = 0; j < intervals.size(); ++j)
-      for (std::size_t n = 0; n < a.densities[j].coefficients.size(); ++n) {
-        size = std::max(size, std::abs(a.densities[j].coefficients[n]));
-        worst = std::max(worst, std::abs(a.densities[j].coefficients[n] - b.densities[j].coefficients[n]));
-      }
+    const auto [size, worst] = coefficient_difference(a, b);
     CHECK(worst <= coefficient_tolerance * size);
     for (std::size_t j = 0; j < intervals.size(); ++j)
       CHECK(std::abs(a.solvability_defects[j] - b.solvability_defects[j]) <= coefficient_tolerance * size);
@@ -646,12 +656,7 @@ TEST_CASE("iterative_from with separated intervals: the far-field route gives th
   CHECK(b.residual < 1e-9);
   CHECK(std::abs(a.residual - b.residual) <= 1e-12);
   CHECK(std::isnan(b.condition));  // the iterative route was taken
-  double size = 0, worst = 0;
-  for (std::size_t j = 0; j < intervals.size(); ++j)
-    for (std::size_t n = 0; n < a.densities[j].coefficients.size(); ++n) {
-      size = std::max(size, std::abs(a.densities[j].coefficients[n]));
-      worst = std::max(worst, std::abs(a.densities[j].coefficients[n] - b.densities[j].coefficients[n]));
-    }
+  const auto [size, worst] = coefficient_difference(a, b);
   INFO("largest coefficient difference " << worst << " of " << size);
   CHECK(worst <= coefficient_tolerance * size);
   for (std::size_t j = 0; j < intervals.size(); ++j)
@@ -692,12 +697,7 @@ TEST_CASE("first_guess: a nearby solve's unknowns start the far-field GMRES, the
   CHECK(from_zero.gmres_products > 0);
   CHECK(from_base.gmres_products < from_zero.gmres_products);
   CHECK(std::abs(from_base.residual - from_zero.residual) <= 1e-12);
-  double size = 0, worst = 0;
-  for (std::size_t j = 0; j < base.intervals.size(); ++j)
-    for (std::size_t n = 0; n < from_zero.densities[j].coefficients.size(); ++n) {
-      size = std::max(size, std::abs(from_zero.densities[j].coefficients[n]));
-      worst = std::max(worst, std::abs(from_zero.densities[j].coefficients[n] - from_base.densities[j].coefficients[n]));
-    }
+  const auto [size, worst] = coefficient_difference(from_zero, from_base);
   CHECK(worst <= coefficient_tolerance * size);
   // Other degrees: the guess is not used.
   auto other = options;
