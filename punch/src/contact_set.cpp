@@ -585,9 +585,15 @@ void refuse_end_contacts(const profile_model& m, const std::vector<coarse_patch>
   }
 }
 
+/// Where start_from's contacts come from: a coarse solve (edges known to a panel) or a search
+/// (edges solved).
+enum class seed_edges { coarse, solved };
+
 /// The first round's runs and seeds from contacts (absolute edges, loads in units of int g): each
-/// the run of bumps whose tips it covers (predicted_start).
-std::optional<search_start> start_from(const profile_model& m, const std::vector<coarse_patch>& patches) {
+/// the run of bumps whose tips it covers (predicted_start); solved edges: and every basin an edge
+/// lies in.
+std::optional<search_start> start_from(const profile_model& m, const std::vector<coarse_patch>& patches,
+                                       seed_edges edges) {
   if (patches.empty()) return std::nullopt;
   const auto& x = m.curve.x();
   search_start out;
@@ -604,6 +610,15 @@ std::optional<search_start> start_from(const profile_model& m, const std::vector
       r.first = 0;
       while (r.first + 1 < m.bumps.size() && x[m.bumps[r.first].last] < middle) ++r.first;
       r.last = r.first;
+    }
+    // A solved contact that reaches beyond the basins of its tips keeps the basins it reached, as
+    // the search's widen gave it (its neighbours' contacts are apart: they share a bump, not
+    // merge). WHY: from its tips alone, every degree of the ladder (raise_degree) widened the same
+    // run again after its first round and solved the whole set once more (the ~980-patch periodic
+    // profile: a second round of 8-17 s at each of 512, 1024 and 2048).
+    if (edges == seed_edges::solved) {
+      while (r.first > 0 && p.a < x[m.bumps[r.first].first]) --r.first;
+      while (r.last + 1 < m.bumps.size() && p.b > x[m.bumps[r.last].last]) ++r.last;
     }
     out.runs.push_back(r);
     out.shares[m.tip(r)] += p.load;
@@ -640,7 +655,7 @@ std::optional<search_start> predicted_start(const profile_model& m, const contex
     return std::nullopt;  // the search's first round runs anyway: it has a result to report
   }
   refuse_end_contacts(m, patches, load);
-  return start_from(m, patches);
+  return start_from(m, patches, seed_edges::coarse);
 }
 
 /// The length of the two sample spacings about the sample at `at`.
@@ -1370,7 +1385,8 @@ window_solution raise_degree(const profile_model& m, const context& cx, window_s
     wide.ladder = own;  // (its rounds polish the set found at the degree below: context::ladder)
     const auto from = [&](bool capped) {
       if (own)
-        if (auto seeds = start_from(m, capped ? out.contacts_capped(capped_below * cx.options.acceptance) : out.contacts())) {
+        if (auto seeds = start_from(m, capped ? out.contacts_capped(capped_below * cx.options.acceptance) : out.contacts(),
+                                      seed_edges::solved)) {
           seeds->lost = out.lost;  // restore_lost goes on checking them
           seeds->spare = start.spare;
           return std::move(*seeds);
@@ -1461,7 +1477,7 @@ window_solution search_window(const profile_scene& window, const profile_curve& 
   if (memo) m.jacobian = std::move(memo);
   if (m.bumps.empty() || first_runs(m).empty())
     throw std::domain_error(std::string(who) + ": the profile corrected by the other periods has no tip inside the window");
-  auto start = seeds.empty() ? predicted_start(m, cx) : start_from(m, seeds);
+  auto start = seeds.empty() ? predicted_start(m, cx) : start_from(m, seeds, seed_edges::coarse);
   if (start) {
     start->lost = lost_on_bumps(m, lost);
     start->spare = spare;

@@ -754,6 +754,7 @@ struct jacobian_state {
   bool refreshed_in_flat = false;
   bool krylov = false;  // the steps by krylov_step from now on
   bool wide = false;    // its products differenced at krylov_wide_step from now on
+  bool polish = false;  // a ladder round's (krylov_instead)
 
   /// A new finite-difference Jacobian at the accepted point of s.
   void refresh(newton_state& s) {
@@ -761,6 +762,20 @@ struct jacobian_state {
     ++s.out.jacobians;
     fresh = true;
     since_fresh = 0;
+  }
+
+  /// In a ladder round (polish: a seeded body of coloured contacts, context::ladder), where the
+  /// matrix would be refreshed, krylov_step's steps from now on instead (preconditioned by the
+  /// matrix as it is); false elsewhere, or when they are taken already. WHY: there the set and
+  /// its edges are settled at the degree below, Broyden's steps from the kept Jacobian stall within
+  /// a few steps, and a fresh coloured Jacobian costs ~20 evaluations whose step still gains
+  /// little (the ~980-patch periodic profile, degree 1024: 1e-6 to 1.7e-7 of the largest condition
+  /// in 6 steps and 38 s, then krylov_step's to 1e-9 in 2 steps); its products reach the accuracy
+  /// in 2-4 steps.
+  bool krylov_instead() {
+    if (!polish || krylov) return false;
+    krylov = true;
+    return true;
   }
 };
 
@@ -802,11 +817,20 @@ bool newton_start(newton_state& s, const edges& start) {
   return true;
 }
 
-/// Backtracking along dx from the accepted point: the first of t, t/2, ... (12 tries) whose
+/// Backtracking's tries: t, t/2, ... at most max_tries; from a point already within its floor
+/// (within_floor), at most tries_at_floor, after which the iteration ends there (broyden_steps).
+/// WHY: a stall there counts as converged, and the halvings below it bought nothing but their
+/// evaluations (the ~980-patch periodic profile: line searches down to t = 2^-11 at conditions of
+/// 1.5e-8 .. 2.4e-7, under floors of 1e-6 and more, 12-30 evaluations of 0.3-0.8 s each, in four
+/// rounds). WHY two: a step that only overshoots decreases the conditions at half its length.
+constexpr int max_tries = 12;
+constexpr int tries_at_floor = 2;
+
+/// Backtracking along dx from the accepted point: the first of t, t/2, ... (`tries` tries) whose
 /// conditions decrease (Armijo, 1e-4 t), evaluated into next at y; false if none does.
-bool backtrack(newton_state& s, const Eigen::VectorXd& dx, double& t, evaluation& next, edges& y) {
+bool backtrack(newton_state& s, const Eigen::VectorXd& dx, double& t, evaluation& next, edges& y, int tries) {
   bool accepted = false;
-  for (int tries = 0; tries < 12; ++tries) {
+  for (int k = 0; k < tries; ++k) {
     y = moved(s.pb, s.u, s.out.x, t * dx);
     try {
       next = evaluate(s.q, s.u, y.a, y.b);
@@ -836,7 +860,7 @@ flat_verdict flat_run(newton_state& s, jacobian_state& js, const edges& before, 
     return flat_verdict::go_on;
   }
   if (++js.flat == flat_steps && !js.refreshed_in_flat) {
-    js.refresh(s);
+    if (!js.krylov_instead()) js.refresh(s);
     js.flat = 0;
     js.refreshed_in_flat = true;
     return flat_verdict::refreshed;
@@ -967,7 +991,8 @@ bool newton_step_ends(newton_state& s, jacobian_state& js, bool colouring, bool 
   // last gap of 1e-2 L: 12 steps each gaining ~ a factor 1.5); a new one when a step gains less
   // than a factor 2 two steps after the last. Its columns are differenced at a fixed degree
   // without a residual: 2 full_width evaluations when coloured, else one per unknown.
-  if (reduction > 0.5 && (colouring || t == 1) && js.since_fresh >= 2 && step > 10 * s.tol) js.refresh(s);
+  if (reduction > 0.5 && (colouring || t == 1) && js.since_fresh >= 2 && step > 10 * s.tol && !js.krylov_instead())
+    js.refresh(s);
   if (pb.body_load) {
     const edges& y = s.out.x;
     for (std::size_t i = 0; i < pb.roles.size(); ++i)
@@ -1023,6 +1048,7 @@ void broyden_steps(newton_state& s) {
   js.fresh = !kept;
   if (!kept) ++out.jacobians;
   const bool colouring = pb.roles.size() > full_width && (!pb.body_load || body_colouring(pb));
+  js.polish = colouring && pb.seeded && pb.body_load && pb.cx->ladder;
   for (std::size_t it = 0; it < 60; ++it) {
     if (pb.cx->out_of_time()) {
       out.failure = pb.cx->time_limit_message();
@@ -1062,8 +1088,11 @@ void broyden_steps(newton_state& s) {
     evaluation next;
     edges y;
     s.q.accuracy = s.accuracy_for(s.ev.r.lpNorm<Eigen::Infinity>());
-    if (!backtrack(s, dx, t, next, y)) {
+    const bool at_floor = within_floor(s);
+    if (!backtrack(s, dx, t, next, y, at_floor ? tries_at_floor : max_tries)) {
+      if (at_floor) break;  // stalled within the floor: converged (newton_iteration)
       if (!js.fresh) {  // Broyden's matrix went stale: a new finite-difference Jacobian
+        if (js.krylov_instead()) continue;
         js.refresh(s);
         continue;
       }

@@ -11,7 +11,7 @@
 # solver cannot tell from one), no two the same, and every patch without a contact one whose load the
 # boundary-element solver cannot tell from zero (within its error); C_f within twice the
 # boundary-element estimate (plus the acceptance's share of C_f). Measured (one core, another
-# solve beside it): 233 patches ok in 21-25 s, C_f 0.0494308, the boundary-element solver
+# solve beside it): 233 patches ok in 18 s, C_f 0.0494308, the boundary-element solver
 # (acceptance 1e-3, 1.6e6 panels, 3 s) 233 patches, C_f 0.049472 +- 2.5e-4; 443 patches: see the
 # heavy script.
 set -u

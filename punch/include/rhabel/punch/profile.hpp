@@ -183,11 +183,11 @@
 //   (3 to 85 contacts, 0.10-4.6 s), each with the boundary-element solver's patches and C_f within
 //   its estimate (those of tests/punch/test_rough_profile.cpp against the boundary-element
 //   oracle). 1e5 samples a period with 233 contacts (self_affine_profile.py 100000 1 3e-3
-//   --periodic): ok in 21-25 s (one core), at 6e-3 443 contacts ok in 60 s; the same samples
-//   at 6e-3 with seed 2 in 55-58 s (437 contacts), with seed 3 in 76 s (428); at 1.4e-2
-//   (~980 patches) ok after 6.3 min (another job on the other core) with 979 contacts, two of
+//   --periodic): ok in 18 s (one core), at 6e-3 443 contacts ok in 53-55 s; the same samples
+//   at 6e-3 with seed 2 in 54 s (437 contacts), with seed 3 in 52-55 s (428); at 1.4e-2
+//   (~980 patches) ok after 4.3 min (another job on the other core) with 979 contacts, two of
 //   the boundary-element solver's patches one panel apart solved as one (its pressure
-//   non-negative to the acceptance, its residual of (8) 9.9e-7 at degree 2047). Each agrees with the boundary-element solver's patches and its C_f within its estimate
+//   non-negative to the acceptance, its residual of (8) 9.95e-7 at degree 2047). Each agrees with the boundary-element solver's patches and its C_f within its estimate
 //   (tests/long/rough_1e5_periodic*.sh). A search whose last round fails reports its last converged
 //   round at that load, not_converged unless its own evidence names another status, with why the
 //   search stopped. An ok result bounds the residual of (8), the loads, the pressure's sign, the
