@@ -26,16 +26,16 @@ constexpr Index block_limit = 100;
 constexpr std::size_t max_products = 600;
 
 /// The cost of one FFT product of transform length M (toeplitz_product::transform_length) in units
-/// of a multiply-add of the direct sum (two real transforms, ~5 M log2 M flops together; the direct
-/// sum gathers from the table, ~2x a streamed multiply-add): the direct sum over m active panels is
-/// cheaper when m^2 is below it (measured with Eigen's kissfft: M = 8e5, 38 ms a product by FFT;
-/// the direct sum over 13550 panels, 130 ms; 672 active panels of 1.6e6: 0.3 ms). With FFTW
-/// (toeplitz_product.hpp) a product costs ~1.5 M log2 M such units, so the FFT would pay from
-/// smaller m; the crossing is left here deliberately: moved there, the coarse seeds' rounding
-/// changes and with it the searches' paths. The ~980-patch periodic profile then took 441-456 s
-/// and 68 Newton iterations (without the products' first guess, coupled_problem.hpp: not finished
-/// after 13 min, stopped), against 377 s and 62 with the crossing here (one core, another solve
-/// on the other).
+/// of a multiply-add of the direct sum: the direct sum over m active panels is used when m^2 is
+/// below it. Calibrated with Eigen's kissfft and a direct sum that gathered every column through
+/// idx (M = 8e5: 38 ms a product by FFT; the direct sum over 13550 panels, 130 ms). Both are faster
+/// now, by about as much: FFTW (toeplitz_product.hpp) and the direct sum by runs of adjacent panels
+/// (solve_active), so the crossing stays near the break-even. Measured on a grid of 2^21 panels
+/// (a throwaway microbenchmark beside the repository, another job on the cores): 10632 active
+/// panels in 443 runs of 24, 43 ms a product (104 ms gathered) against 51 ms by FFTW (the
+/// crossing: direct); 24500 panels in 980 runs, 400 ms (610 ms) against 51 ms (FFT). WHY not
+/// recalibrated: moved, the coarse seeds' rounding changes and with it the searches' paths (the
+/// ~980-patch periodic profile took 441-456 s against 377 s in one such trial).
 double fft_cost(std::size_t M) {
   const auto m = static_cast<double>(M);
   return 5 * m * std::log2(m);
@@ -211,6 +211,10 @@ bool solve_active(panel_grid& gr, const std::vector<std::size_t>& idx, double lo
     // The product: by FFT over the whole grid, or, when the active panels are few against the
     // grid (small contacts on a fine grid), as the sum over the active pairs from the table.
     const bool direct = static_cast<double>(m) * static_cast<double>(m) < fft_cost(gr.product->transform_length());
+    // The direct sum by runs of adjacent active panels: over a run both the table's entries
+    // (A(i, j) = kernel[j - i + n - 1]) and the unknowns are contiguous, so each run is one dot
+    // product (vectorised), not m gathers through idx.
+    const std::vector<piece> runs = direct ? runs_of(idx) : std::vector<piece>{};
     auto product = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
       cx.check_time();  // a step on a fine grid may take many products: the limit is checked at each
       Eigen::VectorXd out(m + 1);
@@ -221,7 +225,8 @@ bool solve_active(panel_grid& gr, const std::vector<std::size_t>& idx, double lo
         for (Index r = 0; r < m; ++r) {
           const double* row = gr.kernel.data() + gr.n - 1 - idx[static_cast<std::size_t>(r)];
           double sum = 0;
-          for (Index c = 0; c < m; ++c) sum += row[idx[static_cast<std::size_t>(c)]] * gv[c];
+          for (const auto& [s, e] : runs)
+            sum += Eigen::Map<const Eigen::VectorXd>(row + idx[static_cast<std::size_t>(s)], e - s).dot(gv.segment(s, e - s));
           out[r] = sum;
         }
       }

@@ -11,8 +11,8 @@
 # solver cannot tell from one), no two the same, and every patch without a contact one whose load the
 # boundary-element solver cannot tell from zero (within its error); C_f within twice the
 # boundary-element estimate (plus the acceptance's share of C_f). Measured (one core, another
-# solve beside it): 233 patches ok in 18 s, C_f 0.0494308, the boundary-element solver
-# (acceptance 1e-3, 1.6e6 panels, 3 s) 233 patches, C_f 0.049472 +- 2.5e-4; 443 patches: see the
+# solve beside it): 233 patches ok in 15-18 s, C_f 0.0494308, the boundary-element solver
+# (acceptance 1e-3, 1.6e6 panels, 2.5 s) 233 patches, C_f 0.049472 +- 2.5e-4; 443 patches: see the
 # heavy script.
 set -u
 rhabel="$1"; src="$2"; samples="${3:-100000}"; seed="${4:-1}"; load="${5:-3e-3}"; limit="${6:-300}"

@@ -6,8 +6,8 @@
 # first round's coupled solve keeps every coarse contact and converges; at 2^19 (5 a sample) the
 # search lost or merged a contact in each of its first eight rounds and ended with 977 contacts,
 # one real contact missing (penetrating by 7.8e-7 of the span), in 16-18 min. Measured (one core,
-# another solve on the other): ok in 4.3 min, 330 MB, 979 contacts, C_f 0.0508028; the
-# boundary-element solver (acceptance 1e-3, 19 s) 980 patches, C_f 0.05084 +- 2.2e-4: two of them
+# another solve on the other): ok in 4.0-4.4 min, 330 MB, 979 contacts, C_f 0.0508028; the
+# boundary-element solver (acceptance 1e-3, 13 s) 980 patches, C_f 0.05084 +- 2.2e-4: two of them
 # one panel apart (the lighter one's load within its error) are one contact of the search.
 #   bash rough_1e5_periodic_980.sh <path-to-rhabel-binary> <source-dir>
 exec bash "$(dirname "$0")/rough_1e5_periodic.sh" "$1" "$2" 100000 1 1.4e-2 1500

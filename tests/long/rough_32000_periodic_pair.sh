@@ -7,7 +7,7 @@
 # a contact length, merged it, the merged contact was negative inside again, and the search cycled
 # until its time limit (not_converged with 239 contacts, 120 s); the round after such a repair now
 # differences a new Jacobian (coupled_newton.cpp, memo_serves). Measured (one core, another solve
-# beside it): ok in 21.5 s, 240 contacts, C_f 0.0395440; the boundary-element solver (acceptance 1e-3)
+# beside it): ok in 15 s, 240 contacts, C_f 0.0395440; the boundary-element solver (acceptance 1e-3)
 # 240 patches.
 #   bash rough_32000_periodic_pair.sh <path-to-rhabel-binary> <source-dir>
 exec bash "$(dirname "$0")/rough_1e5_periodic.sh" "$1" "$2" 32000 1 6e-3

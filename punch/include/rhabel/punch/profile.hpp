@@ -183,9 +183,9 @@
 //   (3 to 85 contacts, 0.10-4.6 s), each with the boundary-element solver's patches and C_f within
 //   its estimate (those of tests/punch/test_rough_profile.cpp against the boundary-element
 //   oracle). 1e5 samples a period with 233 contacts (self_affine_profile.py 100000 1 3e-3
-//   --periodic): ok in 18 s (one core), at 6e-3 443 contacts ok in 53-55 s; the same samples
-//   at 6e-3 with seed 2 in 54 s (437 contacts), with seed 3 in 52-55 s (428); at 1.4e-2
-//   (~980 patches) ok after 4.3 min (another job on the other core) with 979 contacts, two of
+//   --periodic): ok in 15-18 s (one core), at 6e-3 443 contacts ok in 51-58 s; the same samples
+//   at 6e-3 with seed 2 in 49-51 s (437 contacts), with seed 3 in 50-51 s (428); at 1.4e-2
+//   (~980 patches) ok after 4.0-4.4 min (another job on the other core) with 979 contacts, two of
 //   the boundary-element solver's patches one panel apart solved as one (its pressure
 //   non-negative to the acceptance, its residual of (8) 9.95e-7 at degree 2047). Each agrees with the boundary-element solver's patches and its C_f within its estimate
 //   (tests/long/rough_1e5_periodic*.sh). A search whose last round fails reports its last converged
