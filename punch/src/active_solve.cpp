@@ -41,11 +41,11 @@ double fft_cost(std::size_t M) {
   return 5 * m * std::log2(m);
 }
 
-/// The preconditioner's blocks: neighbouring runs of active panels share a block up to block_limit
-/// panels (longer runs cut).
-std::vector<piece> blocks_of(const std::vector<std::size_t>& idx) {
+/// The preconditioner's blocks: neighbouring runs of active panels (runs_of) share a block up to
+/// block_limit panels (longer runs cut).
+std::vector<piece> blocks_of(const std::vector<piece>& runs) {
   std::vector<piece> pieces;
-  for (auto [s, e] : runs_of(idx))
+  for (auto [s, e] : runs)
     for (; s < e; s += block_limit) {
       const Index end = std::min(s + block_limit, e);
       if (!pieces.empty() && end - pieces.back().first <= block_limit) pieces.back().second = end;
@@ -211,10 +211,10 @@ bool solve_active(panel_grid& gr, const std::vector<std::size_t>& idx, double lo
     // The product: by FFT over the whole grid, or, when the active panels are few against the
     // grid (small contacts on a fine grid), as the sum over the active pairs from the table.
     const bool direct = static_cast<double>(m) * static_cast<double>(m) < fft_cost(gr.product->transform_length());
-    // The direct sum by runs of adjacent active panels: over a run both the table's entries
-    // (A(i, j) = kernel[j - i + n - 1]) and the unknowns are contiguous, so each run is one dot
-    // product (vectorised), not m gathers through idx.
-    const std::vector<piece> runs = direct ? runs_of(idx) : std::vector<piece>{};
+    // The runs of adjacent active panels: the preconditioner's blocks, and the direct sum's
+    // pieces (over a run both the table's entries, A(i, j) = kernel[j - i + n - 1], and the
+    // unknowns are contiguous, so each run is one dot product, vectorised, not gathers through idx).
+    const std::vector<piece> runs = runs_of(idx);
     auto product = [&](const Eigen::VectorXd& v) -> Eigen::VectorXd {
       cx.check_time();  // a step on a fine grid may take many products: the limit is checked at each
       Eigen::VectorXd out(m + 1);
@@ -234,7 +234,7 @@ bool solve_active(panel_grid& gr, const std::vector<std::size_t>& idx, double lo
       out[m] = sigma * gr.h * gv.sum();
       return out;
     };
-    const two_level precondition(gr, idx, blocks_of(idx), sigma);
+    const two_level precondition(gr, idx, blocks_of(runs), sigma);
     y = first_guess(ws, idx, gr.n);
     if (!abel::gmres(product, precondition, rhs, y, rtol, max_products)) return false;
   }
